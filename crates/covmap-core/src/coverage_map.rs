@@ -1,0 +1,293 @@
+//! The coverage map: one histogram over coverage values per cell.
+
+use crate::error::{CovmapError, Result};
+use crate::footprint::visit;
+use crate::grid::{Cell, Grid};
+use crate::histogram::{self, DEFAULT_BINS};
+use crate::scan::{Pose, validate_scan};
+use crate::sensor::{KernelTable, SensorModel};
+
+/// A grid whose every cell holds a histogram over how much of it is covered.
+///
+/// Storage is one contiguous `f32` array, row-major over cells with the bins of
+/// a cell adjacent: cell `i`'s histogram is `[i * bins, (i + 1) * bins)`. At the
+/// default 16 bins that is one 64-byte cache line per cell.
+///
+/// Invariants, after any sequence of updates: every histogram sums to 1 within
+/// `1e-5`, every bin is finite and at least [`histogram::bin_floor`].
+///
+/// # Example
+/// ```
+/// use covmap_core::{CoverageMap, Grid, LaserModel, Pose};
+/// let grid = Grid::new([0.0, 0.0], 0.05, 100, 100).unwrap();
+/// let mut map = CoverageMap::new(grid);
+/// let laser = LaserModel::default();
+/// // One beam along +x from (1, 2.525) that ends at x = 3.04.
+/// let updated = map.integrate(&Pose::new(1.0, 2.525, 0.0), &[2.04], &[0.0], &laser).unwrap();
+/// assert!(updated > 40);
+/// let ml = map.ml();
+/// let cell = |x: f64| grid.index(grid.world_to_cell(x, 2.525).unwrap()).unwrap();
+/// assert_eq!(ml[cell(2.0)], 0.0); // the beam passed: empty
+/// assert_eq!(ml[cell(3.1)], 1.0); // just behind the end point: covered
+/// assert!(map.entropy()[cell(2.0)] < map.entropy()[cell(0.5)]); // untouched cells keep the prior
+/// ```
+#[derive(Clone, Debug)]
+pub struct CoverageMap {
+    grid: Grid,
+    bins: usize,
+    floor: f32,
+    data: Vec<f32>,
+    /// The last sensor model's kernels, rebuilt when the model changes.
+    table: Option<Box<KernelTable>>,
+}
+
+impl CoverageMap {
+    /// A map at the uniform prior with [`DEFAULT_BINS`] bins.
+    pub fn new(grid: Grid) -> Self {
+        Self::with_bins(grid, DEFAULT_BINS).expect("the default bin count is valid")
+    }
+
+    /// A map at the uniform prior with `bins` bins per cell (2 to 256).
+    pub fn with_bins(grid: Grid, bins: usize) -> Result<Self> {
+        histogram::check_bins(bins)?;
+        let p = 1.0 / bins as f32;
+        Ok(Self {
+            grid,
+            bins,
+            floor: histogram::bin_floor(bins),
+            data: vec![p; grid.len() * bins],
+            table: None,
+        })
+    }
+
+    /// A map from stored histograms (`grid.len() * bins` values, cell-major).
+    /// Each histogram must be finite, non-negative and sum to 1 within `1e-3`;
+    /// it is renormalised and floored on the way in.
+    pub fn from_histograms(grid: Grid, bins: usize, mut data: Vec<f32>) -> Result<Self> {
+        histogram::check_bins(bins)?;
+        if data.len() != grid.len() * bins {
+            return Err(CovmapError::LengthMismatch {
+                what: "histogram values and grid cells x bins",
+                left: data.len(),
+                right: grid.len() * bins,
+            });
+        }
+        let floor = histogram::bin_floor(bins);
+        for (i, h) in data.chunks_exact(bins).enumerate() {
+            let sum: f32 = h.iter().sum();
+            if h.iter().any(|v| !(v.is_finite() && *v >= 0.0)) || (sum - 1.0).abs() > 1e-3 {
+                return Err(CovmapError::InvalidHistogram(format!(
+                    "cell {i}: bins must be finite, non-negative and sum to 1 (sum {sum})"
+                )));
+            }
+        }
+        for h in data.chunks_exact_mut(bins) {
+            let uniform = vec![1.0; bins];
+            histogram::update(h, &uniform, floor);
+        }
+        Ok(Self {
+            grid,
+            bins,
+            floor,
+            data,
+            table: None,
+        })
+    }
+
+    /// The grid.
+    pub fn grid(&self) -> &Grid {
+        &self.grid
+    }
+    /// Bins per cell.
+    pub fn bins(&self) -> usize {
+        self.bins
+    }
+    /// The coverage value of each bin, `b / (bins - 1)`.
+    pub fn bin_values(&self) -> Vec<f64> {
+        (0..self.bins)
+            .map(|b| histogram::bin_value(b, self.bins))
+            .collect()
+    }
+    /// All histograms, cell-major (`grid.len() * bins` values).
+    pub fn histograms(&self) -> &[f32] {
+        &self.data
+    }
+    /// One cell's histogram.
+    pub fn histogram(&self, cell: Cell) -> Result<&[f32]> {
+        let i = self.grid.index(cell)?;
+        Ok(&self.data[i * self.bins..(i + 1) * self.bins])
+    }
+
+    /// The maximum-likelihood map: each cell's most probable coverage value.
+    pub fn ml(&self) -> Vec<f32> {
+        let scale = 1.0 / (self.bins - 1) as f32;
+        self.data
+            .chunks_exact(self.bins)
+            .map(|h| histogram::argmax(h) as f32 * scale)
+            .collect()
+    }
+    /// The mean map: each cell's expected coverage.
+    pub fn mean(&self) -> Vec<f32> {
+        self.data
+            .chunks_exact(self.bins)
+            .map(histogram::mean)
+            .collect()
+    }
+    /// The entropy map, nats: `ln(bins)` at the prior, 0 when certain.
+    pub fn entropy(&self) -> Vec<f32> {
+        self.data
+            .chunks_exact(self.bins)
+            .map(histogram::entropy)
+            .collect()
+    }
+
+    /// Integrate one scan taken from `pose`: reading `ranges[i]` (metres) along
+    /// `pose.theta_rad + bearings[i]`. Returns the number of cell updates.
+    ///
+    /// Everything is validated before anything changes: a non-finite pose, a
+    /// pose outside the map, a NaN, infinite or negative range, a non-finite
+    /// bearing, mismatched lengths or an invalid model is an error and leaves
+    /// the map exactly as it was. Beams leaving the map update the part inside.
+    pub fn integrate<M: SensorModel + ?Sized>(
+        &mut self,
+        pose: &Pose,
+        ranges: &[f64],
+        bearings: &[f64],
+        model: &M,
+    ) -> Result<usize> {
+        model.validate()?;
+        validate_scan(&self.grid, pose, ranges, bearings)?;
+        let range = model.range_model();
+        let resolution = self.grid.resolution_m();
+        if !self
+            .table
+            .as_ref()
+            .is_some_and(|t| t.serves(range, resolution, self.bins))
+        {
+            self.table = Some(Box::new(KernelTable::new(range, resolution, self.bins)?));
+        }
+        let Self {
+            grid,
+            bins,
+            floor,
+            data,
+            table,
+        } = self;
+        let (bins, floor) = (*bins, *floor);
+        let table = table.as_deref().expect("built above");
+        let footprint = model.footprint();
+        let mut updates = 0;
+        for (&r, &bearing) in ranges.iter().zip(bearings) {
+            let (reach, echo) = range.reach(r);
+            let d = r.min(range.max_range_m);
+            visit(
+                grid,
+                [pose.x_m, pose.y_m],
+                pose.theta_rad + bearing,
+                reach,
+                footprint,
+                |i, d_l| {
+                    let k = table.at(table.offset(d_l, d, echo));
+                    histogram::update(&mut data[i * bins..(i + 1) * bins], k, floor);
+                    updates += 1;
+                },
+            );
+        }
+        Ok(updates)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::sensor::{LaserModel, SonarModel};
+
+    fn grid() -> Grid {
+        Grid::new([0.0, 0.0], 0.05, 60, 80).unwrap()
+    }
+
+    #[test]
+    fn bad_input_leaves_map_unchanged() {
+        let mut map = CoverageMap::new(grid());
+        let sonar = SonarModel::default();
+        map.integrate(&Pose::new(2.0, 1.5, 0.3), &[1.0, 2.0], &[0.0, 1.0], &sonar)
+            .unwrap();
+        let before = map.histograms().to_vec();
+        let p = Pose::new(2.0, 1.5, 0.0);
+        let cases: Vec<(Pose, Vec<f64>, Vec<f64>)> = vec![
+            (p, vec![1.0, f64::NAN], vec![0.0, 1.0]),
+            (p, vec![1.0, -0.1], vec![0.0, 1.0]),
+            (p, vec![f64::INFINITY], vec![0.0]),
+            (p, vec![1.0], vec![f64::NAN]),
+            (p, vec![1.0, 2.0], vec![0.0]),
+            (Pose::new(f64::NAN, 1.0, 0.0), vec![1.0], vec![0.0]),
+            (Pose::new(1.0, 1.0, f64::INFINITY), vec![1.0], vec![0.0]),
+            (Pose::new(-0.01, 1.0, 0.0), vec![1.0], vec![0.0]),
+            (Pose::new(4.0, 1.0, 0.0), vec![1.0], vec![0.0]),
+        ];
+        for (pose, r, b) in cases {
+            assert!(
+                map.integrate(&pose, &r, &b, &sonar).is_err(),
+                "{pose:?} {r:?} {b:?}"
+            );
+            assert_eq!(map.histograms(), &before[..]);
+        }
+        let mut bad = sonar;
+        bad.range.sigma_min = -1.0;
+        assert!(map.integrate(&p, &[1.0], &[0.0], &bad).is_err());
+        assert_eq!(map.histograms(), &before[..]);
+    }
+
+    #[test]
+    fn a_million_identical_readings_leave_no_zero_bin() {
+        let g = Grid::new([0.0, 0.0], 0.05, 4, 40).unwrap();
+        let mut map = CoverageMap::new(g);
+        let laser = LaserModel::default();
+        let pose = Pose::new(0.01, 0.1, 0.0);
+        let ranges = vec![1.0; 1000];
+        let bearings = vec![0.0; 1000];
+        for _ in 0..1000 {
+            map.integrate(&pose, &ranges, &bearings, &laser).unwrap();
+        }
+        for h in map.histograms().chunks_exact(16) {
+            assert!(h.iter().all(|&v| v > 0.0 && v.is_finite()));
+            assert!((h.iter().sum::<f32>() - 1.0).abs() < 1e-5);
+        }
+        // And a cell that has seen a million "empty" readings still changes its
+        // mind when the world changes.
+        let cell = g.world_to_cell(0.5, 0.1).unwrap();
+        assert_eq!(map.ml()[g.index(cell).unwrap()], 0.0);
+        let short = vec![0.49; 100];
+        map.integrate(&pose, &short, &bearings[..100], &laser)
+            .unwrap();
+        assert!(map.mean()[g.index(cell).unwrap()] > 0.5);
+    }
+
+    #[test]
+    fn model_change_rebuilds_kernels() {
+        let mut a = CoverageMap::new(grid());
+        let mut b = CoverageMap::new(grid());
+        let p = Pose::new(2.0, 1.5, 0.0);
+        let sonar = SonarModel::default();
+        let mut wide = sonar;
+        wide.range.xi_min = 0.5;
+        a.integrate(&p, &[1.0], &[0.0], &sonar).unwrap();
+        a.integrate(&p, &[1.0], &[0.0], &wide).unwrap();
+        b.integrate(&p, &[1.0], &[0.0], &wide).unwrap();
+        b.integrate(&p, &[1.0], &[0.0], &sonar).unwrap();
+        for (x, y) in a.histograms().iter().zip(b.histograms()) {
+            assert!((x - y).abs() < 1e-6);
+        }
+    }
+
+    #[test]
+    fn from_histograms_validates() {
+        let g = Grid::new([0.0, 0.0], 0.1, 2, 2).unwrap();
+        assert!(CoverageMap::from_histograms(g, 4, vec![0.25; 15]).is_err());
+        let mut d = vec![0.25; 16];
+        d[3] = f32::NAN;
+        assert!(CoverageMap::from_histograms(g, 4, d).is_err());
+        let m = CoverageMap::from_histograms(g, 4, vec![0.25; 16]).unwrap();
+        assert_eq!(m.entropy()[0], 4f32.ln());
+    }
+}

@@ -1,0 +1,97 @@
+//! The error type of the core crate.
+
+use thiserror::Error;
+
+/// Everything that can go wrong in `covmap-core`.
+///
+/// Every variant names the offending value and what was expected. A function
+/// returning an error has not changed any map it was given.
+#[derive(Debug, Clone, PartialEq, Error)]
+#[non_exhaustive]
+pub enum CovmapError {
+    /// A grid was described with an unusable geometry.
+    #[error("invalid grid: {0}")]
+    InvalidGrid(String),
+    /// A sensor-model or map parameter is out of its valid range.
+    #[error("invalid parameter `{name}` = {value}: expected {expected}")]
+    InvalidParameter {
+        /// The parameter's name.
+        name: &'static str,
+        /// The rejected value.
+        value: f64,
+        /// What the parameter must satisfy.
+        expected: &'static str,
+    },
+    /// A range reading is NaN, infinite or negative.
+    #[error(
+        "invalid range at index {index}: {value} (expected a finite, non-negative distance in metres)"
+    )]
+    InvalidRange {
+        /// Position of the reading in the scan.
+        index: usize,
+        /// The rejected reading.
+        value: f64,
+    },
+    /// A bearing is NaN or infinite.
+    #[error("invalid bearing at index {index}: {value} (expected a finite angle in radians)")]
+    InvalidBearing {
+        /// Position of the bearing in the scan.
+        index: usize,
+        /// The rejected bearing.
+        value: f64,
+    },
+    /// A pose has a non-finite component.
+    #[error("invalid pose ({x}, {y}, {theta}): every component must be finite")]
+    InvalidPose {
+        /// x in metres.
+        x: f64,
+        /// y in metres.
+        y: f64,
+        /// Heading in radians.
+        theta: f64,
+    },
+    /// A pose lies outside the map.
+    #[error("pose ({x}, {y}) lies outside the map [{x_min}, {x_max}) x [{y_min}, {y_max})")]
+    PoseOutsideMap {
+        /// x in metres.
+        x: f64,
+        /// y in metres.
+        y: f64,
+        /// The map's extent.
+        x_min: f64,
+        /// The map's extent.
+        x_max: f64,
+        /// The map's extent.
+        y_min: f64,
+        /// The map's extent.
+        y_max: f64,
+    },
+    /// Two inputs that must have the same length do not.
+    #[error("length mismatch: {what} ({left} vs {right})")]
+    LengthMismatch {
+        /// Which inputs disagree.
+        what: &'static str,
+        /// The first length.
+        left: usize,
+        /// The second length.
+        right: usize,
+    },
+    /// A cell index lies outside the grid.
+    #[error("cell (row {row}, col {col}) lies outside a grid of {rows} x {cols} cells")]
+    CellOutOfBounds {
+        /// Requested row.
+        row: usize,
+        /// Requested column.
+        col: usize,
+        /// Grid rows.
+        rows: usize,
+        /// Grid columns.
+        cols: usize,
+    },
+    /// Histogram data handed in does not describe a valid map.
+    #[error("invalid histogram data: {0}")]
+    InvalidHistogram(String),
+}
+
+/// Shorthand for results of this crate.
+pub type Result<T, E = CovmapError> = std::result::Result<T, E>;

@@ -1,0 +1,36 @@
+//! # covmap-core
+//!
+//! Coverage maps (Stachniss and Burgard, 2003): a grid whose every cell holds a
+//! histogram posterior over *how much* of the cell is covered by obstacles,
+//! updated by Bayes' rule with an inverse sensor model for sonar cones and laser
+//! beams; the occupancy-grid and scan-counting baselines fed by the same beams.
+//!
+//! ```
+//! use covmap_core::{CoverageMap, Grid, Pose, SonarModel};
+//! let grid = Grid::new([0.0, 0.0], 0.05, 200, 200).unwrap();
+//! let mut map = CoverageMap::new(grid);
+//! let bearings: Vec<f64> = (0..24).map(|i| i as f64 * std::f64::consts::TAU / 24.0).collect();
+//! let ranges = vec![2.5; 24];
+//! map.integrate(&Pose::new(5.0, 5.0, 0.0), &ranges, &bearings, &SonarModel::default()).unwrap();
+//! let entropy = map.entropy();
+//! assert!(entropy.iter().any(|&h| h < 0.5 * 16f32.ln()));
+//! ```
+#![warn(missing_docs)]
+
+mod counting;
+mod coverage_map;
+mod error;
+mod footprint;
+mod grid;
+pub mod histogram;
+mod occupancy;
+mod scan;
+pub mod sensor;
+
+pub use counting::ScanCounts;
+pub use coverage_map::CoverageMap;
+pub use error::{CovmapError, Result};
+pub use grid::{Cell, Grid, MAX_CELLS};
+pub use occupancy::{OccupancyGrid, OccupancyModel};
+pub use scan::Pose;
+pub use sensor::{Footprint, KernelTable, LaserModel, RangeModel, SensorModel, SonarModel};

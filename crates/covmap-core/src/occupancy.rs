@@ -1,0 +1,163 @@
+//! The occupancy-grid baseline: log-odds with the usual inverse model.
+
+use serde::{Deserialize, Serialize};
+
+use crate::counting::ScanCounts;
+use crate::error::{CovmapError, Result};
+use crate::footprint::visit;
+use crate::grid::Grid;
+use crate::scan::{Pose, validate_scan};
+use crate::sensor::SensorModel;
+
+/// The inverse model of the occupancy baseline.
+///
+/// A cell in the footprint in front of the end point's cell (`d_l < d - r/2`)
+/// is observed free; the end point's cell (`|d_l - d| <= r/2`) occupied; cells
+/// behind are not touched; a no-echo reading observes its whole footprint free.
+/// Log-odds are clamped to `[-log_odds_limit, log_odds_limit]` (the default 5
+/// keeps probabilities in `[0.0067, 0.9933]`), so that a cell can change its
+/// mind after a bounded number of contrary readings.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct OccupancyModel {
+    /// Probability of occupancy a hit gives its cell.
+    pub p_occupied: f64,
+    /// Probability of occupancy a pass-through gives its cell.
+    pub p_free: f64,
+    /// Bound on the magnitude of a cell's log-odds.
+    pub log_odds_limit: f64,
+}
+
+impl Default for OccupancyModel {
+    fn default() -> Self {
+        Self {
+            p_occupied: 0.7,
+            p_free: 0.35,
+            log_odds_limit: 5.0,
+        }
+    }
+}
+
+impl OccupancyModel {
+    /// Errors unless `0.5 < p_occupied < 1`, `0 < p_free < 0.5`, limit > 0.
+    pub fn validate(&self) -> Result<()> {
+        let bad = |name, value, expected| {
+            Err(CovmapError::InvalidParameter {
+                name,
+                value,
+                expected,
+            })
+        };
+        if !(self.p_occupied > 0.5 && self.p_occupied < 1.0) {
+            return bad("p_occupied", self.p_occupied, "a probability in (0.5, 1)");
+        }
+        if !(self.p_free > 0.0 && self.p_free < 0.5) {
+            return bad("p_free", self.p_free, "a probability in (0, 0.5)");
+        }
+        if !(self.log_odds_limit.is_finite() && self.log_odds_limit > 0.0) {
+            return bad(
+                "log_odds_limit",
+                self.log_odds_limit,
+                "a positive, finite bound",
+            );
+        }
+        Ok(())
+    }
+}
+
+fn logit(p: f64) -> f32 {
+    (p / (1.0 - p)).ln() as f32
+}
+
+/// A standard log-odds occupancy grid, with the scan counts of the same beams.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct OccupancyGrid {
+    model: OccupancyModel,
+    log_odds: Vec<f32>,
+    counts: ScanCounts,
+}
+
+impl OccupancyGrid {
+    /// An unknown (p = 0.5) grid with the default model and undiscounted counts.
+    pub fn new(grid: Grid) -> Self {
+        Self {
+            model: OccupancyModel::default(),
+            log_odds: vec![0.0; grid.len()],
+            counts: ScanCounts::new(grid),
+        }
+    }
+
+    /// An unknown grid with `model`, counting into `counts` (which sets the grid).
+    pub fn with_model(model: OccupancyModel, counts: ScanCounts) -> Result<Self> {
+        model.validate()?;
+        Ok(Self {
+            model,
+            log_odds: vec![0.0; counts.grid().len()],
+            counts,
+        })
+    }
+
+    /// The grid.
+    pub fn grid(&self) -> &Grid {
+        self.counts.grid()
+    }
+    /// The inverse model.
+    pub fn model(&self) -> &OccupancyModel {
+        &self.model
+    }
+    /// Log-odds of occupancy, row-major.
+    pub fn log_odds(&self) -> &[f32] {
+        &self.log_odds
+    }
+    /// Probability of occupancy, row-major.
+    pub fn probabilities(&self) -> Vec<f32> {
+        self.log_odds
+            .iter()
+            .map(|l| 1.0 / (1.0 + (-l).exp()))
+            .collect()
+    }
+    /// The scan counts of the same beams.
+    pub fn counts(&self) -> &ScanCounts {
+        &self.counts
+    }
+
+    /// Integrate one scan; validated like [`crate::CoverageMap::integrate`], and
+    /// the same beams are counted.
+    pub fn integrate<M: SensorModel + ?Sized>(
+        &mut self,
+        pose: &Pose,
+        ranges: &[f64],
+        bearings: &[f64],
+        model: &M,
+    ) -> Result<()> {
+        model.validate()?;
+        validate_scan(self.grid(), pose, ranges, bearings)?;
+        let (l_occ, l_free) = (logit(self.model.p_occupied), logit(self.model.p_free));
+        let limit = self.model.log_odds_limit as f32;
+        let range = model.range_model();
+        let grid = *self.grid();
+        let half = 0.5 * grid.resolution_m();
+        for (&r, &bearing) in ranges.iter().zip(bearings) {
+            let echo = r < range.max_range_m;
+            let reach = if echo { r + half } else { range.max_range_m };
+            let log_odds = &mut self.log_odds;
+            visit(
+                &grid,
+                [pose.x_m, pose.y_m],
+                pose.theta_rad + bearing,
+                reach,
+                model.footprint(),
+                |i, d_l| {
+                    let l = if echo && d_l >= r - half {
+                        l_occ
+                    } else {
+                        l_free
+                    };
+                    log_odds[i] = (log_odds[i] + l).clamp(-limit, limit);
+                },
+            );
+        }
+        self.counts.count(pose, ranges, bearings, model);
+        Ok(())
+    }
+}

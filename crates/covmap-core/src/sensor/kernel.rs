@@ -1,0 +1,189 @@
+//! The precomputed kernel table: the update loop evaluates no `exp` or `log`.
+
+use super::{RangeModel, kernel_values};
+use crate::error::{CovmapError, Result};
+use crate::histogram::MAX_BINS;
+
+/// Slices the end band (one cell deep) is cut into: `mu` is resolved to 1/32.
+pub const BAND_SLICES: usize = 32;
+/// Steps the mean distance `s` is cut into, from 0 to `max_range_m + band_m`.
+pub const DISTANCE_STEPS: usize = 256;
+
+/// Kernels of one [`RangeModel`] for one grid resolution and bin count,
+/// quantised on `(region, s)`.
+///
+/// Region 0 is free space (`mu = 0`), regions `1..=BAND_SLICES` are slices of
+/// the end band (each evaluated at its centre), region `BAND_SLICES + 1` is the
+/// band behind the end point (`mu = 1`). The mean distance `s` is rounded to the
+/// nearest of `DISTANCE_STEPS + 1` steps; `sigma` and `xi` are linear in `s`, so
+/// the quantisation moves them by at most half a step's worth.
+///
+/// Memory: `(BAND_SLICES + 2) * (DISTANCE_STEPS + 1) * bins * 4` bytes (557 KiB
+/// at 16 bins), of which the free-space row the update reads most is 16 KiB.
+#[derive(Clone, Debug)]
+pub struct KernelTable {
+    model: RangeModel,
+    resolution_m: f64,
+    bins: usize,
+    /// Inverse of the `s` step, 1/m.
+    inv_step_s: f64,
+    /// Inverse of a band slice's depth, 1/m.
+    inv_slice: f64,
+    /// `[region][s][bin]`, each kernel normalised to sum 1.
+    values: Vec<f32>,
+}
+
+impl KernelTable {
+    /// Tabulate `model` for a grid of `resolution_m` with `bins` bins.
+    pub fn new(model: &RangeModel, resolution_m: f64, bins: usize) -> Result<Self> {
+        model.validate()?;
+        if !(resolution_m.is_finite() && resolution_m > 0.0) {
+            return Err(CovmapError::InvalidParameter {
+                name: "resolution_m",
+                value: resolution_m,
+                expected: "a positive, finite cell size",
+            });
+        }
+        crate::histogram::check_bins(bins)?;
+        debug_assert!(bins <= MAX_BINS);
+        let step_s = (model.max_range_m + model.band_m) / DISTANCE_STEPS as f64;
+        let slice = resolution_m / BAND_SLICES as f64;
+        let mut values = Vec::with_capacity((BAND_SLICES + 2) * (DISTANCE_STEPS + 1) * bins);
+        for region in 0..BAND_SLICES + 2 {
+            for step in 0..=DISTANCE_STEPS {
+                let s = step as f64 * step_s;
+                let (mu, sigma) = match region {
+                    0 => (0.0, model.sigma(s)),
+                    r if r <= BAND_SLICES => {
+                        let o = -0.5 * resolution_m + (r as f64 - 0.5) * slice;
+                        (0.5 + o / resolution_m, model.sigma_end)
+                    }
+                    _ => (1.0, model.sigma(s)),
+                };
+                values.extend(
+                    kernel_values(mu, sigma, model.xi(s), bins)
+                        .into_iter()
+                        .map(|v| v as f32),
+                );
+            }
+        }
+        Ok(Self {
+            model: *model,
+            resolution_m,
+            bins,
+            inv_step_s: 1.0 / step_s,
+            inv_slice: 1.0 / slice,
+            values,
+        })
+    }
+
+    /// The model this table was made from.
+    pub fn model(&self) -> &RangeModel {
+        &self.model
+    }
+    /// The grid resolution it was made for, metres.
+    pub fn resolution_m(&self) -> f64 {
+        self.resolution_m
+    }
+    /// Bins per kernel.
+    pub fn bins(&self) -> usize {
+        self.bins
+    }
+    /// Whether this table serves `model` on a grid of `resolution_m` with `bins`.
+    pub fn serves(&self, model: &RangeModel, resolution_m: f64, bins: usize) -> bool {
+        self.model == *model && self.resolution_m == resolution_m && self.bins == bins
+    }
+
+    /// Offset of the kernel for a cell at `d_l` and a reading `d` (clamped to
+    /// the maximum range), `echo` false for a no-echo reading. The caller has
+    /// already limited `d_l` to the reading's reach.
+    #[inline(always)]
+    pub(crate) fn offset(&self, d_l: f64, d: f64, echo: bool) -> usize {
+        let o = d_l - d;
+        let half = 0.5 * self.resolution_m;
+        let region = if !echo || o < -half {
+            0
+        } else if o <= half {
+            // Truncation is the floor here: the argument is non-negative.
+            1 + (((o + half) * self.inv_slice) as usize).min(BAND_SLICES - 1)
+        } else {
+            BAND_SLICES + 1
+        };
+        let step =
+            (((d_l.max(0.0) + d) * 0.5 * self.inv_step_s + 0.5) as usize).min(DISTANCE_STEPS);
+        (region * (DISTANCE_STEPS + 1) + step) * self.bins
+    }
+
+    /// The kernel at a table offset from [`KernelTable::offset`].
+    #[inline(always)]
+    pub(crate) fn at(&self, offset: usize) -> &[f32] {
+        &self.values[offset..offset + self.bins]
+    }
+
+    /// The kernel the update multiplies in for a cell at `cell_distance_m` and a
+    /// reading of `measured_distance_m`, or `None` where the cell is not updated.
+    pub fn kernel_at(&self, cell_distance_m: f64, measured_distance_m: f64) -> Option<Vec<f32>> {
+        let (reach, echo) = self.model.reach(measured_distance_m);
+        if !(cell_distance_m <= reach) {
+            return None;
+        }
+        let d = measured_distance_m.min(self.model.max_range_m);
+        Some(self.at(self.offset(cell_distance_m, d, echo)).to_vec())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::sensor::{LaserModel, SonarModel};
+
+    /// The table agrees with the exact model to within its quantisation.
+    #[test]
+    fn table_matches_exact_kernel() {
+        for model in [SonarModel::default().range, LaserModel::default().range] {
+            for bins in [8, 16, 33] {
+                let r = 0.05;
+                let table = KernelTable::new(&model, r, bins).unwrap();
+                let mut worst = 0.0f64;
+                for i in 0..400 {
+                    let d = model.max_range_m * (i as f64 * 0.618_034).fract() * 1.05;
+                    for j in 0..60 {
+                        let d_l = (d + model.band_m) * j as f64 / 59.0;
+                        let exact = model.kernel_exact(d_l, d, r, bins);
+                        let table = table.kernel_at(d_l, d);
+                        assert_eq!(exact.is_some(), table.is_some(), "d_l {d_l} d {d}");
+                        let (Some(e), Some(t)) = (exact, table) else {
+                            continue;
+                        };
+                        for (a, b) in e.iter().zip(&t) {
+                            worst = worst.max((a - *b as f64).abs());
+                        }
+                    }
+                }
+                // A band slice moves mu by 1/64 at most; a distance step moves
+                // sigma and xi by half a step. Kernels sum to 1.
+                assert!(worst < 0.02, "bins {bins}: worst kernel difference {worst}");
+            }
+        }
+    }
+
+    #[test]
+    fn kernels_are_positive_and_normalised() {
+        let table = KernelTable::new(&SonarModel::default().range, 0.05, 16).unwrap();
+        for k in table.values.chunks(16) {
+            assert!(k.iter().all(|&v| v > 0.0 && v.is_finite()));
+            let sum: f32 = k.iter().sum();
+            assert!((sum - 1.0).abs() < 1e-5);
+        }
+    }
+
+    #[test]
+    fn far_region_is_not_updated() {
+        let table = KernelTable::new(&SonarModel::default().range, 0.05, 16).unwrap();
+        assert!(table.kernel_at(2.21, 2.0).is_none());
+        assert!(table.kernel_at(2.19, 2.0).is_some());
+        // No echo: clear up to the maximum range, never beyond.
+        assert!(table.kernel_at(4.99, 7.0).is_some());
+        assert!(table.kernel_at(5.01, 7.0).is_none());
+    }
+}

@@ -1,0 +1,213 @@
+//! Inverse sensor models: what a range reading says about a cell's coverage.
+//!
+//! The model is MODEL.md section 3 (paper eq. 9-10). For a cell whose centre is
+//! `d_l` metres from the sensor and a reading of `d` metres, the density over the
+//! coverage value `x` is
+//!
+//! ```text
+//! p(x | d) ∝ xi(d_l, d) + N(x; mu(d_l - d), sigma(d_l, d))
+//! ```
+//!
+//! evaluated at the bin values and normalised. With `o = d_l - d`, `r` the grid
+//! resolution and `s = (d_l + d) / 2` the mean of the two distances:
+//!
+//! | region | `mu` | `sigma` |
+//! | --- | --- | --- |
+//! | free, `o < -r/2` | 0 | `sigma_min + sigma_per_m * s` |
+//! | end band, `abs(o) <= r/2` | `1/2 + o/r` | `sigma_end` (the largest) |
+//! | behind, `r/2 < o <= band_m` | 1 | `sigma_min + sigma_per_m * s` |
+//!
+//! In the end band the mean falls linearly from 1 (the beam ends at the cell's
+//! near edge) to 0 (at its far edge): the more of the cell the beam travelled
+//! through, the less of it is covered. An obstacle filling the far 20 % of a cell
+//! stops the beam `0.3 r` past the centre, `o = -0.3 r`, so `mu = 0.2`.
+//!
+//! The uniform weight is `xi(d_l, d) = xi_min + xi_per_m * s`: far readings say
+//! less. Both `sigma` and `xi` grow with `d_l` and with `d` as the paper asks; they
+//! depend on the two only through their mean `s`, which keeps the precomputed
+//! kernel table small (see [`KernelTable`]).
+//!
+//! Cells more than `band_m` behind the end point are not touched. A reading at or
+//! beyond `max_range_m` is "no echo": every cell of the footprint up to
+//! `max_range_m` gets the free kernel (with `d = max_range_m`) and none is marked.
+
+mod kernel;
+mod laser;
+mod sonar;
+
+pub use kernel::KernelTable;
+pub use laser::LaserModel;
+pub use sonar::SonarModel;
+
+use serde::{Deserialize, Serialize};
+
+use crate::error::{CovmapError, Result};
+
+/// The parameters shared by every range sensor: the inverse model along one
+/// direction (see the [module documentation](self)).
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RangeModel {
+    /// Readings at or beyond this distance mean "no echo", metres.
+    pub max_range_m: f64,
+    /// How far behind the end point cells are updated (as covered), metres.
+    pub band_m: f64,
+    /// Standard deviation of the coverage mean at zero distance, outside the end band.
+    pub sigma_min: f64,
+    /// Growth of that standard deviation per metre of mean distance `s`.
+    pub sigma_per_m: f64,
+    /// The constant standard deviation inside the end band (the largest of all).
+    pub sigma_end: f64,
+    /// Weight of the uniform component at zero distance (must be positive).
+    pub xi_min: f64,
+    /// Growth of the uniform weight per metre of mean distance `s`.
+    pub xi_per_m: f64,
+}
+
+impl RangeModel {
+    /// Errors unless every parameter lies in its valid range.
+    pub fn validate(&self) -> Result<()> {
+        fn check(name: &'static str, value: f64, ok: bool, expected: &'static str) -> Result<()> {
+            if ok && value.is_finite() {
+                Ok(())
+            } else {
+                Err(CovmapError::InvalidParameter {
+                    name,
+                    value,
+                    expected,
+                })
+            }
+        }
+        check(
+            "max_range_m",
+            self.max_range_m,
+            self.max_range_m > 0.0,
+            "a positive distance",
+        )?;
+        check(
+            "band_m",
+            self.band_m,
+            self.band_m >= 0.0,
+            "a non-negative distance",
+        )?;
+        check(
+            "sigma_min",
+            self.sigma_min,
+            self.sigma_min > 0.0,
+            "a positive standard deviation",
+        )?;
+        check(
+            "sigma_per_m",
+            self.sigma_per_m,
+            self.sigma_per_m >= 0.0,
+            "a non-negative growth",
+        )?;
+        check(
+            "xi_min",
+            self.xi_min,
+            self.xi_min > 0.0,
+            "a positive weight",
+        )?;
+        check(
+            "xi_per_m",
+            self.xi_per_m,
+            self.xi_per_m >= 0.0,
+            "a non-negative growth",
+        )?;
+        let widest = self.sigma(self.max_range_m + self.band_m);
+        check(
+            "sigma_end",
+            self.sigma_end,
+            self.sigma_end >= widest,
+            "a standard deviation no smaller than sigma anywhere outside the band (sigma_min + sigma_per_m * (max_range_m + band_m))",
+        )
+    }
+
+    /// `sigma` outside the end band at mean distance `s_m`.
+    pub fn sigma(&self, s_m: f64) -> f64 {
+        self.sigma_min + self.sigma_per_m * s_m
+    }
+
+    /// The uniform weight at mean distance `s_m`.
+    pub fn xi(&self, s_m: f64) -> f64 {
+        self.xi_min + self.xi_per_m * s_m
+    }
+
+    /// How far along the beam a reading of `range_m` reaches, and whether it is
+    /// an echo (`false`: no echo, clear up to the maximum range).
+    pub fn reach(&self, range_m: f64) -> (f64, bool) {
+        if range_m >= self.max_range_m {
+            (self.max_range_m, false)
+        } else {
+            (range_m + self.band_m, true)
+        }
+    }
+
+    /// The exact (unquantised) kernel for a cell at `cell_distance_m` and a
+    /// reading of `measured_distance_m`, on a grid of `resolution_m` with `bins`
+    /// bins: the histogram the update multiplies in, normalised to sum 1, or
+    /// `None` where the cell is not updated (further than the band behind the
+    /// end point). This is the reference the kernel table is tested against.
+    pub fn kernel_exact(
+        &self,
+        cell_distance_m: f64,
+        measured_distance_m: f64,
+        resolution_m: f64,
+        bins: usize,
+    ) -> Option<Vec<f64>> {
+        let (reach, echo) = self.reach(measured_distance_m);
+        if cell_distance_m > reach {
+            return None;
+        }
+        let d = measured_distance_m.min(self.max_range_m);
+        let s = 0.5 * (cell_distance_m.max(0.0) + d);
+        let o = cell_distance_m - d;
+        let half = 0.5 * resolution_m;
+        let (mu, sigma) = if !echo || o < -half {
+            (0.0, self.sigma(s))
+        } else if o <= half {
+            (0.5 + o / resolution_m, self.sigma_end)
+        } else {
+            (1.0, self.sigma(s))
+        };
+        Some(kernel_values(mu, sigma, self.xi(s), bins))
+    }
+}
+
+/// `xi + N(x_b; mu, sigma)` at the bin values `x_b = b / (bins - 1)`, normalised.
+pub(crate) fn kernel_values(mu: f64, sigma: f64, xi: f64, bins: usize) -> Vec<f64> {
+    let norm = 1.0 / (sigma * (2.0 * std::f64::consts::PI).sqrt());
+    let mut k: Vec<f64> = (0..bins)
+        .map(|b| {
+            let z = (crate::histogram::bin_value(b, bins) - mu) / sigma;
+            xi + norm * (-0.5 * z * z).exp()
+        })
+        .collect();
+    let sum: f64 = k.iter().sum();
+    k.iter_mut().for_each(|v| *v /= sum);
+    k
+}
+
+/// The shape of the region a reading covers.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Footprint {
+    /// A sonar cone: every cell whose centre lies within `half_angle_rad` of the
+    /// beam axis, at its Euclidean distance from the sensor.
+    Cone {
+        /// Half the opening angle, radians, in `(0, pi/2)`.
+        half_angle_rad: f64,
+    },
+    /// A thin beam: every cell the ray crosses, each once, at the distance of its
+    /// centre projected on the ray.
+    Ray,
+}
+
+/// A range sensor: an inverse model plus the footprint of one reading.
+pub trait SensorModel {
+    /// The inverse model along the beam.
+    fn range_model(&self) -> &RangeModel;
+    /// The region one reading covers.
+    fn footprint(&self) -> Footprint;
+    /// Errors unless every parameter lies in its valid range.
+    fn validate(&self) -> Result<()>;
+}

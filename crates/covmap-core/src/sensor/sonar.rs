@@ -1,0 +1,133 @@
+//! The ultrasound sensor: a cone.
+
+use serde::{Deserialize, Serialize};
+
+use super::{Footprint, KernelTable, RangeModel, SensorModel};
+use crate::error::{CovmapError, Result};
+
+/// The sonar inverse model: a [`RangeModel`] spread over a cone.
+///
+/// Every cell whose centre lies within half the opening angle of the beam axis
+/// and no further than the reach of the reading is updated, with `d_l` its
+/// centre's Euclidean distance from the sensor. Cells off the axis are treated
+/// like cells on it: a sonar cannot tell where in its cone the echo came from.
+///
+/// # Example
+/// ```
+/// use covmap_core::SonarModel;
+/// let sonar = SonarModel::default();
+/// assert_eq!(sonar.range.band_m, 0.20);
+/// // A cell 1 m out, reading 2 m: the beam passed through, the kernel favours empty.
+/// let k = sonar.kernel(1.0, 2.0, 0.05, 16).unwrap().unwrap();
+/// assert!(k[0] > k[15]);
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SonarModel {
+    /// The inverse model along the cone's axis.
+    #[serde(flatten)]
+    pub range: RangeModel,
+    /// Full opening angle of the cone, radians, in `(0, pi)`.
+    pub opening_angle_rad: f64,
+}
+
+impl Default for SonarModel {
+    /// A Polaroid-class ultrasound sensor as on the B21r: 15 degree cone, 5 m.
+    fn default() -> Self {
+        Self {
+            range: RangeModel {
+                max_range_m: 5.0,
+                band_m: 0.20,
+                sigma_min: 0.05,
+                sigma_per_m: 0.02,
+                sigma_end: 0.30,
+                xi_min: 0.02,
+                xi_per_m: 0.03,
+            },
+            opening_angle_rad: 15f64.to_radians(),
+        }
+    }
+}
+
+impl SonarModel {
+    /// The kernel the map multiplies in for a cell at `cell_distance_m` and a
+    /// reading of `measured_distance_m`, on a grid of `resolution_m` with `bins`
+    /// bins, or `None` where the cell is not updated. It comes from the same
+    /// precomputed table the update uses.
+    pub fn kernel(
+        &self,
+        cell_distance_m: f64,
+        measured_distance_m: f64,
+        resolution_m: f64,
+        bins: usize,
+    ) -> Result<Option<Vec<f32>>> {
+        self.validate()?;
+        let table = KernelTable::new(&self.range, resolution_m, bins)?;
+        Ok(table.kernel_at(cell_distance_m, measured_distance_m))
+    }
+}
+
+impl SensorModel for SonarModel {
+    fn range_model(&self) -> &RangeModel {
+        &self.range
+    }
+    fn footprint(&self) -> Footprint {
+        Footprint::Cone {
+            half_angle_rad: 0.5 * self.opening_angle_rad,
+        }
+    }
+    fn validate(&self) -> Result<()> {
+        self.range.validate()?;
+        let a = self.opening_angle_rad;
+        if !(a.is_finite() && a > 0.0 && a < std::f64::consts::PI) {
+            return Err(CovmapError::InvalidParameter {
+                name: "opening_angle_rad",
+                value: a,
+                expected: "an angle in (0, pi) radians",
+            });
+        }
+        Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn default_is_valid_and_serde_round_trips() {
+        let m = SonarModel::default();
+        m.validate().unwrap();
+        let s = serde_json::to_string(&m).unwrap();
+        assert!(s.contains("\"band_m\":0.2"), "{s}");
+        assert_eq!(serde_json::from_str::<SonarModel>(&s).unwrap(), m);
+    }
+
+    #[test]
+    fn rejects_bad_parameters() {
+        let mut m = SonarModel::default();
+        m.opening_angle_rad = std::f64::consts::PI;
+        assert!(matches!(
+            m.validate(),
+            Err(CovmapError::InvalidParameter {
+                name: "opening_angle_rad",
+                ..
+            })
+        ));
+        let mut m = SonarModel::default();
+        m.range.xi_min = 0.0;
+        assert!(m.validate().is_err());
+        let mut m = SonarModel::default();
+        m.range.sigma_end = 0.01;
+        assert!(matches!(
+            m.validate(),
+            Err(CovmapError::InvalidParameter {
+                name: "sigma_end",
+                ..
+            })
+        ));
+        let mut m = SonarModel::default();
+        m.range.max_range_m = f64::NAN;
+        assert!(m.validate().is_err());
+    }
+}
