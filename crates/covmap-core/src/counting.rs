@@ -25,11 +25,7 @@ pub struct ScanCounts {
 impl ScanCounts {
     /// Zero counts over `grid`, every beam counting 1.
     pub fn new(grid: Grid) -> Self {
-        Self {
-            grid,
-            discount_beyond_m: None,
-            counts: vec![0.0; grid.len()],
-        }
+        Self { grid, discount_beyond_m: None, counts: vec![0.0; grid.len()] }
     }
 
     /// Zero counts over `grid`; beams longer than `discount_beyond_m` count
@@ -42,10 +38,7 @@ impl ScanCounts {
                 expected: "a positive, finite distance",
             });
         }
-        Ok(Self {
-            discount_beyond_m: Some(discount_beyond_m),
-            ..Self::new(grid)
-        })
+        Ok(Self { discount_beyond_m: Some(discount_beyond_m), ..Self::new(grid) })
     }
 
     /// The grid.
@@ -84,31 +77,16 @@ impl ScanCounts {
     }
 
     /// Count a scan already validated.
-    pub(crate) fn count<M: SensorModel + ?Sized>(
-        &mut self,
-        pose: &Pose,
-        ranges: &[f64],
-        bearings: &[f64],
-        model: &M,
-    ) {
+    pub(crate) fn count<M: SensorModel + ?Sized>(&mut self, pose: &Pose, ranges: &[f64], bearings: &[f64], model: &M) {
         let range = model.range_model();
         let half = 0.5 * self.grid.resolution_m();
         for (&r, &bearing) in ranges.iter().zip(bearings) {
-            let reach = if r >= range.max_range_m {
-                range.max_range_m
-            } else {
-                r + half
-            };
+            let reach = if r >= range.max_range_m { range.max_range_m } else { r + half };
             let w = self.weight(r.min(range.max_range_m));
             let counts = &mut self.counts;
-            visit(
-                &self.grid,
-                [pose.x_m, pose.y_m],
-                pose.theta_rad + bearing,
-                reach,
-                model.footprint(),
-                |i, _| counts[i] += w,
-            );
+            visit(&self.grid, [pose.x_m, pose.y_m], pose.theta_rad + bearing, reach, model.footprint(), &mut |i, _| {
+                counts[i] += w
+            });
         }
     }
 }

@@ -1,11 +1,11 @@
 //! The coverage map: one histogram over coverage values per cell.
 
 use crate::error::{CovmapError, Result};
-use crate::footprint::visit;
+use crate::footprint::{CellVisitor, visit};
 use crate::grid::{Cell, Grid};
 use crate::histogram::{self, DEFAULT_BINS};
 use crate::scan::{Pose, validate_scan};
-use crate::sensor::{KernelTable, SensorModel};
+use crate::sensor::{KernelTable, ReadingLookup, SensorModel};
 
 /// A grid whose every cell holds a histogram over how much of it is covered.
 ///
@@ -51,13 +51,7 @@ impl CoverageMap {
     pub fn with_bins(grid: Grid, bins: usize) -> Result<Self> {
         histogram::check_bins(bins)?;
         let p = 1.0 / bins as f32;
-        Ok(Self {
-            grid,
-            bins,
-            floor: histogram::bin_floor(bins),
-            data: vec![p; grid.len() * bins],
-            table: None,
-        })
+        Ok(Self { grid, bins, floor: histogram::bin_floor(bins), data: vec![p; grid.len() * bins], table: None })
     }
 
     /// A map from stored histograms (`grid.len() * bins` values, cell-major).
@@ -85,13 +79,7 @@ impl CoverageMap {
             let uniform = vec![1.0; bins];
             histogram::update(h, &uniform, floor);
         }
-        Ok(Self {
-            grid,
-            bins,
-            floor,
-            data,
-            table: None,
-        })
+        Ok(Self { grid, bins, floor, data, table: None })
     }
 
     /// The grid.
@@ -104,9 +92,7 @@ impl CoverageMap {
     }
     /// The coverage value of each bin, `b / (bins - 1)`.
     pub fn bin_values(&self) -> Vec<f64> {
-        (0..self.bins)
-            .map(|b| histogram::bin_value(b, self.bins))
-            .collect()
+        (0..self.bins).map(|b| histogram::bin_value(b, self.bins)).collect()
     }
     /// All histograms, cell-major (`grid.len() * bins` values).
     pub fn histograms(&self) -> &[f32] {
@@ -121,24 +107,15 @@ impl CoverageMap {
     /// The maximum-likelihood map: each cell's most probable coverage value.
     pub fn ml(&self) -> Vec<f32> {
         let scale = 1.0 / (self.bins - 1) as f32;
-        self.data
-            .chunks_exact(self.bins)
-            .map(|h| histogram::argmax(h) as f32 * scale)
-            .collect()
+        self.data.chunks_exact(self.bins).map(|h| histogram::argmax(h) as f32 * scale).collect()
     }
     /// The mean map: each cell's expected coverage.
     pub fn mean(&self) -> Vec<f32> {
-        self.data
-            .chunks_exact(self.bins)
-            .map(histogram::mean)
-            .collect()
+        self.data.chunks_exact(self.bins).map(histogram::mean).collect()
     }
     /// The entropy map, nats: `ln(bins)` at the prior, 0 when certain.
     pub fn entropy(&self) -> Vec<f32> {
-        self.data
-            .chunks_exact(self.bins)
-            .map(histogram::entropy)
-            .collect()
+        self.data.chunks_exact(self.bins).map(histogram::entropy).collect()
     }
 
     /// Integrate one scan taken from `pose`: reading `ranges[i]` (metres) along
@@ -159,41 +136,71 @@ impl CoverageMap {
         validate_scan(&self.grid, pose, ranges, bearings)?;
         let range = model.range_model();
         let resolution = self.grid.resolution_m();
-        if !self
-            .table
-            .as_ref()
-            .is_some_and(|t| t.serves(range, resolution, self.bins))
-        {
+        if !self.table.as_ref().is_some_and(|t| t.serves(range, resolution, self.bins)) {
             self.table = Some(Box::new(KernelTable::new(range, resolution, self.bins)?));
         }
-        let Self {
-            grid,
-            bins,
-            floor,
-            data,
-            table,
-        } = self;
-        let (bins, floor) = (*bins, *floor);
-        let table = table.as_deref().expect("built above");
+        // Pick the update once per scan, so the per-cell loop is straight code.
+        let updates = match self.bins {
+            8 => self.apply::<8, M>(pose, ranges, bearings, model),
+            16 => self.apply::<16, M>(pose, ranges, bearings, model),
+            32 => self.apply::<32, M>(pose, ranges, bearings, model),
+            _ => self.apply::<0, M>(pose, ranges, bearings, model),
+        };
+        Ok(updates)
+    }
+
+    /// Multiply the kernels of a validated scan into the map, `N` bins per
+    /// cell (`N = 0`: any number).
+    fn apply<const N: usize, M: SensorModel + ?Sized>(
+        &mut self,
+        pose: &Pose,
+        ranges: &[f64],
+        bearings: &[f64],
+        model: &M,
+    ) -> usize {
+        let Self { grid, bins, floor, data, table } = self;
+        let Some(table) = table.as_deref() else { return 0 };
+        let range = model.range_model();
         let footprint = model.footprint();
         let mut updates = 0;
         for (&r, &bearing) in ranges.iter().zip(bearings) {
             let (reach, echo) = range.reach(r);
-            let d = r.min(range.max_range_m);
-            visit(
-                grid,
-                [pose.x_m, pose.y_m],
-                pose.theta_rad + bearing,
-                reach,
-                footprint,
-                |i, d_l| {
-                    let k = table.at(table.offset(d_l, d, echo));
-                    histogram::update(&mut data[i * bins..(i + 1) * bins], k, floor);
-                    updates += 1;
-                },
-            );
+            let mut beam = BeamUpdate::<N> {
+                data,
+                table,
+                bins: *bins,
+                floor: *floor,
+                lookup: table.reading(r.min(range.max_range_m), echo),
+                updates: 0,
+            };
+            visit(grid, [pose.x_m, pose.y_m], pose.theta_rad + bearing, reach, footprint, &mut beam);
+            updates += beam.updates;
         }
-        Ok(updates)
+        updates
+    }
+}
+
+/// The per-cell work of one beam: look the kernel up, multiply it in.
+struct BeamUpdate<'a, const N: usize> {
+    data: &'a mut [f32],
+    table: &'a KernelTable,
+    bins: usize,
+    floor: f32,
+    lookup: ReadingLookup,
+    updates: usize,
+}
+
+impl<const N: usize> CellVisitor for BeamUpdate<'_, N> {
+    #[inline(always)]
+    fn cell(&mut self, index: usize, d_l: f64) {
+        let h = &mut self.data[index * self.bins..(index + 1) * self.bins];
+        let k = self.table.at(self.lookup.offset(d_l));
+        if N == 0 {
+            histogram::update_any(h, k, self.floor)
+        } else {
+            histogram::update_fixed::<N>(h, k, self.floor)
+        }
+        self.updates += 1;
     }
 }
 
@@ -210,8 +217,7 @@ mod tests {
     fn bad_input_leaves_map_unchanged() {
         let mut map = CoverageMap::new(grid());
         let sonar = SonarModel::default();
-        map.integrate(&Pose::new(2.0, 1.5, 0.3), &[1.0, 2.0], &[0.0, 1.0], &sonar)
-            .unwrap();
+        map.integrate(&Pose::new(2.0, 1.5, 0.3), &[1.0, 2.0], &[0.0, 1.0], &sonar).unwrap();
         let before = map.histograms().to_vec();
         let p = Pose::new(2.0, 1.5, 0.0);
         let cases: Vec<(Pose, Vec<f64>, Vec<f64>)> = vec![
@@ -226,10 +232,7 @@ mod tests {
             (Pose::new(4.0, 1.0, 0.0), vec![1.0], vec![0.0]),
         ];
         for (pose, r, b) in cases {
-            assert!(
-                map.integrate(&pose, &r, &b, &sonar).is_err(),
-                "{pose:?} {r:?} {b:?}"
-            );
+            assert!(map.integrate(&pose, &r, &b, &sonar).is_err(), "{pose:?} {r:?} {b:?}");
             assert_eq!(map.histograms(), &before[..]);
         }
         let mut bad = sonar;
@@ -258,8 +261,7 @@ mod tests {
         let cell = g.world_to_cell(0.5, 0.1).unwrap();
         assert_eq!(map.ml()[g.index(cell).unwrap()], 0.0);
         let short = vec![0.49; 100];
-        map.integrate(&pose, &short, &bearings[..100], &laser)
-            .unwrap();
+        map.integrate(&pose, &short, &bearings[..100], &laser).unwrap();
         assert!(map.mean()[g.index(cell).unwrap()] > 0.5);
     }
 

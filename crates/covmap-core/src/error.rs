@@ -23,9 +23,7 @@ pub enum CovmapError {
         expected: &'static str,
     },
     /// A range reading is NaN, infinite or negative.
-    #[error(
-        "invalid range at index {index}: {value} (expected a finite, non-negative distance in metres)"
-    )]
+    #[error("invalid range at index {index}: {value} (expected a finite, non-negative distance in metres)")]
     InvalidRange {
         /// Position of the reading in the scan.
         index: usize,

@@ -7,22 +7,37 @@
 use crate::grid::Grid;
 use crate::sensor::Footprint;
 
-/// Call `f(index, d_l)` for every cell of `grid` in the footprint of a beam from
-/// `origin` (inside the grid) along `angle_rad`, out to `reach_m`. `d_l` is the
-/// cell's distance from the origin as the footprint defines it.
-#[inline]
+/// What to do with each cell of a footprint.
+///
+/// A trait rather than a closure so that a hot visitor can be marked
+/// `#[inline(always)]` (closures cannot be on stable Rust); any
+/// `FnMut(usize, f64)` is a visitor too.
+pub(crate) trait CellVisitor {
+    /// Visit the cell at row-major `index`, `d_l` metres from the sensor.
+    fn cell(&mut self, index: usize, d_l: f64);
+}
+
+impl<F: FnMut(usize, f64)> CellVisitor for F {
+    #[inline(always)]
+    fn cell(&mut self, index: usize, d_l: f64) {
+        self(index, d_l)
+    }
+}
+
+/// Call `f.cell(index, d_l)` for every cell of `grid` in the footprint of a beam
+/// from `origin` (inside the grid) along `angle_rad`, out to `reach_m`. `d_l` is
+/// the cell's distance from the origin as the footprint defines it.
+#[inline(always)]
 pub(crate) fn visit(
     grid: &Grid,
     origin: [f64; 2],
     angle_rad: f64,
     reach_m: f64,
     footprint: Footprint,
-    f: impl FnMut(usize, f64),
+    f: &mut impl CellVisitor,
 ) {
     match footprint {
-        Footprint::Cone { half_angle_rad } => {
-            visit_cone(grid, origin, angle_rad, half_angle_rad, reach_m, f)
-        }
+        Footprint::Cone { half_angle_rad } => visit_cone(grid, origin, angle_rad, half_angle_rad, reach_m, f),
         Footprint::Ray => visit_ray(grid, origin, angle_rad, reach_m, f),
     }
 }
@@ -44,14 +59,8 @@ fn centre_range(a: f64, b: f64, r: f64, n: usize) -> Option<(usize, usize)> {
 
 /// Cells whose centres lie in the sector of radius `reach` and half-angle
 /// `half` (< pi/2) around `axis`: the disk cut by the two boundary half-planes.
-fn visit_cone(
-    grid: &Grid,
-    [sx, sy]: [f64; 2],
-    axis: f64,
-    half: f64,
-    reach: f64,
-    mut f: impl FnMut(usize, f64),
-) {
+#[inline(always)]
+fn visit_cone(grid: &Grid, [sx, sy]: [f64; 2], axis: f64, half: f64, reach: f64, f: &mut impl CellVisitor) {
     let r = grid.resolution_m();
     let [ox, oy] = grid.origin_m();
     let cols = grid.cols();
@@ -68,8 +77,7 @@ fn visit_cone(
     if within(-std::f64::consts::FRAC_PI_2, axis, half) {
         y_lo = -reach;
     }
-    let Some((row_lo, row_hi)) = centre_range(sy + y_lo - oy, sy + y_hi - oy, r, grid.rows())
-    else {
+    let Some((row_lo, row_hi)) = centre_range(sy + y_lo - oy, sy + y_hi - oy, r, grid.rows()) else {
         return;
     };
     let reach2 = reach * reach;
@@ -107,20 +115,15 @@ fn visit_cone(
         let py2 = py * py;
         let mut px = ox + (col_lo as f64 + 0.5) * r - sx;
         for col in col_lo..=col_hi {
-            f(base + col, (px * px + py2).sqrt());
+            f.cell(base + col, (px * px + py2).sqrt());
             px += r;
         }
     }
 }
 
 /// Cells the ray from `origin` crosses within `reach`, each once, in order.
-fn visit_ray(
-    grid: &Grid,
-    [sx, sy]: [f64; 2],
-    angle: f64,
-    reach: f64,
-    mut f: impl FnMut(usize, f64),
-) {
+#[inline(always)]
+fn visit_ray(grid: &Grid, [sx, sy]: [f64; 2], angle: f64, reach: f64, f: &mut impl CellVisitor) {
     let r = grid.resolution_m();
     let [ox, oy] = grid.origin_m();
     let (dy, dx) = angle.sin_cos();
@@ -143,7 +146,7 @@ fn visit_ray(
     while (0..cols).contains(&col) && (0..rows).contains(&row) {
         let cx = ox + (col as f64 + 0.5) * r - sx;
         let cy = oy + (row as f64 + 0.5) * r - sy;
-        f((row * cols + col) as usize, cx * dx + cy * dy);
+        f.cell((row * cols + col) as usize, cx * dx + cy * dy);
         if t_c < t_r {
             if t_c > reach {
                 break;
@@ -165,15 +168,9 @@ mod tests {
     use super::*;
     use std::collections::BTreeMap;
 
-    fn collect(
-        grid: &Grid,
-        o: [f64; 2],
-        a: f64,
-        reach: f64,
-        fp: Footprint,
-    ) -> BTreeMap<usize, f64> {
+    fn collect(grid: &Grid, o: [f64; 2], a: f64, reach: f64, fp: Footprint) -> BTreeMap<usize, f64> {
         let mut m = BTreeMap::new();
-        visit(grid, o, a, reach, fp, |i, d| {
+        visit(grid, o, a, reach, fp, &mut |i, d| {
             assert!(m.insert(i, d).is_none(), "cell {i} visited twice");
         });
         m
@@ -195,15 +192,7 @@ mod tests {
             let axis = std::f64::consts::TAU * (next() - 0.5) * 2.0;
             let half = 0.01 + 1.5 * next();
             let reach = 4.0 * next();
-            let got = collect(
-                &grid,
-                o,
-                axis,
-                reach,
-                Footprint::Cone {
-                    half_angle_rad: half,
-                },
-            );
+            let got = collect(&grid, o, axis, reach, Footprint::Cone { half_angle_rad: half });
             let mut want = BTreeMap::new();
             for i in 0..grid.len() {
                 let [x, y] = grid.cell_center(grid.cell(i));
@@ -213,10 +202,7 @@ mod tests {
                     want.insert(i, d);
                 }
             }
-            assert_eq!(
-                got.keys().collect::<Vec<_>>(),
-                want.keys().collect::<Vec<_>>()
-            );
+            assert_eq!(got.keys().collect::<Vec<_>>(), want.keys().collect::<Vec<_>>());
             for (k, d) in &got {
                 assert!((d - want[k]).abs() < 1e-9);
             }
@@ -233,9 +219,7 @@ mod tests {
             let o = [2.512, 2.487];
             let reach = 1.7;
             let mut cells = Vec::new();
-            visit(&grid, o, a, reach, Footprint::Ray, |i, d| {
-                cells.push((grid.cell(i), d))
-            });
+            visit(&grid, o, a, reach, Footprint::Ray, &mut |i, d| cells.push((grid.cell(i), d)));
             // Cells are 4-connected neighbours, distances increase.
             for w in cells.windows(2) {
                 let (c0, d0) = w[0];
@@ -246,21 +230,13 @@ mod tests {
             // The end point's cell is the last one or just before it.
             let end = [o[0] + reach * a.cos(), o[1] + reach * a.sin()];
             let end_cell = grid.world_to_cell(end[0], end[1]).unwrap();
-            let pos = cells
-                .iter()
-                .position(|(c, _)| *c == end_cell)
-                .expect("end cell visited");
+            let pos = cells.iter().position(|(c, _)| *c == end_cell).expect("end cell visited");
             assert!(cells.len() - pos <= 2, "walked past the end");
             // Dense sampling of the segment finds no cell the walk missed.
             for s in 0..2000 {
                 let t = reach * s as f64 / 2000.0;
-                let c = grid
-                    .world_to_cell(o[0] + t * a.cos(), o[1] + t * a.sin())
-                    .unwrap();
-                assert!(
-                    cells.iter().any(|(x, _)| *x == c),
-                    "missed {c:?} at angle {a}"
-                );
+                let c = grid.world_to_cell(o[0] + t * a.cos(), o[1] + t * a.sin()).unwrap();
+                assert!(cells.iter().any(|(x, _)| *x == c), "missed {c:?} at angle {a}");
             }
         }
     }
@@ -269,7 +245,7 @@ mod tests {
     fn ray_stops_at_map_edge() {
         let grid = Grid::new([0.0, 0.0], 1.0, 3, 3).unwrap();
         let mut n = 0;
-        visit(&grid, [0.5, 1.5], 0.0, 100.0, Footprint::Ray, |_, _| n += 1);
+        visit(&grid, [0.5, 1.5], 0.0, 100.0, Footprint::Ray, &mut |_, _| n += 1);
         assert_eq!(n, 3);
     }
 }

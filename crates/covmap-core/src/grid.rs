@@ -55,12 +55,7 @@ impl TryFrom<GridSpec> for Grid {
 
 impl From<Grid> for GridSpec {
     fn from(g: Grid) -> Self {
-        GridSpec {
-            origin_m: g.origin_m,
-            resolution_m: g.resolution_m,
-            rows: g.rows,
-            cols: g.cols,
-        }
+        GridSpec { origin_m: g.origin_m, resolution_m: g.resolution_m, rows: g.rows, cols: g.cols }
     }
 }
 
@@ -92,40 +87,20 @@ impl Grid {
             )));
         }
         if rows.checked_mul(cols).is_none_or(|n| n > MAX_CELLS) {
-            return Err(CovmapError::InvalidGrid(format!(
-                "{rows} x {cols} cells exceed the limit of {MAX_CELLS}"
-            )));
+            return Err(CovmapError::InvalidGrid(format!("{rows} x {cols} cells exceed the limit of {MAX_CELLS}")));
         }
-        let far = [
-            origin_m[0] + cols as f64 * resolution_m,
-            origin_m[1] + rows as f64 * resolution_m,
-        ];
+        let far = [origin_m[0] + cols as f64 * resolution_m, origin_m[1] + rows as f64 * resolution_m];
         if !(far[0].is_finite() && far[1].is_finite()) {
-            return Err(CovmapError::InvalidGrid(
-                "the grid's extent is not finite".into(),
-            ));
+            return Err(CovmapError::InvalidGrid("the grid's extent is not finite".into()));
         }
-        Ok(Self {
-            origin_m,
-            resolution_m,
-            rows,
-            cols,
-        })
+        Ok(Self { origin_m, resolution_m, rows, cols })
     }
 
     /// A grid covering the rectangle `[x_min, x_max] x [y_min, y_max]` (rounded
     /// up to whole cells) at `resolution_m`.
-    pub fn covering(
-        x_min: f64,
-        y_min: f64,
-        x_max: f64,
-        y_max: f64,
-        resolution_m: f64,
-    ) -> Result<Self> {
+    pub fn covering(x_min: f64, y_min: f64, x_max: f64, y_max: f64, resolution_m: f64) -> Result<Self> {
         if !(x_max > x_min && y_max > y_min) {
-            return Err(CovmapError::InvalidGrid(format!(
-                "empty rectangle [{x_min}, {x_max}] x [{y_min}, {y_max}]"
-            )));
+            return Err(CovmapError::InvalidGrid(format!("empty rectangle [{x_min}, {x_max}] x [{y_min}, {y_max}]")));
         }
         if !(resolution_m.is_finite() && resolution_m > 0.0) {
             return Err(CovmapError::InvalidGrid(format!(
@@ -135,9 +110,7 @@ impl Grid {
         let cols = ((x_max - x_min) / resolution_m - 1e-9).ceil().max(1.0);
         let rows = ((y_max - y_min) / resolution_m - 1e-9).ceil().max(1.0);
         if !(cols.is_finite() && rows.is_finite()) || cols * rows > MAX_CELLS as f64 {
-            return Err(CovmapError::InvalidGrid(
-                "rectangle too large for the resolution".into(),
-            ));
+            return Err(CovmapError::InvalidGrid("rectangle too large for the resolution".into()));
         }
         Self::new([x_min, y_min], resolution_m, rows as usize, cols as usize)
     }
@@ -173,12 +146,7 @@ impl Grid {
     /// `[x_min, y_min, x_max, y_max]` of the covered rectangle, metres.
     pub fn bounds_m(&self) -> [f64; 4] {
         let [ox, oy] = self.origin_m;
-        [
-            ox,
-            oy,
-            ox + self.cols as f64 * self.resolution_m,
-            oy + self.rows as f64 * self.resolution_m,
-        ]
+        [ox, oy, ox + self.cols as f64 * self.resolution_m, oy + self.rows as f64 * self.resolution_m]
     }
     /// Whether the world point lies inside the grid (the upper edges excluded).
     pub fn contains(&self, x: f64, y: f64) -> bool {
@@ -197,10 +165,7 @@ impl Grid {
     /// Continuous grid coordinates `[col, row]` of a world point: cell
     /// `(r, c)` spans `[c, c + 1) x [r, r + 1)`.
     pub fn world_to_grid(&self, x: f64, y: f64) -> [f64; 2] {
-        [
-            (x - self.origin_m[0]) / self.resolution_m,
-            (y - self.origin_m[1]) / self.resolution_m,
-        ]
+        [(x - self.origin_m[0]) / self.resolution_m, (y - self.origin_m[1]) / self.resolution_m]
     }
     /// World position of a cell's centre, metres (the cell need not be inside).
     pub fn cell_center(&self, cell: Cell) -> [f64; 2] {
@@ -214,20 +179,12 @@ impl Grid {
         if cell.row < self.rows && cell.col < self.cols {
             Ok(cell.row * self.cols + cell.col)
         } else {
-            Err(CovmapError::CellOutOfBounds {
-                row: cell.row,
-                col: cell.col,
-                rows: self.rows,
-                cols: self.cols,
-            })
+            Err(CovmapError::CellOutOfBounds { row: cell.row, col: cell.col, rows: self.rows, cols: self.cols })
         }
     }
     /// The cell at a row-major index (which must be below [`Grid::len`]).
     pub fn cell(&self, index: usize) -> Cell {
-        Cell {
-            row: index / self.cols,
-            col: index % self.cols,
-        }
+        Cell { row: index / self.cols, col: index % self.cols }
     }
 
     /// Errors unless `(x, y)` lies inside the grid.
@@ -236,14 +193,7 @@ impl Grid {
             return Ok(());
         }
         let [x_min, y_min, x_max, y_max] = self.bounds_m();
-        Err(CovmapError::PoseOutsideMap {
-            x,
-            y,
-            x_min,
-            x_max,
-            y_min,
-            y_max,
-        })
+        Err(CovmapError::PoseOutsideMap { x, y, x_min, x_max, y_min, y_max })
     }
 }
 
@@ -254,10 +204,7 @@ mod tests {
     #[test]
     fn rejects_bad_geometry() {
         for r in [0.0, -0.1, f64::NAN, f64::INFINITY] {
-            assert!(matches!(
-                Grid::new([0.0, 0.0], r, 3, 3),
-                Err(CovmapError::InvalidGrid(_))
-            ));
+            assert!(matches!(Grid::new([0.0, 0.0], r, 3, 3), Err(CovmapError::InvalidGrid(_))));
         }
         assert!(Grid::new([0.0, 0.0], 0.1, 0, 3).is_err());
         assert!(Grid::new([0.0, 0.0], 0.1, 3, 0).is_err());
@@ -276,10 +223,7 @@ mod tests {
         }
         assert_eq!(g.world_to_cell(-2.0001, 1.5), None);
         assert_eq!(g.world_to_cell(1.0, 1.5), None, "upper x edge excluded");
-        assert_eq!(
-            g.world_to_cell(0.999, 2.999),
-            Some(Cell { row: 7, col: 11 })
-        );
+        assert_eq!(g.world_to_cell(0.999, 2.999), Some(Cell { row: 7, col: 11 }));
         assert!(g.index(Cell { row: 8, col: 0 }).is_err());
     }
 

@@ -16,11 +16,20 @@ pub const MAX_BINS: usize = 256;
 /// model can (see BENCHMARKS.md for the measured cost of 8, 16 and 32 bins).
 pub const DEFAULT_BINS: usize = 16;
 
-/// The smallest probability a bin keeps after an update, for a histogram of
-/// `bins` bins: no bin ever becomes exactly 0, so a cell can always change its
-/// mind, and a histogram's sum stays within `1e-6` of 1 after the floor.
-pub fn bin_floor(bins: usize) -> f32 {
-    1e-6 / bins as f32
+/// The smallest probability a bin keeps after an update (the argument, the bin
+/// count, is kept for future floors that depend on it).
+///
+/// Every kernel is positive (its uniform part `xi > 0`), so in exact arithmetic
+/// no bin ever reaches 0; in `f32` a long run of identical readings would
+/// underflow. The floor stops that: no bin becomes 0, a cell can always change
+/// its mind (from the floor, a dozen contrary readings of the default models
+/// bring a bin back), and it is far enough below anything a histogram can
+/// resolve that the floor almost never acts. Where it does, it is the one place
+/// where updates stop being exactly order independent. It stays above the
+/// `f32` normal range (1.2e-38) times the smallest kernel value, so the update
+/// never computes with subnormal numbers for sane models.
+pub fn bin_floor(_bins: usize) -> f32 {
+    1e-30
 }
 
 /// Errors unless `bins` lies in `[MIN_BINS, MAX_BINS]`.
@@ -28,11 +37,7 @@ pub fn check_bins(bins: usize) -> Result<()> {
     if (MIN_BINS..=MAX_BINS).contains(&bins) {
         Ok(())
     } else {
-        Err(CovmapError::InvalidParameter {
-            name: "bins",
-            value: bins as f64,
-            expected: "a bin count from 2 to 256",
-        })
+        Err(CovmapError::InvalidParameter { name: "bins", value: bins as f64, expected: "a bin count from 2 to 256" })
     }
 }
 
@@ -44,10 +49,9 @@ pub fn bin_value(b: usize, bins: usize) -> f64 {
 
 /// Multiply `h` by `k` bin by bin, renormalise, and floor each bin.
 ///
-/// The sum is accumulated in eight lanes so that it vectorises; the lanes are
-/// added in a fixed order, so the result does not depend on anything but the
-/// inputs.
-#[inline(always)]
+/// Dispatches on the length; the hot loops pick [`update_fixed`] once per scan
+/// instead.
+#[inline]
 pub(crate) fn update(h: &mut [f32], k: &[f32], floor: f32) {
     debug_assert_eq!(h.len(), k.len());
     match h.len() {
@@ -58,28 +62,39 @@ pub(crate) fn update(h: &mut [f32], k: &[f32], floor: f32) {
     }
 }
 
+/// [`update`] for `N` bins (a multiple of 4): the product, the sum and the
+/// scaling each compile to straight vector code. The sum is accumulated in
+/// four lanes, added in a fixed order, so the result depends only on the
+/// inputs.
 #[inline(always)]
-fn update_fixed<const N: usize>(h: &mut [f32], k: &[f32], floor: f32) {
+pub(crate) fn update_fixed<const N: usize>(h: &mut [f32], k: &[f32], floor: f32) {
     let (Ok(h), Ok(k)) = (<&mut [f32; N]>::try_from(h), <&[f32; N]>::try_from(k)) else {
-        unreachable!("lengths checked by the caller")
+        unreachable!("the caller passes slices of N bins")
     };
-    let mut lanes = [0.0f32; 8];
-    for c in 0..N / 8 {
-        for j in 0..8 {
-            let v = h[c * 8 + j] * k[c * 8 + j];
-            h[c * 8 + j] = v;
-            lanes[j] += v;
+    // Work on a local copy: loads, then arithmetic, then one store per lane
+    // group, so that the compiler need not reason about the two slices.
+    let mut x = [0.0f32; N];
+    for ((x, a), b) in x.iter_mut().zip(h.iter()).zip(k) {
+        *x = a * b;
+    }
+    let mut lanes = [0.0f32; 4];
+    for chunk in x.chunks_exact(4) {
+        for (l, v) in lanes.iter_mut().zip(chunk) {
+            *l += v;
         }
     }
-    let sum = ((lanes[0] + lanes[4]) + (lanes[1] + lanes[5]))
-        + ((lanes[2] + lanes[6]) + (lanes[3] + lanes[7]));
-    let inv = 1.0 / sum;
-    for v in h.iter_mut() {
-        *v = (*v * inv).max(floor);
+    let inv = 1.0 / ((lanes[0] + lanes[2]) + (lanes[1] + lanes[3]));
+    for (v, x) in h.iter_mut().zip(x) {
+        let y = x * inv;
+        // Not `f32::max`: its NaN handling costs three instructions a lane,
+        // and nothing here is NaN.
+        *v = if y > floor { y } else { floor };
     }
 }
 
-fn update_any(h: &mut [f32], k: &[f32], floor: f32) {
+/// [`update`] for any bin count.
+#[inline]
+pub(crate) fn update_any(h: &mut [f32], k: &[f32], floor: f32) {
     let mut sum = 0.0f32;
     for (v, &kv) in h.iter_mut().zip(k) {
         *v *= kv;
@@ -93,10 +108,7 @@ fn update_any(h: &mut [f32], k: &[f32], floor: f32) {
 
 /// Shannon entropy in nats; `0 * ln 0` counts as 0.
 pub fn entropy(h: &[f32]) -> f32 {
-    -h.iter()
-        .filter(|&&p| p > 0.0)
-        .map(|&p| p * p.ln())
-        .sum::<f32>()
+    -h.iter().filter(|&&p| p > 0.0).map(|&p| p * p.ln()).sum::<f32>()
 }
 
 /// The index of the most probable bin (the first on ties).
@@ -113,10 +125,7 @@ pub fn argmax(h: &[f32]) -> usize {
 /// Expected coverage.
 pub fn mean(h: &[f32]) -> f32 {
     let n = h.len();
-    h.iter()
-        .enumerate()
-        .map(|(b, &p)| p * bin_value(b, n) as f32)
-        .sum()
+    h.iter().enumerate().map(|(b, &p)| p * bin_value(b, n) as f32).sum()
 }
 
 #[cfg(test)]

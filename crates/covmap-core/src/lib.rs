@@ -9,11 +9,18 @@
 //! use covmap_core::{CoverageMap, Grid, Pose, SonarModel};
 //! let grid = Grid::new([0.0, 0.0], 0.05, 200, 200).unwrap();
 //! let mut map = CoverageMap::new(grid);
+//! // A ring of 24 sonars in the middle of a round room of radius 2.5 m.
 //! let bearings: Vec<f64> = (0..24).map(|i| i as f64 * std::f64::consts::TAU / 24.0).collect();
 //! let ranges = vec![2.5; 24];
-//! map.integrate(&Pose::new(5.0, 5.0, 0.0), &ranges, &bearings, &SonarModel::default()).unwrap();
-//! let entropy = map.entropy();
-//! assert!(entropy.iter().any(|&h| h < 0.5 * 16f32.ln()));
+//! for _ in 0..5 {
+//!     map.integrate(&Pose::new(5.0, 5.0, 0.0), &ranges, &bearings, &SonarModel::default()).unwrap();
+//! }
+//! let (ml, entropy) = (map.ml(), map.entropy());
+//! let at = |x: f64, y: f64| grid.index(grid.world_to_cell(x, y).unwrap()).unwrap();
+//! assert_eq!(ml[at(6.0, 5.0)], 0.0); // inside the room: empty
+//! assert_eq!(ml[at(7.6, 5.0)], 1.0); // just behind the wall: covered
+//! assert!(entropy[at(6.0, 5.0)] < 0.5 * 16f32.ln());
+//! assert!((entropy[at(9.0, 9.0)] - 16f32.ln()).abs() < 1e-6); // never seen: the prior
 //! ```
 #![warn(missing_docs)]
 

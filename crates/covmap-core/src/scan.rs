@@ -19,38 +19,21 @@ pub struct Pose {
 impl Pose {
     /// A pose from its components.
     pub const fn new(x_m: f64, y_m: f64, theta_rad: f64) -> Self {
-        Self {
-            x_m,
-            y_m,
-            theta_rad,
-        }
+        Self { x_m, y_m, theta_rad }
     }
 }
 
 impl From<[f64; 3]> for Pose {
     fn from([x_m, y_m, theta_rad]: [f64; 3]) -> Self {
-        Self {
-            x_m,
-            y_m,
-            theta_rad,
-        }
+        Self { x_m, y_m, theta_rad }
     }
 }
 
 /// Check a scan against a grid: finite pose inside the map, equal lengths,
 /// finite non-negative ranges, finite bearings.
-pub(crate) fn validate_scan(
-    grid: &Grid,
-    pose: &Pose,
-    ranges: &[f64],
-    bearings: &[f64],
-) -> Result<()> {
+pub(crate) fn validate_scan(grid: &Grid, pose: &Pose, ranges: &[f64], bearings: &[f64]) -> Result<()> {
     if !(pose.x_m.is_finite() && pose.y_m.is_finite() && pose.theta_rad.is_finite()) {
-        return Err(CovmapError::InvalidPose {
-            x: pose.x_m,
-            y: pose.y_m,
-            theta: pose.theta_rad,
-        });
+        return Err(CovmapError::InvalidPose { x: pose.x_m, y: pose.y_m, theta: pose.theta_rad });
     }
     grid.check_inside(pose.x_m, pose.y_m)?;
     if ranges.len() != bearings.len() {
@@ -60,11 +43,7 @@ pub(crate) fn validate_scan(
             right: bearings.len(),
         });
     }
-    if let Some((index, &value)) = ranges
-        .iter()
-        .enumerate()
-        .find(|(_, r)| !(r.is_finite() && **r >= 0.0))
-    {
+    if let Some((index, &value)) = ranges.iter().enumerate().find(|(_, r)| !(r.is_finite() && **r >= 0.0)) {
         return Err(CovmapError::InvalidRange { index, value });
     }
     if let Some((index, &value)) = bearings.iter().enumerate().find(|(_, b)| !b.is_finite()) {

@@ -60,21 +60,10 @@ impl KernelTable {
                     }
                     _ => (1.0, model.sigma(s)),
                 };
-                values.extend(
-                    kernel_values(mu, sigma, model.xi(s), bins)
-                        .into_iter()
-                        .map(|v| v as f32),
-                );
+                values.extend(kernel_values(mu, sigma, model.xi(s), bins).into_iter().map(|v| v as f32));
             }
         }
-        Ok(Self {
-            model: *model,
-            resolution_m,
-            bins,
-            inv_step_s: 1.0 / step_s,
-            inv_slice: 1.0 / slice,
-            values,
-        })
+        Ok(Self { model: *model, resolution_m, bins, inv_step_s: 1.0 / step_s, inv_slice: 1.0 / slice, values })
     }
 
     /// The model this table was made from.
@@ -94,24 +83,28 @@ impl KernelTable {
         self.model == *model && self.resolution_m == resolution_m && self.bins == bins
     }
 
+    /// The lookup for one reading `d` (clamped to the maximum range), `echo`
+    /// false for a no-echo reading.
+    #[inline(always)]
+    pub(crate) fn reading(&self, d: f64, echo: bool) -> ReadingLookup {
+        let half = 0.5 * self.resolution_m;
+        ReadingLookup {
+            // step(d_l) = (d_l + d) / 2 / step_s, rounded.
+            step_per_m: 0.5 * self.inv_step_s,
+            step_at_zero: 0.5 * d * self.inv_step_s + 0.5,
+            // slice(d_l) = (d_l - d + r/2) / slice depth; negative: free.
+            slice_per_m: if echo { self.inv_slice } else { 0.0 },
+            slice_at_zero: if echo { (half - d) * self.inv_slice } else { -1.0 },
+            bins: self.bins,
+        }
+    }
+
     /// Offset of the kernel for a cell at `d_l` and a reading `d` (clamped to
     /// the maximum range), `echo` false for a no-echo reading. The caller has
     /// already limited `d_l` to the reading's reach.
-    #[inline(always)]
+    #[inline]
     pub(crate) fn offset(&self, d_l: f64, d: f64, echo: bool) -> usize {
-        let o = d_l - d;
-        let half = 0.5 * self.resolution_m;
-        let region = if !echo || o < -half {
-            0
-        } else if o <= half {
-            // Truncation is the floor here: the argument is non-negative.
-            1 + (((o + half) * self.inv_slice) as usize).min(BAND_SLICES - 1)
-        } else {
-            BAND_SLICES + 1
-        };
-        let step =
-            (((d_l.max(0.0) + d) * 0.5 * self.inv_step_s + 0.5) as usize).min(DISTANCE_STEPS);
-        (region * (DISTANCE_STEPS + 1) + step) * self.bins
+        self.reading(d, echo).offset(d_l)
     }
 
     /// The kernel at a table offset from [`KernelTable::offset`].
@@ -129,6 +122,36 @@ impl KernelTable {
         }
         let d = measured_distance_m.min(self.model.max_range_m);
         Some(self.at(self.offset(cell_distance_m, d, echo)).to_vec())
+    }
+}
+
+/// [`KernelTable::offset`] with everything that depends only on the reading
+/// computed once per beam.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct ReadingLookup {
+    step_per_m: f64,
+    step_at_zero: f64,
+    slice_per_m: f64,
+    slice_at_zero: f64,
+    bins: usize,
+}
+
+impl ReadingLookup {
+    /// Offset in the table of the kernel for a cell at `d_l` metres.
+    #[inline(always)]
+    pub(crate) fn offset(&self, d_l: f64) -> usize {
+        // Clamped in floating point first, so that each conversion is a plain
+        // truncation of a value known to fit.
+        let slice = d_l * self.slice_per_m + self.slice_at_zero;
+        let region = if slice < 0.0 {
+            0
+        } else if slice <= BAND_SLICES as f64 {
+            1 + (slice as i32 as usize).min(BAND_SLICES - 1)
+        } else {
+            BAND_SLICES + 1
+        };
+        let step = (d_l.max(0.0) * self.step_per_m + self.step_at_zero).min(DISTANCE_STEPS as f64);
+        (region * (DISTANCE_STEPS + 1) + step as i32 as usize) * self.bins
     }
 }
 

@@ -34,10 +34,10 @@ impl Default for LaserModel {
             range: RangeModel {
                 max_range_m: 30.0,
                 band_m: 0.10,
-                sigma_min: 0.03,
+                sigma_min: 0.08,
                 sigma_per_m: 0.004,
                 sigma_end: 0.25,
-                xi_min: 0.01,
+                xi_min: 0.02,
                 xi_per_m: 0.005,
             },
         }

@@ -36,6 +36,7 @@ mod laser;
 mod sonar;
 
 pub use kernel::KernelTable;
+pub(crate) use kernel::ReadingLookup;
 pub use laser::LaserModel;
 pub use sonar::SonarModel;
 
@@ -68,52 +69,14 @@ impl RangeModel {
     /// Errors unless every parameter lies in its valid range.
     pub fn validate(&self) -> Result<()> {
         fn check(name: &'static str, value: f64, ok: bool, expected: &'static str) -> Result<()> {
-            if ok && value.is_finite() {
-                Ok(())
-            } else {
-                Err(CovmapError::InvalidParameter {
-                    name,
-                    value,
-                    expected,
-                })
-            }
+            if ok && value.is_finite() { Ok(()) } else { Err(CovmapError::InvalidParameter { name, value, expected }) }
         }
-        check(
-            "max_range_m",
-            self.max_range_m,
-            self.max_range_m > 0.0,
-            "a positive distance",
-        )?;
-        check(
-            "band_m",
-            self.band_m,
-            self.band_m >= 0.0,
-            "a non-negative distance",
-        )?;
-        check(
-            "sigma_min",
-            self.sigma_min,
-            self.sigma_min > 0.0,
-            "a positive standard deviation",
-        )?;
-        check(
-            "sigma_per_m",
-            self.sigma_per_m,
-            self.sigma_per_m >= 0.0,
-            "a non-negative growth",
-        )?;
-        check(
-            "xi_min",
-            self.xi_min,
-            self.xi_min > 0.0,
-            "a positive weight",
-        )?;
-        check(
-            "xi_per_m",
-            self.xi_per_m,
-            self.xi_per_m >= 0.0,
-            "a non-negative growth",
-        )?;
+        check("max_range_m", self.max_range_m, self.max_range_m > 0.0, "a positive distance")?;
+        check("band_m", self.band_m, self.band_m >= 0.0, "a non-negative distance")?;
+        check("sigma_min", self.sigma_min, self.sigma_min > 0.0, "a positive standard deviation")?;
+        check("sigma_per_m", self.sigma_per_m, self.sigma_per_m >= 0.0, "a non-negative growth")?;
+        check("xi_min", self.xi_min, self.xi_min > 0.0, "a positive weight")?;
+        check("xi_per_m", self.xi_per_m, self.xi_per_m >= 0.0, "a non-negative growth")?;
         let widest = self.sigma(self.max_range_m + self.band_m);
         check(
             "sigma_end",
@@ -136,11 +99,7 @@ impl RangeModel {
     /// How far along the beam a reading of `range_m` reaches, and whether it is
     /// an echo (`false`: no echo, clear up to the maximum range).
     pub fn reach(&self, range_m: f64) -> (f64, bool) {
-        if range_m >= self.max_range_m {
-            (self.max_range_m, false)
-        } else {
-            (range_m + self.band_m, true)
-        }
+        if range_m >= self.max_range_m { (self.max_range_m, false) } else { (range_m + self.band_m, true) }
     }
 
     /// The exact (unquantised) kernel for a cell at `cell_distance_m` and a

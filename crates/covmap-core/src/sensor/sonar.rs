@@ -38,7 +38,7 @@ impl Default for SonarModel {
             range: RangeModel {
                 max_range_m: 5.0,
                 band_m: 0.20,
-                sigma_min: 0.05,
+                sigma_min: 0.10,
                 sigma_per_m: 0.02,
                 sigma_end: 0.30,
                 xi_min: 0.02,
@@ -72,9 +72,7 @@ impl SensorModel for SonarModel {
         &self.range
     }
     fn footprint(&self) -> Footprint {
-        Footprint::Cone {
-            half_angle_rad: 0.5 * self.opening_angle_rad,
-        }
+        Footprint::Cone { half_angle_rad: 0.5 * self.opening_angle_rad }
     }
     fn validate(&self) -> Result<()> {
         self.range.validate()?;
@@ -107,25 +105,13 @@ mod tests {
     fn rejects_bad_parameters() {
         let mut m = SonarModel::default();
         m.opening_angle_rad = std::f64::consts::PI;
-        assert!(matches!(
-            m.validate(),
-            Err(CovmapError::InvalidParameter {
-                name: "opening_angle_rad",
-                ..
-            })
-        ));
+        assert!(matches!(m.validate(), Err(CovmapError::InvalidParameter { name: "opening_angle_rad", .. })));
         let mut m = SonarModel::default();
         m.range.xi_min = 0.0;
         assert!(m.validate().is_err());
         let mut m = SonarModel::default();
         m.range.sigma_end = 0.01;
-        assert!(matches!(
-            m.validate(),
-            Err(CovmapError::InvalidParameter {
-                name: "sigma_end",
-                ..
-            })
-        ));
+        assert!(matches!(m.validate(), Err(CovmapError::InvalidParameter { name: "sigma_end", .. })));
         let mut m = SonarModel::default();
         m.range.max_range_m = f64::NAN;
         assert!(m.validate().is_err());

@@ -1,0 +1,142 @@
+//! `covmap.CoverageMap`: one histogram over coverage values per cell.
+
+use covmap::CoverageMap;
+use covmap::histogram::DEFAULT_BINS;
+use numpy::ndarray::{Array2, Array3};
+use numpy::{IntoPyArray, PyArray1, PyArray2, PyArray3};
+use pyo3::prelude::*;
+use pyo3::types::PyType;
+
+use crate::convert;
+use crate::errors::OrRaise;
+use crate::grid::PyGrid;
+use crate::scan::Scan;
+
+// The signature spells the default out so that Python shows it; keep it the core's.
+const _: () = assert!(DEFAULT_BINS == 16);
+
+/// A per-cell array of `grid` as a `(rows, cols)` numpy array.
+pub(crate) fn cell_array<'py>(
+    py: Python<'py>,
+    grid: &covmap::Grid,
+    values: Vec<f32>,
+) -> PyResult<Bound<'py, PyArray2<f32>>> {
+    let array = Array2::from_shape_vec(grid.shape(), values)
+        .map_err(|e| pyo3::exceptions::PyRuntimeError::new_err(e.to_string()))?;
+    Ok(array.into_pyarray(py))
+}
+
+/// What `__reduce__` returns: a constructor and its arguments.
+type Reduce<'py> = (Bound<'py, PyAny>, (PyGrid, Bound<'py, PyArray3<f32>>));
+
+/// A grid whose every cell holds a histogram over how much of it is covered by
+/// obstacles (0 = empty, 1 = fully covered), starting at the uniform prior.
+///
+/// ``bins`` (2 to 256) is the number of coverage values; bin ``b`` stands for
+/// coverage ``b / (bins - 1)``. Per-cell arrays are indexed ``[row, col]`` as
+/// in ``Grid``.
+#[pyclass(name = "CoverageMap", module = "covmap._native")]
+pub(crate) struct PyCoverageMap(CoverageMap);
+
+#[pymethods]
+impl PyCoverageMap {
+    #[new]
+    #[pyo3(signature = (grid, bins=16))]
+    fn new(py: Python<'_>, grid: &Bound<'_, PyGrid>, bins: i64) -> PyResult<Self> {
+        let bins = convert::bins(py, bins)?;
+        CoverageMap::with_bins(grid.get().0, bins).map(Self).or_raise(py)
+    }
+
+    /// A map over ``grid`` from stored histograms: a float32 array of shape
+    /// ``(rows, cols, bins)`` whose every histogram is finite, non-negative and
+    /// sums to 1 within 1e-3 (``.histograms`` of another map, for instance).
+    #[classmethod]
+    fn from_histograms(
+        _cls: &Bound<'_, PyType>,
+        grid: &Bound<'_, PyGrid>,
+        histograms: &Bound<'_, PyAny>,
+    ) -> PyResult<Self> {
+        let py = histograms.py();
+        let grid = grid.get().0;
+        let (values, bins) = convert::histograms(histograms, &grid)?;
+        let bins = convert::bins(py, i64::try_from(bins).unwrap_or(i64::MAX))?;
+        CoverageMap::from_histograms(grid, bins, values).map(Self).or_raise(py)
+    }
+
+    /// The grid.
+    #[getter]
+    fn grid(&self) -> PyGrid {
+        PyGrid(*self.0.grid())
+    }
+    /// Bins per cell.
+    #[getter]
+    fn bins(&self) -> usize {
+        self.0.bins()
+    }
+    /// The coverage value of each bin, ``b / (bins - 1)``: float64, ``(bins,)``.
+    #[getter]
+    fn bin_values<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
+        PyArray1::from_vec(py, self.0.bin_values())
+    }
+    /// A copy of all histograms: float32, ``(rows, cols, bins)``.
+    #[getter]
+    fn histograms<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray3<f32>>> {
+        let (rows, cols) = self.0.grid().shape();
+        let array = Array3::from_shape_vec((rows, cols, self.0.bins()), self.0.histograms().to_vec())
+            .map_err(|e| pyo3::exceptions::PyRuntimeError::new_err(e.to_string()))?;
+        Ok(array.into_pyarray(py))
+    }
+    /// One cell's histogram: float32, ``(bins,)``.
+    fn histogram<'py>(&self, py: Python<'py>, row: i64, col: i64) -> PyResult<Bound<'py, PyArray1<f32>>> {
+        let cell = convert::cell(py, self.0.grid(), row, col)?;
+        let h = self.0.histogram(cell).or_raise(py)?;
+        Ok(PyArray1::from_slice(py, h))
+    }
+
+    /// The maximum-likelihood map: each cell's most probable coverage value,
+    /// float32, ``(rows, cols)``.
+    fn ml<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray2<f32>>> {
+        cell_array(py, self.0.grid(), self.0.ml())
+    }
+    /// The mean map: each cell's expected coverage, float32, ``(rows, cols)``.
+    fn mean<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray2<f32>>> {
+        cell_array(py, self.0.grid(), self.0.mean())
+    }
+    /// The entropy map in nats (``ln(bins)`` at the prior, 0 when certain),
+    /// float32, ``(rows, cols)``.
+    fn entropy<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray2<f32>>> {
+        cell_array(py, self.0.grid(), self.0.entropy())
+    }
+
+    /// Integrate one scan taken from ``pose = (x, y, theta)`` (metres, radians):
+    /// reading ``ranges[i]`` (metres) along ``theta + bearings[i]`` (radians).
+    /// ``ranges`` and ``bearings`` are 1-D float64 arrays (or sequences of
+    /// numbers) of equal length; a reading at or beyond the model's maximum
+    /// range means "no echo". ``model`` is a ``SonarModel`` or a
+    /// ``LaserModel``. Returns the number of cell updates.
+    ///
+    /// Everything is checked before anything changes: after an error the map
+    /// is exactly as it was. The update runs with the GIL released; touching
+    /// the same map from another thread meanwhile raises ``RuntimeError``.
+    fn integrate(
+        &mut self,
+        py: Python<'_>,
+        pose: &Bound<'_, PyAny>,
+        ranges: &Bound<'_, PyAny>,
+        bearings: &Bound<'_, PyAny>,
+        model: &Bound<'_, PyAny>,
+    ) -> PyResult<usize> {
+        let scan = Scan::extract(pose, ranges, bearings, model)?;
+        let map = &mut self.0;
+        py.detach(|| map.integrate(&scan.pose, &scan.ranges, &scan.bearings, &scan.model)).or_raise(py)
+    }
+
+    fn __repr__(&self) -> String {
+        format!("CoverageMap({}, bins={})", self.grid().__repr__(), self.0.bins())
+    }
+    /// Pickle and copy support: rebuilt from the grid and the histograms.
+    fn __reduce__<'py>(&self, py: Python<'py>) -> PyResult<Reduce<'py>> {
+        let rebuild = py.get_type::<Self>().getattr("from_histograms")?;
+        Ok((rebuild, (self.grid(), self.histograms(py)?)))
+    }
+}

@@ -1,0 +1,492 @@
+//! Occupancy images: PGM (P5 binary, P2 ASCII) or PNG, plus a resolution; and
+//! ROS map_server YAML files that name such an image.
+//!
+//! A pixel's darkness `1 - v` (`v` its grey value scaled to `[0, 1]`; colour
+//! channels are averaged and alpha is ignored, as map_server does) is its
+//! probability of being occupied, or `v` itself with `negate`. A pixel is an
+//! obstacle when that probability exceeds `occupied_thresh` (map_server's
+//! trinary rule; unknown and free pixels are free space here).
+//!
+//! Each horizontal run of obstacle pixels becomes one rectangle, and runs
+//! spanning the same columns in consecutive rows are merged into one taller
+//! rectangle: the union is exactly the set of obstacle pixels, with far fewer
+//! edges than one square per pixel.
+//!
+//! Placement follows map_server: the image's lower-left pixel's lower-left
+//! corner sits at `origin_m`, row 0 of the file is the top, and the image is
+//! rotated by `yaw_rad` about the origin (zero yaw keeps rectangles
+//! axis-aligned).
+//!
+//! A ROS YAML file gives `image` (a path relative to the YAML file),
+//! `resolution`, `origin: [x, y, yaw]`, and optionally `negate` (0/1, default
+//! 0) and `occupied_thresh` (default 0.65); `free_thresh` and `mode: trinary`
+//! are accepted and ignored.
+
+use std::io::Cursor;
+use std::path::Path;
+
+use super::{parse_error, read_bytes, read_text};
+use crate::error::{check_param, Result};
+use crate::material::Material;
+use crate::polygon::Polygon;
+use crate::world::World;
+
+/// How to read an occupancy image.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ImageOptions {
+    /// Side of a pixel, metres.
+    pub resolution_m: f64,
+    /// World position of the lower-left corner of the lower-left pixel, metres.
+    pub origin_m: [f64; 2],
+    /// Rotation of the image about `origin_m`, radians.
+    pub yaw_rad: f64,
+    /// Whether light pixels are the occupied ones.
+    pub negate: bool,
+    /// Probability of occupancy above which a pixel is an obstacle, in `[0, 1)`.
+    pub occupied_thresh: f64,
+}
+
+impl ImageOptions {
+    /// At `resolution_m` per pixel, origin at zero, no yaw, dark = occupied,
+    /// threshold 0.65 (map_server's defaults).
+    pub fn new(resolution_m: f64) -> Self {
+        Self {
+            resolution_m,
+            origin_m: [0.0, 0.0],
+            yaw_rad: 0.0,
+            negate: false,
+            occupied_thresh: 0.65,
+        }
+    }
+
+    fn validate(&self) -> Result<()> {
+        check_param("resolution_m", self.resolution_m, self.resolution_m > 0.0, "a positive pixel size")?;
+        for (name, v) in [("origin_m[0]", self.origin_m[0]), ("origin_m[1]", self.origin_m[1]), ("yaw_rad", self.yaw_rad)] {
+            check_param(name, v, true, "a finite number")?;
+        }
+        check_param(
+            "occupied_thresh",
+            self.occupied_thresh,
+            (0.0..1.0).contains(&self.occupied_thresh),
+            "a probability in [0, 1)",
+        )
+    }
+}
+
+/// A decoded image: grey values in `[0, 1]`, row 0 at the top.
+struct Grey {
+    width: usize,
+    height: usize,
+    values: Vec<f64>,
+}
+
+impl World {
+    /// A world from a PGM or PNG occupancy image (the format is recognised by
+    /// its first bytes); see [the rules](crate::load::image).
+    pub fn from_image_file(path: impl AsRef<Path>, options: &ImageOptions) -> Result<World> {
+        let path = path.as_ref();
+        Self::from_image_bytes(&read_bytes(path)?, path, options)
+    }
+
+    /// A world from the bytes of a PGM or PNG image; `name` is the file name
+    /// errors report.
+    ///
+    /// # Example
+    /// ```
+    /// use covmap_sim::{ImageOptions, World};
+    /// // 4 x 2 pixels at 0.5 m: a dark run of two pixels on the top row.
+    /// let pgm = b"P2\n4 2\n255\n255 0 0 255\n255 255 255 255\n";
+    /// let world = World::from_image_bytes(pgm, "tiny.pgm", &ImageOptions::new(0.5)).unwrap();
+    /// assert_eq!(world.len(), 1);
+    /// assert_eq!(world.polygons()[0].bounds_m(), [0.5, 0.5, 1.5, 1.0]);
+    /// let err = World::from_image_bytes(b"P2\n4 2\n255\n255 0 0\n", "cut.pgm", &ImageOptions::new(0.5)).unwrap_err();
+    /// assert!(err.to_string().starts_with("cut.pgm, pixel (3, 0)"), "{err}");
+    /// ```
+    pub fn from_image_bytes(bytes: &[u8], name: impl AsRef<Path>, options: &ImageOptions) -> Result<World> {
+        let path = name.as_ref();
+        options.validate()?;
+        let grey = if bytes.starts_with(b"\x89PNG") {
+            decode_png(bytes, path)?
+        } else if bytes.starts_with(b"P5") || bytes.starts_with(b"P2") {
+            decode_pgm(bytes, path)?
+        } else {
+            return Err(parse_error(path, "byte 0", "not a PGM (P5/P2) or PNG image"));
+        };
+        world_from_grey(&grey, options, path)
+    }
+
+    /// A world from a ROS map_server YAML file and the image it names; see
+    /// [the rules](crate::load::image).
+    pub fn from_ros_map_yaml(path: impl AsRef<Path>) -> Result<World> {
+        let path = path.as_ref();
+        let (image, options) = parse_ros_yaml(&read_text(path)?, path)?;
+        let image_path = path.parent().unwrap_or(Path::new("")).join(image);
+        Self::from_image_file(image_path, &options)
+    }
+}
+
+/// The image path and the options of a map_server YAML text.
+fn parse_ros_yaml(text: &str, path: &Path) -> Result<(String, ImageOptions)> {
+    let mut image = None;
+    let mut resolution = None;
+    let mut origin = None;
+    let mut options = ImageOptions::new(1.0);
+    for (i, raw) in text.lines().enumerate() {
+        let place = format!("line {}", i + 1);
+        let line = raw.split('#').next().unwrap_or("").trim();
+        if line.is_empty() {
+            continue;
+        }
+        let Some((key, value)) = line.split_once(':') else {
+            return Err(parse_error(path, place, format!("expected `key: value`, found {line:?}")));
+        };
+        let value = value.trim();
+        let number = |v: &str| {
+            v.parse::<f64>()
+                .ok()
+                .filter(|x| x.is_finite())
+                .ok_or_else(|| parse_error(path, &place, format!("`{}` must be a number, found {v:?}", key.trim())))
+        };
+        match key.trim() {
+            "image" => image = Some(value.trim_matches(|c| c == '"' || c == '\'').to_string()),
+            "resolution" => resolution = Some(number(value)?),
+            "origin" => {
+                let inner = value
+                    .strip_prefix('[')
+                    .and_then(|v| v.strip_suffix(']'))
+                    .ok_or_else(|| parse_error(path, &place, format!("origin must be `[x, y, yaw]`, found {value:?}")))?;
+                let parts = inner.split(',').map(|t| number(t.trim())).collect::<Result<Vec<f64>>>()?;
+                if parts.len() != 3 {
+                    return Err(parse_error(path, &place, format!("origin must have 3 numbers, found {}", parts.len())));
+                }
+                origin = Some([parts[0], parts[1], parts[2]]);
+            }
+            "negate" => {
+                options.negate = match value {
+                    "0" | "false" => false,
+                    "1" | "true" => true,
+                    _ => return Err(parse_error(path, &place, format!("negate must be 0 or 1, found {value:?}"))),
+                }
+            }
+            "occupied_thresh" => options.occupied_thresh = number(value)?,
+            "free_thresh" => {
+                number(value)?;
+            }
+            "mode" => {
+                if value != "trinary" {
+                    return Err(parse_error(path, &place, format!("only `mode: trinary` is supported, found {value:?}")));
+                }
+            }
+            _ => {}
+        }
+    }
+    let missing = |key| parse_error(path, "whole file", format!("missing key `{key}`"));
+    let image = image.ok_or_else(|| missing("image"))?;
+    options.resolution_m = resolution.ok_or_else(|| missing("resolution"))?;
+    let [x, y, yaw] = origin.ok_or_else(|| missing("origin"))?;
+    options.origin_m = [x, y];
+    options.yaw_rad = yaw;
+    options.validate().map_err(|e| parse_error(path, "whole file", e.to_string()))?;
+    Ok((image, options))
+}
+
+fn decode_png(bytes: &[u8], path: &Path) -> Result<Grey> {
+    let err = |e: png::DecodingError| parse_error(path, "PNG stream", e.to_string());
+    let mut decoder = png::Decoder::new(Cursor::new(bytes));
+    decoder.set_transformations(png::Transformations::normalize_to_color8());
+    let mut reader = decoder.read_info().map_err(err)?;
+    let size = reader
+        .output_buffer_size()
+        .ok_or_else(|| parse_error(path, "PNG header", "image too large"))?;
+    let mut buf = vec![0u8; size];
+    let info = reader.next_frame(&mut buf).map_err(err)?;
+    let (width, height) = (info.width as usize, info.height as usize);
+    let channels = match info.color_type {
+        png::ColorType::Grayscale => 1,
+        png::ColorType::GrayscaleAlpha => 2,
+        png::ColorType::Rgb => 3,
+        png::ColorType::Rgba => 4,
+        png::ColorType::Indexed => {
+            return Err(parse_error(path, "PNG header", "palette not expanded"));
+        }
+    };
+    // Colour channels averaged; alpha ignored.
+    let colours = if channels >= 3 { 3 } else { 1 };
+    let mut values = Vec::with_capacity(width * height);
+    for row in buf.chunks(info.line_size).take(height) {
+        for px in row.chunks_exact(channels).take(width) {
+            let sum: u32 = px[..colours].iter().map(|&v| v as u32).sum();
+            values.push(sum as f64 / (255.0 * colours as f64));
+        }
+    }
+    if values.len() != width * height {
+        return Err(parse_error(path, "PNG data", "fewer pixels than the header declares"));
+    }
+    Ok(Grey { width, height, values })
+}
+
+fn decode_pgm(bytes: &[u8], path: &Path) -> Result<Grey> {
+    let binary = bytes.starts_with(b"P5");
+    // Header: magic, width, height, maxval, separated by whitespace, with
+    // `#` comments to the end of the line.
+    let mut pos = 2;
+    let mut line = 1;
+    let mut header = [0usize; 3];
+    for (k, name) in ["width", "height", "maxval"].iter().enumerate() {
+        loop {
+            match bytes.get(pos) {
+                Some(b'#') => {
+                    while bytes.get(pos).is_some_and(|&c| c != b'\n') {
+                        pos += 1;
+                    }
+                }
+                Some(c) if c.is_ascii_whitespace() => {
+                    if *c == b'\n' {
+                        line += 1;
+                    }
+                    pos += 1;
+                }
+                _ => break,
+            }
+        }
+        let start = pos;
+        while bytes.get(pos).is_some_and(u8::is_ascii_digit) {
+            pos += 1;
+        }
+        let token = std::str::from_utf8(&bytes[start..pos]).unwrap_or("");
+        header[k] = token.parse::<usize>().ok().filter(|&v| v > 0).ok_or_else(|| {
+            parse_error(path, format!("header line {line}"), format!("expected a positive {name}"))
+        })?;
+    }
+    let [width, height, maxval] = header;
+    if maxval > 65535 {
+        return Err(parse_error(path, format!("header line {line}"), format!("maxval {maxval} exceeds 65535")));
+    }
+    let count = width
+        .checked_mul(height)
+        .filter(|&n| n <= 1 << 30)
+        .ok_or_else(|| parse_error(path, format!("header line {line}"), format!("{width} x {height} pixels is too large")))?;
+    let pixel = |i: usize| format!("pixel ({}, {})", i % width, i / width);
+    let scale = 1.0 / maxval as f64;
+    let mut values = Vec::with_capacity(count);
+    if binary {
+        // Exactly one whitespace byte ends the header.
+        if !bytes.get(pos).is_some_and(u8::is_ascii_whitespace) {
+            return Err(parse_error(path, format!("header line {line}"), "expected whitespace after maxval"));
+        }
+        pos += 1;
+        let wide = maxval > 255;
+        let step = if wide { 2 } else { 1 };
+        for i in 0..count {
+            let at = pos + i * step;
+            let v = match (wide, bytes.get(at), bytes.get(at + 1)) {
+                (false, Some(&b), _) => b as usize,
+                (true, Some(&hi), Some(&lo)) => ((hi as usize) << 8) | lo as usize,
+                _ => return Err(parse_error(path, pixel(i), format!("the data ends early ({width} x {height} pixels declared)"))),
+            };
+            if v > maxval {
+                return Err(parse_error(path, pixel(i), format!("value {v} exceeds maxval {maxval}")));
+            }
+            values.push(v as f64 * scale);
+        }
+    } else {
+        let text = std::str::from_utf8(&bytes[pos..]).map_err(|_| parse_error(path, "pixel data", "P2 data must be ASCII"))?;
+        let mut tokens = text
+            .lines()
+            .flat_map(|l| l.split('#').next().unwrap_or("").split_ascii_whitespace());
+        for i in 0..count {
+            let token = tokens.next().ok_or_else(|| {
+                parse_error(path, pixel(i), format!("the data ends early ({width} x {height} pixels declared)"))
+            })?;
+            let v = token
+                .parse::<usize>()
+                .ok()
+                .filter(|&v| v <= maxval)
+                .ok_or_else(|| parse_error(path, pixel(i), format!("expected a value from 0 to {maxval}, found {token:?}")))?;
+            values.push(v as f64 * scale);
+        }
+    }
+    Ok(Grey { width, height, values })
+}
+
+fn world_from_grey(grey: &Grey, o: &ImageOptions, path: &Path) -> Result<World> {
+    let occupied = |v: f64| {
+        let p = if o.negate { v } else { 1.0 - v };
+        p > o.occupied_thresh
+    };
+    let (w, h, r) = (grey.width, grey.height, o.resolution_m);
+    // Open rectangles: (first column, end column, top row), sorted by column.
+    let mut open: Vec<(usize, usize, usize)> = Vec::new();
+    let mut rects: Vec<(usize, usize, usize, usize)> = Vec::new(); // c0, c1, top row, bottom row (inclusive)
+    for row in 0..=h {
+        let mut runs = Vec::new();
+        if row < h {
+            let line = &grey.values[row * w..(row + 1) * w];
+            let mut c = 0;
+            while c < w {
+                if occupied(line[c]) {
+                    let start = c;
+                    while c < w && occupied(line[c]) {
+                        c += 1;
+                    }
+                    runs.push((start, c));
+                } else {
+                    c += 1;
+                }
+            }
+        }
+        let mut next = Vec::with_capacity(runs.len());
+        let mut k = 0;
+        for &(c0, c1, top) in &open {
+            while k < runs.len() && runs[k].0 < c0 {
+                next.push((runs[k].0, runs[k].1, row));
+                k += 1;
+            }
+            if k < runs.len() && runs[k] == (c0, c1) {
+                next.push((c0, c1, top));
+                k += 1;
+            } else {
+                rects.push((c0, c1, top, row - 1));
+            }
+        }
+        next.extend(runs[k..].iter().map(|&(c0, c1)| (c0, c1, row)));
+        next.sort_unstable();
+        open = next;
+    }
+    if rects.is_empty() {
+        return Err(parse_error(
+            path,
+            "all pixels",
+            format!(
+                "no occupied pixel (probability of occupancy above {}{}): check `negate` and `occupied_thresh`",
+                o.occupied_thresh,
+                if o.negate { ", negated" } else { "" }
+            ),
+        ));
+    }
+    let (s, c) = o.yaw_rad.sin_cos();
+    let place = |x: f64, y: f64| [o.origin_m[0] + c * x - s * y, o.origin_m[1] + s * x + c * y];
+    let polygons = rects
+        .into_iter()
+        .map(|(c0, c1, top, bottom)| {
+            let (x0, x1) = (c0 as f64 * r, c1 as f64 * r);
+            let (y0, y1) = ((h - 1 - bottom) as f64 * r, (h - top) as f64 * r);
+            let vertices = if o.yaw_rad == 0.0 {
+                vec![[o.origin_m[0] + x0, o.origin_m[1] + y0], [o.origin_m[0] + x1, o.origin_m[1] + y0], [o.origin_m[0] + x1, o.origin_m[1] + y1], [o.origin_m[0] + x0, o.origin_m[1] + y1]]
+            } else {
+                vec![place(x0, y0), place(x1, y0), place(x1, y1), place(x0, y1)]
+            };
+            Polygon::new(vertices, Material::Wall).map_err(|e| {
+                parse_error(path, format!("pixel ({c0}, {top})"), e.to_string())
+            })
+        })
+        .collect::<Result<Vec<_>>>()?;
+    Ok(World::new(polygons))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use covmap_core::Grid;
+
+    fn pgm_p5(width: usize, height: usize, pixels: &[u8]) -> Vec<u8> {
+        let mut b = format!("P5\n# a comment\n{width} {height}\n255\n").into_bytes();
+        b.extend_from_slice(pixels);
+        b
+    }
+
+    #[test]
+    fn runs_merge_into_rectangles_with_exact_coverage() {
+        // 0 = dark. An L of pixels: rows 0-1 columns 1-2, row 2 columns 1-3.
+        #[rustfmt::skip]
+        let px = [
+            255, 0, 0, 255,
+            255, 0, 0, 255,
+            255, 0, 0, 0,
+            255, 255, 255, 255,
+        ];
+        let w = World::from_image_bytes(&pgm_p5(4, 4, &px), "l.pgm", &ImageOptions::new(0.1)).unwrap();
+        // Rows 0-1 merge; row 2 differs: two rectangles.
+        assert_eq!(w.len(), 2);
+        // Coverage on the pixel grid reproduces the image (row 0 of the grid is
+        // the image's bottom row).
+        let g = Grid::new([0.0, 0.0], 0.1, 4, 4).unwrap();
+        let cov = w.coverage(&g);
+        for row in 0..4 {
+            for col in 0..4 {
+                let dark = px[(3 - row) * 4 + col] == 0;
+                let expect = if dark { 1.0 } else { 0.0 };
+                assert!((cov[row * 4 + col] - expect).abs() < 1e-12, "({row}, {col})");
+            }
+        }
+    }
+
+    #[test]
+    fn thresholds_negate_and_sixteen_bits() {
+        // Values 100/255 -> p = 0.61 (free at 0.65, occupied at 0.5).
+        let px = [100u8, 255];
+        assert!(World::from_image_bytes(&pgm_p5(2, 1, &px), "t.pgm", &ImageOptions::new(1.0)).is_err());
+        let mut o = ImageOptions::new(1.0);
+        o.occupied_thresh = 0.5;
+        assert_eq!(World::from_image_bytes(&pgm_p5(2, 1, &px), "t.pgm", &o).unwrap().len(), 1);
+        o.negate = true;
+        let w = World::from_image_bytes(&pgm_p5(2, 1, &px), "t.pgm", &o).unwrap();
+        assert_eq!(w.polygons()[0].bounds_m(), [1.0, 0.0, 2.0, 1.0]);
+        // 16-bit: maxval 1000, big-endian samples 0 and 1000.
+        let mut b = b"P5 2 1 1000\n".to_vec();
+        b.extend_from_slice(&[0, 0, 0x03, 0xE8]);
+        let w = World::from_image_bytes(&b, "w.pgm", &ImageOptions::new(1.0)).unwrap();
+        assert_eq!(w.polygons()[0].bounds_m(), [0.0, 0.0, 1.0, 1.0]);
+    }
+
+    #[test]
+    fn malformed_images_name_the_place() {
+        let e = World::from_image_bytes(b"P5\n4 x\n255\n", "h.pgm", &ImageOptions::new(1.0)).unwrap_err();
+        assert!(e.to_string().starts_with("h.pgm, header line 2"), "{e}");
+        let e = World::from_image_bytes(&pgm_p5(4, 4, &[0; 9]), "s.pgm", &ImageOptions::new(1.0)).unwrap_err();
+        assert!(e.to_string().starts_with("s.pgm, pixel (1, 2)"), "{e}");
+        let e = World::from_image_bytes(b"P2 2 1 10 3 11", "v.pgm", &ImageOptions::new(1.0)).unwrap_err();
+        assert!(e.to_string().starts_with("v.pgm, pixel (1, 0)"), "{e}");
+        assert!(World::from_image_bytes(b"GIF89a", "x.gif", &ImageOptions::new(1.0)).is_err());
+        assert!(World::from_image_bytes(&pgm_p5(1, 1, &[0]), "r.pgm", &ImageOptions::new(-1.0)).is_err());
+        let e = World::from_image_bytes(b"\x89PNG\r\n\x1a\nrubbish", "p.png", &ImageOptions::new(1.0)).unwrap_err();
+        assert!(e.to_string().starts_with("p.png, PNG"), "{e}");
+    }
+
+    #[test]
+    fn png_rgb_and_yaml() {
+        // Encode a 3 x 2 RGB PNG: one dark pixel at the top left.
+        let mut data = Vec::new();
+        {
+            let mut enc = png::Encoder::new(&mut data, 3, 2);
+            enc.set_color(png::ColorType::Rgb);
+            enc.set_depth(png::BitDepth::Eight);
+            let mut wr = enc.write_header().unwrap();
+            let mut px = vec![255u8; 18];
+            px[..3].copy_from_slice(&[10, 20, 30]);
+            wr.write_image_data(&px).unwrap();
+        }
+        let mut o = ImageOptions::new(0.5);
+        o.origin_m = [10.0, 20.0];
+        let w = World::from_image_bytes(&data, "a.png", &o).unwrap();
+        assert_eq!(w.polygons()[0].bounds_m(), [10.0, 20.5, 10.5, 21.0]);
+        // A half turn of yaw puts it on the other side of the origin.
+        o.yaw_rad = std::f64::consts::PI;
+        let w = World::from_image_bytes(&data, "a.png", &o).unwrap();
+        let b = w.polygons()[0].bounds_m();
+        for (x, e) in b.iter().zip([9.5, 19.0, 10.0, 19.5]) {
+            assert!((x - e).abs() < 1e-12, "{b:?}");
+        }
+
+        let yaml = "image: map.png\nresolution: 0.05 # metres\norigin: [1.0, -2.0, 0.0]\nnegate: 0\noccupied_thresh: 0.65\nfree_thresh: 0.196\n";
+        let (image, opts) = parse_ros_yaml(yaml, Path::new("m.yaml")).unwrap();
+        assert_eq!(image, "map.png");
+        assert_eq!((opts.resolution_m, opts.origin_m, opts.yaw_rad, opts.negate), (0.05, [1.0, -2.0], 0.0, false));
+        let e = parse_ros_yaml("image: m.png\norigin: [1, 2]\nresolution: 1\n", Path::new("m.yaml")).unwrap_err();
+        assert!(e.to_string().starts_with("m.yaml, line 2"), "{e}");
+        let e = parse_ros_yaml("image: m.png\norigin: [1, 2, 0]\n", Path::new("m.yaml")).unwrap_err();
+        assert!(e.to_string().contains("missing key `resolution`"), "{e}");
+        let e = parse_ros_yaml("image: m.png\nresolution: abc\n", Path::new("m.yaml")).unwrap_err();
+        assert!(e.to_string().starts_with("m.yaml, line 2"), "{e}");
+    }
+}

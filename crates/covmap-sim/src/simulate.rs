@@ -1,0 +1,73 @@
+//! Simulating scans along a path.
+
+use covmap_core::{CovmapError, Pose};
+use rand::Rng;
+
+use crate::error::Result;
+use crate::rng::sim_rng_stream;
+use crate::scan::Scan;
+use crate::world::World;
+
+/// A simulated range sensor ([`crate::SonarRing`], [`crate::Laser`]).
+pub trait RangeSensor {
+    /// The bearing of each reading relative to the heading, radians.
+    fn bearings_rad(&self) -> &[f64];
+    /// Readings at or beyond this are "no echo", metres.
+    fn max_range_m(&self) -> f64;
+    /// Errors unless every parameter lies in its valid range.
+    fn validate(&self) -> Result<()>;
+    /// One scan taken from `pose`, every random draw from `rng`. Errors on
+    /// invalid parameters or a non-finite pose.
+    fn scan<R: Rng + ?Sized>(&self, world: &World, pose: &Pose, rng: &mut R) -> Result<Scan>;
+}
+
+/// One scan from each pose. Scan `i` draws from its own stream `i` of a
+/// generator seeded with `seed` ([`crate::sim_rng_stream`]), so the result
+/// depends on the seed alone, never on threads: with the `parallel` feature the
+/// poses run on rayon.
+///
+/// # Example
+/// ```
+/// use covmap_core::Pose;
+/// use covmap_sim::{simulate, SonarRing, World};
+/// let world = World::builtin("corridor").unwrap();
+/// let poses: Vec<Pose> = (0..10).map(|i| Pose::new(1.0 + 0.2 * i as f64, 1.3, 0.0)).collect();
+/// let scans = simulate(&SonarRing::default(), &world, &poses, 42).unwrap();
+/// assert_eq!(scans.len(), 10);
+/// assert_eq!(scans, simulate(&SonarRing::default(), &world, &poses, 42).unwrap());
+/// ```
+pub fn simulate<S: RangeSensor + Sync>(
+    sensor: &S,
+    world: &World,
+    poses: &[Pose],
+    seed: u64,
+) -> Result<Vec<Scan>> {
+    sensor.validate()?;
+    for p in poses {
+        check_pose(p)?;
+    }
+    let one = |(i, pose): (usize, &Pose)| sensor.scan(world, pose, &mut sim_rng_stream(seed, i as u64));
+    #[cfg(feature = "parallel")]
+    {
+        use rayon::prelude::*;
+        poses.par_iter().enumerate().map(one).collect()
+    }
+    #[cfg(not(feature = "parallel"))]
+    {
+        poses.iter().enumerate().map(one).collect()
+    }
+}
+
+/// Errors unless every component of the pose is finite.
+pub(crate) fn check_pose(pose: &Pose) -> Result<()> {
+    if pose.x_m.is_finite() && pose.y_m.is_finite() && pose.theta_rad.is_finite() {
+        Ok(())
+    } else {
+        Err(CovmapError::InvalidPose {
+            x: pose.x_m,
+            y: pose.y_m,
+            theta: pose.theta_rad,
+        }
+        .into())
+    }
+}

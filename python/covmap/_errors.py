@@ -1,0 +1,72 @@
+"""The exceptions of covmap.
+
+Every error covmap raises for bad input is a :class:`CovmapError`; those caused
+by a bad value are also a :class:`ValueError` (a cell index out of range is an
+:class:`IndexError`, an array of the wrong dtype a :class:`TypeError`), so code
+that catches the builtin keeps working. The native module raises these classes.
+"""
+
+from __future__ import annotations
+
+__all__ = [
+    "ArrayDtypeError",
+    "ArrayShapeError",
+    "CellOutOfBoundsError",
+    "CovmapError",
+    "InvalidBearingError",
+    "InvalidGridError",
+    "InvalidHistogramError",
+    "InvalidParameterError",
+    "InvalidPoseError",
+    "InvalidRangeError",
+    "LengthMismatchError",
+    "PoseOutsideMapError",
+]
+
+
+class CovmapError(Exception):
+    """Base class of every covmap error."""
+
+
+class InvalidGridError(CovmapError, ValueError):
+    """A grid was described with an unusable geometry."""
+
+
+class InvalidParameterError(CovmapError, ValueError):
+    """A sensor-model or map parameter (or a bin count) is out of its valid range."""
+
+
+class InvalidRangeError(CovmapError, ValueError):
+    """A range reading is NaN, infinite or negative."""
+
+
+class InvalidBearingError(CovmapError, ValueError):
+    """A bearing is NaN or infinite."""
+
+
+class InvalidPoseError(CovmapError, ValueError):
+    """A pose has a non-finite component."""
+
+
+class PoseOutsideMapError(CovmapError, ValueError):
+    """A pose lies outside the map."""
+
+
+class LengthMismatchError(CovmapError, ValueError):
+    """Two inputs that must have the same length do not (ranges and bearings)."""
+
+
+class CellOutOfBoundsError(CovmapError, IndexError):
+    """A cell index lies outside the grid."""
+
+
+class InvalidHistogramError(CovmapError, ValueError):
+    """Histogram data handed in does not describe a valid map."""
+
+
+class ArrayShapeError(CovmapError, ValueError):
+    """An array argument has the wrong number of dimensions or the wrong shape."""
+
+
+class ArrayDtypeError(CovmapError, TypeError):
+    """An array argument has the wrong element type (covmap never converts silently)."""

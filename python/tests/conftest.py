@@ -1,0 +1,60 @@
+"""Shared fixtures: a small grid, the default models, random scans."""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Iterator
+from typing import Any
+
+import numpy as np
+import pytest
+
+import covmap
+
+Scan = tuple[tuple[float, float, float], np.ndarray, np.ndarray]
+
+
+@pytest.fixture
+def grid() -> covmap.Grid:
+    """3 m x 2 m at 5 cm: 40 rows (y) by 60 columns (x)."""
+    return covmap.Grid(origin=(0.0, 0.0), resolution=0.05, shape=(40, 60))
+
+
+@pytest.fixture(params=["sonar", "laser"])
+def model(request: pytest.FixtureRequest) -> Any:
+    return covmap.SonarModel() if request.param == "sonar" else covmap.LaserModel()
+
+
+def random_scans(grid: covmap.Grid, count: int, seed: int, beams: int = 24) -> Iterator[Scan]:
+    """Scans from random poses inside ``grid``, some readings beyond any
+    model's maximum range (no echo) and some zero."""
+    rng = np.random.default_rng(seed)
+    x0, y0, x1, y1 = grid.bounds
+    for _ in range(count):
+        pose = (
+            float(rng.uniform(x0, x1 - 1e-9)),
+            float(rng.uniform(y0, y1 - 1e-9)),
+            float(rng.uniform(-np.pi, np.pi)),
+        )
+        ranges = rng.uniform(0.0, 3.0, beams)
+        ranges[rng.random(beams) < 0.1] = 100.0
+        ranges[rng.random(beams) < 0.05] = 0.0
+        bearings = np.linspace(0.0, 2 * np.pi, beams, endpoint=False)
+        yield pose, ranges, bearings
+
+
+ScanSource = Callable[..., Iterator[Scan]]
+
+
+@pytest.fixture
+def scans() -> ScanSource:
+    """``random_scans`` as a fixture (test modules do not import each other)."""
+    return random_scans
+
+
+@pytest.fixture
+def scanned_map(grid: covmap.Grid, model: Any) -> covmap.CoverageMap:
+    """A coverage map after 30 random scans."""
+    cmap = covmap.CoverageMap(grid)
+    for pose, ranges, bearings in random_scans(grid, 30, seed=7):
+        cmap.integrate(pose, ranges, bearings, model)
+    return cmap

@@ -1,0 +1,2 @@
+mod fig1;
+mod properties;

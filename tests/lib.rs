@@ -1,0 +1,3 @@
+//! Cross-crate behaviour of covmap: one integration-test binary, one module per concern.
+
+mod core;
