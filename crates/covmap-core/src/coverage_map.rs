@@ -55,8 +55,10 @@ impl CoverageMap {
     }
 
     /// A map from stored histograms (`grid.len() * bins` values, cell-major).
-    /// Each histogram must be finite, non-negative and sum to 1 within `1e-3`;
-    /// it is renormalised and floored on the way in.
+    /// Each histogram must be finite, non-negative and sum to 1 within `1e-3`.
+    /// Histograms that already satisfy the map's invariants (sum within `1e-5`
+    /// of 1, no bin below the floor) are kept bit for bit, so a map saved and
+    /// loaded is the same map; the others are renormalised and floored.
     pub fn from_histograms(grid: Grid, bins: usize, mut data: Vec<f32>) -> Result<Self> {
         histogram::check_bins(bins)?;
         if data.len() != grid.len() * bins {
@@ -75,11 +77,19 @@ impl CoverageMap {
                 )));
             }
         }
+        let uniform = vec![1.0; bins];
         for h in data.chunks_exact_mut(bins) {
-            let uniform = vec![1.0; bins];
-            histogram::update(h, &uniform, floor);
+            let sum: f32 = h.iter().sum();
+            if (sum - 1.0).abs() > 1e-5 || h.iter().any(|&v| v < floor) {
+                histogram::update(h, &uniform, floor);
+            }
         }
         Ok(Self { grid, bins, floor, data, table: None })
+    }
+
+    /// The kernel table of the last model integrated, if any.
+    pub(crate) fn cached_table(&self) -> Option<&KernelTable> {
+        self.table.as_deref()
     }
 
     /// The grid.
@@ -105,6 +115,10 @@ impl CoverageMap {
     }
 
     /// The maximum-likelihood map: each cell's most probable coverage value.
+    ///
+    /// Ties go to the lower bin, so a cell still at the uniform prior reads 0:
+    /// use [`CoverageMap::entropy`] (`ln(bins)` at the prior) to tell unknown
+    /// cells from empty ones.
     pub fn ml(&self) -> Vec<f32> {
         let scale = 1.0 / (self.bins - 1) as f32;
         self.data.chunks_exact(self.bins).map(|h| histogram::argmax(h) as f32 * scale).collect()
@@ -192,7 +206,7 @@ struct BeamUpdate<'a, const N: usize> {
 
 impl<const N: usize> CellVisitor for BeamUpdate<'_, N> {
     #[inline(always)]
-    fn cell(&mut self, index: usize, d_l: f64) {
+    fn cell(&mut self, index: usize, d_l: f64, _enter_m: f64) {
         let h = &mut self.data[index * self.bins..(index + 1) * self.bins];
         let k = self.table.at(self.lookup.offset(d_l));
         if N == 0 {

@@ -13,20 +13,26 @@ use crate::sensor::Footprint;
 /// `#[inline(always)]` (closures cannot be on stable Rust); any
 /// `FnMut(usize, f64)` is a visitor too.
 pub(crate) trait CellVisitor {
-    /// Visit the cell at row-major `index`, `d_l` metres from the sensor.
-    fn cell(&mut self, index: usize, d_l: f64);
+    /// Visit the cell at row-major `index`, `d_l` metres from the sensor. The
+    /// footprint reaches the cell at `enter_m`: the cell belongs to the
+    /// footprint of every reach `>= enter_m` (the centre distance for a cone,
+    /// where the ray enters the cell for a ray).
+    fn cell(&mut self, index: usize, d_l: f64, enter_m: f64);
 }
 
 impl<F: FnMut(usize, f64)> CellVisitor for F {
     #[inline(always)]
-    fn cell(&mut self, index: usize, d_l: f64) {
+    fn cell(&mut self, index: usize, d_l: f64, _enter_m: f64) {
         self(index, d_l)
     }
 }
 
-/// Call `f.cell(index, d_l)` for every cell of `grid` in the footprint of a beam
-/// from `origin` (inside the grid) along `angle_rad`, out to `reach_m`. `d_l` is
-/// the cell's distance from the origin as the footprint defines it.
+/// Call `f.cell(index, d_l, enter_m)` for every cell of `grid` in the footprint
+/// of a beam from `origin` (inside the grid) along `angle_rad`, out to
+/// `reach_m`. `d_l` is the cell's distance from the origin as the footprint
+/// defines it. A cell is visited exactly when `enter_m <= reach_m`, so the
+/// footprints of one beam for growing reaches are nested, and a caller can tell
+/// which of them a cell belongs to from `enter_m` alone.
 #[inline(always)]
 pub(crate) fn visit(
     grid: &Grid,
@@ -54,7 +60,7 @@ fn within(angle: f64, axis: f64, half: f64) -> bool {
 fn centre_range(a: f64, b: f64, r: f64, n: usize) -> Option<(usize, usize)> {
     let lo = (a / r - 0.5).ceil().max(0.0);
     let hi = (b / r - 0.5).floor().min(n as f64 - 1.0);
-    (lo <= hi).then(|| (lo as usize, hi as usize))
+    (lo <= hi).then_some((lo as usize, hi as usize))
 }
 
 /// Cells whose centres lie in the sector of radius `reach` and half-angle
@@ -67,6 +73,10 @@ fn visit_cone(grid: &Grid, [sx, sy]: [f64; 2], axis: f64, half: f64, reach: f64,
     let (right_sin, right_cos) = (axis - half).sin_cos();
     let (left_sin, left_cos) = (axis + half).sin_cos();
 
+    // Interval ends are widened by `slack` and every cell checked against
+    // `d_l <= reach` itself: membership of the disk is decided by that one
+    // comparison, never by the rounding of the interval arithmetic.
+    let slack = 1e-9 * r;
     // The sector's vertical extent: the apex, the two boundary ends, and the
     // top and bottom of the circle where they lie inside the cone.
     let mut y_lo = 0.0f64.min(reach * right_sin).min(reach * left_sin);
@@ -77,17 +87,17 @@ fn visit_cone(grid: &Grid, [sx, sy]: [f64; 2], axis: f64, half: f64, reach: f64,
     if within(-std::f64::consts::FRAC_PI_2, axis, half) {
         y_lo = -reach;
     }
-    let Some((row_lo, row_hi)) = centre_range(sy + y_lo - oy, sy + y_hi - oy, r, grid.rows()) else {
+    let Some((row_lo, row_hi)) = centre_range(sy + y_lo - slack - oy, sy + y_hi + slack - oy, r, grid.rows()) else {
         return;
     };
     let reach2 = reach * reach;
     for row in row_lo..=row_hi {
         let py = oy + (row as f64 + 0.5) * r - sy;
         let w2 = reach2 - py * py;
-        if w2 < 0.0 {
+        if w2 < -slack {
             continue;
         }
-        let w = w2.sqrt();
+        let w = w2.max(0.0).sqrt() + slack;
         let (mut lo, mut hi) = (-w, w);
         // Left of the right boundary: cross(b, p) >= 0, i.e. b_y px <= b_x py.
         if right_sin > 0.0 {
@@ -115,7 +125,10 @@ fn visit_cone(grid: &Grid, [sx, sy]: [f64; 2], axis: f64, half: f64, reach: f64,
         let py2 = py * py;
         let mut px = ox + (col_lo as f64 + 0.5) * r - sx;
         for col in col_lo..=col_hi {
-            f.cell(base + col, (px * px + py2).sqrt());
+            let d = (px * px + py2).sqrt();
+            if d <= reach {
+                f.cell(base + col, d, d);
+            }
             px += r;
         }
     }
@@ -143,20 +156,23 @@ fn visit_ray(grid: &Grid, [sx, sy]: [f64; 2], angle: f64, reach: f64, f: &mut im
     };
     let (step_c, mut t_c, dt_c) = axis(gx, col, dx);
     let (step_r, mut t_r, dt_r) = axis(gy, row, dy);
+    let mut enter = 0.0;
     while (0..cols).contains(&col) && (0..rows).contains(&row) {
         let cx = ox + (col as f64 + 0.5) * r - sx;
         let cy = oy + (row as f64 + 0.5) * r - sy;
-        f.cell((row * cols + col) as usize, cx * dx + cy * dy);
+        f.cell((row * cols + col) as usize, cx * dx + cy * dy, enter);
         if t_c < t_r {
             if t_c > reach {
                 break;
             }
+            enter = t_c;
             col += step_c;
             t_c += dt_c;
         } else {
             if t_r > reach {
                 break;
             }
+            enter = t_r;
             row += step_r;
             t_r += dt_r;
         }

@@ -28,6 +28,7 @@ mod counting;
 mod coverage_map;
 mod error;
 mod footprint;
+pub mod gain;
 mod grid;
 pub mod histogram;
 mod occupancy;

@@ -6,7 +6,7 @@ use crate::histogram::MAX_BINS;
 
 /// Slices the end band (one cell deep) is cut into: `mu` is resolved to 1/32.
 pub const BAND_SLICES: usize = 32;
-/// Steps the mean distance `s` is cut into, from 0 to `max_range_m + band_m`.
+/// Steps the distance `s = min(d_l, d)` is cut into, from 0 to `max_range_m`.
 pub const DISTANCE_STEPS: usize = 256;
 
 /// Kernels of one [`RangeModel`] for one grid resolution and bin count,
@@ -14,7 +14,7 @@ pub const DISTANCE_STEPS: usize = 256;
 ///
 /// Region 0 is free space (`mu = 0`), regions `1..=BAND_SLICES` are slices of
 /// the end band (each evaluated at its centre), region `BAND_SLICES + 1` is the
-/// band behind the end point (`mu = 1`). The mean distance `s` is rounded to the
+/// band behind the end point (`mu = 1`). The distance `s` is rounded to the
 /// nearest of `DISTANCE_STEPS + 1` steps; `sigma` and `xi` are linear in `s`, so
 /// the quantisation moves them by at most half a step's worth.
 ///
@@ -31,6 +31,8 @@ pub struct KernelTable {
     inv_slice: f64,
     /// `[region][s][bin]`, each kernel normalised to sum 1.
     values: Vec<f32>,
+    /// `ln` of every value, in `f64`, for entropies of updated histograms.
+    log_values: Vec<f64>,
 }
 
 impl KernelTable {
@@ -46,7 +48,7 @@ impl KernelTable {
         }
         crate::histogram::check_bins(bins)?;
         debug_assert!(bins <= MAX_BINS);
-        let step_s = (model.max_range_m + model.band_m) / DISTANCE_STEPS as f64;
+        let step_s = model.max_range_m / DISTANCE_STEPS as f64;
         let slice = resolution_m / BAND_SLICES as f64;
         let mut values = Vec::with_capacity((BAND_SLICES + 2) * (DISTANCE_STEPS + 1) * bins);
         for region in 0..BAND_SLICES + 2 {
@@ -63,7 +65,8 @@ impl KernelTable {
                 values.extend(kernel_values(mu, sigma, model.xi(s), bins).into_iter().map(|v| v as f32));
             }
         }
-        Ok(Self { model: *model, resolution_m, bins, inv_step_s: 1.0 / step_s, inv_slice: 1.0 / slice, values })
+        let log_values = values.iter().map(|&v| f64::from(v).ln()).collect();
+        Ok(Self { model: *model, resolution_m, bins, inv_step_s: 1.0 / step_s, inv_slice: 1.0 / slice, values, log_values })
     }
 
     /// The model this table was made from.
@@ -89,9 +92,9 @@ impl KernelTable {
     pub(crate) fn reading(&self, d: f64, echo: bool) -> ReadingLookup {
         let half = 0.5 * self.resolution_m;
         ReadingLookup {
-            // step(d_l) = (d_l + d) / 2 / step_s, rounded.
-            step_per_m: 0.5 * self.inv_step_s,
-            step_at_zero: 0.5 * d * self.inv_step_s + 0.5,
+            // step(d_l) = min(d_l, d) / step_s, rounded.
+            inv_step_s: self.inv_step_s,
+            d,
             // slice(d_l) = (d_l - d + r/2) / slice depth; negative: free.
             slice_per_m: if echo { self.inv_slice } else { 0.0 },
             slice_at_zero: if echo { (half - d) * self.inv_slice } else { -1.0 },
@@ -113,6 +116,12 @@ impl KernelTable {
         &self.values[offset..offset + self.bins]
     }
 
+    /// The logarithms of the kernel at a table offset.
+    #[inline(always)]
+    pub(crate) fn log_at(&self, offset: usize) -> &[f64] {
+        &self.log_values[offset..offset + self.bins]
+    }
+
     /// The kernel the update multiplies in for a cell at `cell_distance_m` and a
     /// reading of `measured_distance_m`, or `None` where the cell is not updated.
     pub fn kernel_at(&self, cell_distance_m: f64, measured_distance_m: f64) -> Option<Vec<f32>> {
@@ -129,14 +138,21 @@ impl KernelTable {
 /// computed once per beam.
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct ReadingLookup {
-    step_per_m: f64,
-    step_at_zero: f64,
+    inv_step_s: f64,
+    d: f64,
     slice_per_m: f64,
     slice_at_zero: f64,
     bins: usize,
 }
 
 impl ReadingLookup {
+    /// Whether a cell at `d_l` lies in front of the end point's cell (free
+    /// space) for this reading: the test [`ReadingLookup::offset`] makes.
+    #[inline(always)]
+    pub(crate) fn is_free(&self, d_l: f64) -> bool {
+        d_l * self.slice_per_m + self.slice_at_zero < 0.0
+    }
+
     /// Offset in the table of the kernel for a cell at `d_l` metres.
     #[inline(always)]
     pub(crate) fn offset(&self, d_l: f64) -> usize {
@@ -150,7 +166,7 @@ impl ReadingLookup {
         } else {
             BAND_SLICES + 1
         };
-        let step = (d_l.max(0.0) * self.step_per_m + self.step_at_zero).min(DISTANCE_STEPS as f64);
+        let step = (d_l.max(0.0).min(self.d) * self.inv_step_s + 0.5).min(DISTANCE_STEPS as f64);
         (region * (DISTANCE_STEPS + 1) + step as i32 as usize) * self.bins
     }
 }

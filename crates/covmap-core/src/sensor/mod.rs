@@ -9,7 +9,8 @@
 //! ```
 //!
 //! evaluated at the bin values and normalised. With `o = d_l - d`, `r` the grid
-//! resolution and `s = (d_l + d) / 2` the mean of the two distances:
+//! resolution and `s = min(d_l, d)` the distance the beam travelled before it
+//! reached the cell or ended, whichever came first:
 //!
 //! | region | `mu` | `sigma` |
 //! | --- | --- | --- |
@@ -23,9 +24,12 @@
 //! stops the beam `0.3 r` past the centre, `o = -0.3 r`, so `mu = 0.2`.
 //!
 //! The uniform weight is `xi(d_l, d) = xi_min + xi_per_m * s`: far readings say
-//! less. Both `sigma` and `xi` grow with `d_l` and with `d` as the paper asks; they
-//! depend on the two only through their mean `s`, which keeps the precomputed
-//! kernel table small (see [`KernelTable`]).
+//! less. Both `sigma` and `xi` grow with `d_l` and with `d` as the paper asks
+//! (`min` is non-decreasing in each). Through `s = min(d_l, d)` a cell in free
+//! space (`d_l < d`) gets a kernel that does not depend on where the beam ends,
+//! only on how far the cell is: that keeps the kernel table small (see
+//! [`KernelTable`]) and lets the expected information gain sum over readings
+//! with suffix sums (see [`crate::gain`]).
 //!
 //! Cells more than `band_m` behind the end point are not touched. A reading at or
 //! beyond `max_range_m` is "no echo": every cell of the footprint up to
@@ -55,13 +59,13 @@ pub struct RangeModel {
     pub band_m: f64,
     /// Standard deviation of the coverage mean at zero distance, outside the end band.
     pub sigma_min: f64,
-    /// Growth of that standard deviation per metre of mean distance `s`.
+    /// Growth of that standard deviation per metre of distance `s = min(d_l, d)`.
     pub sigma_per_m: f64,
     /// The constant standard deviation inside the end band (the largest of all).
     pub sigma_end: f64,
     /// Weight of the uniform component at zero distance (must be positive).
     pub xi_min: f64,
-    /// Growth of the uniform weight per metre of mean distance `s`.
+    /// Growth of the uniform weight per metre of distance `s = min(d_l, d)`.
     pub xi_per_m: f64,
 }
 
@@ -77,21 +81,21 @@ impl RangeModel {
         check("sigma_per_m", self.sigma_per_m, self.sigma_per_m >= 0.0, "a non-negative growth")?;
         check("xi_min", self.xi_min, self.xi_min > 0.0, "a positive weight")?;
         check("xi_per_m", self.xi_per_m, self.xi_per_m >= 0.0, "a non-negative growth")?;
-        let widest = self.sigma(self.max_range_m + self.band_m);
+        let widest = self.sigma(self.max_range_m);
         check(
             "sigma_end",
             self.sigma_end,
             self.sigma_end >= widest,
-            "a standard deviation no smaller than sigma anywhere outside the band (sigma_min + sigma_per_m * (max_range_m + band_m))",
+            "a standard deviation no smaller than sigma anywhere outside the band (sigma_min + sigma_per_m * max_range_m)",
         )
     }
 
-    /// `sigma` outside the end band at mean distance `s_m`.
+    /// `sigma` outside the end band at distance `s_m = min(d_l, d)`.
     pub fn sigma(&self, s_m: f64) -> f64 {
         self.sigma_min + self.sigma_per_m * s_m
     }
 
-    /// The uniform weight at mean distance `s_m`.
+    /// The uniform weight at distance `s_m = min(d_l, d)`.
     pub fn xi(&self, s_m: f64) -> f64 {
         self.xi_min + self.xi_per_m * s_m
     }
@@ -119,7 +123,7 @@ impl RangeModel {
             return None;
         }
         let d = measured_distance_m.min(self.max_range_m);
-        let s = 0.5 * (cell_distance_m.max(0.0) + d);
+        let s = cell_distance_m.max(0.0).min(d);
         let o = cell_distance_m - d;
         let half = 0.5 * resolution_m;
         let (mu, sigma) = if !echo || o < -half {
