@@ -154,7 +154,7 @@ pub fn reading_distribution(
 /// `ln` of every bin of every histogram, and each histogram's entropy computed
 /// from those same logarithms (so that rounding cancels in differences).
 struct LogCache {
-    log_h: Vec<f32>,
+    log_h: Vec<f64>,
     entropy: Vec<f64>,
 }
 
@@ -162,10 +162,10 @@ impl LogCache {
     fn new(map: &CoverageMap) -> Self {
         let bins = map.bins();
         let data = map.histograms();
-        let log_h: Vec<f32> = par_map_chunks(data, 4096, |chunk| chunk.iter().map(|v| v.ln()).collect());
-        let entropy = par_map_chunks(data, 4096 * bins, |chunk| {
-            chunk.chunks_exact(bins).map(|h| -h.iter().map(|&p| f64::from(p) * f64::from(p.ln())).sum::<f64>()).collect()
-        });
+        // In f64: the update's logarithms must be exact enough that the entropy
+        // differences of nearly unchanged cells keep their digits.
+        let log_h: Vec<f64> = par_map_chunks(data, 4096, |chunk| chunk.iter().map(|&v| f64::from(v).ln()).collect());
+        let entropy = par_map_chunks(data, 4096 * bins, |chunk| chunk.chunks_exact(bins).map(entropy).collect());
         Self { log_h, entropy }
     }
 }
@@ -350,56 +350,124 @@ impl<'a> GainEvaluator<'a> {
             suffix[j] = suffix[j + 1] + dist.probabilities[j];
         }
         let (none_reach, _) = self.range.reach(self.range.max_range_m);
-        let mut visitor = FastBeam {
+        let possible: Vec<Hypothesis> = hypotheses.iter().filter(|h| h.p > 0.0).copied().collect();
+        let visitor = FastBeam {
             map: self.map,
             cache,
             table: &self.table,
             hypotheses: &hypotheses,
+            sparse: (possible.len() <= SPARSE_ECHOES).then_some(&possible[..]),
             suffix: &suffix,
-            step_m: dist.step_m,
+            inv_step_m: 1.0 / dist.step_m,
             band_m: self.range.band_m,
             half_cell_m: 0.5 * self.map.grid().resolution_m(),
             no_echo: dist.no_echo,
             none_lookup: self.table.reading(self.range.max_range_m, false),
             none_reach,
             total: 0.0,
+            jobs: Vec::with_capacity(BATCH + 64),
         };
         let reach = hypotheses.last().map_or(none_reach, |h| h.reach.max(none_reach));
-        visit(self.map.grid(), origin, angle, reach, self.footprint, &mut visitor);
-        visitor.total
+        // Fix the bin count at compile time for the common sizes, so that the
+        // per-cell gain is straight vector code.
+        match self.map.bins() {
+            8 => self.run::<8>(visitor, origin, angle, reach),
+            16 => self.run::<16>(visitor, origin, angle, reach),
+            32 => self.run::<32>(visitor, origin, angle, reach),
+            _ => self.run::<0>(visitor, origin, angle, reach),
+        }
+    }
+
+    fn run<const N: usize>(&self, beam: FastBeam<'_, 0>, origin: [f64; 2], angle: f64, reach: f64) -> f64 {
+        let mut beam = beam.with_bins::<N>();
+        visit(self.map.grid(), origin, angle, reach, self.footprint, &mut beam);
+        beam.flush();
+        beam.total
     }
 }
 
+/// Up to this many echoes of non-zero probability, a cell tests each of them;
+/// beyond, it finds the ones that matter by suffix sums.
+const SPARSE_ECHOES: usize = 12;
+
 /// One hypothetical echo of a beam.
+#[derive(Clone, Copy)]
 struct Hypothesis {
     lookup: ReadingLookup,
     reach: f64,
     p: f64,
 }
 
-/// The fast evaluator's work for one cell of a beam's widest footprint.
-struct FastBeam<'a> {
+/// The fast evaluator's work for one cell of a beam's widest footprint, with
+/// `N` bins per histogram (0: any number).
+struct FastBeam<'a, const N: usize> {
     map: &'a CoverageMap,
     cache: &'a LogCache,
     table: &'a KernelTable,
     hypotheses: &'a [Hypothesis],
+    /// The echoes of non-zero probability, when there are few.
+    sparse: Option<&'a [Hypothesis]>,
     /// `suffix[j]`: the probability of the echoes `j..`.
     suffix: &'a [f64],
-    step_m: f64,
+    inv_step_m: f64,
     band_m: f64,
     half_cell_m: f64,
     no_echo: f64,
     none_lookup: ReadingLookup,
     none_reach: f64,
     total: f64,
+    /// Gains waiting to be computed: `(cell, kernel offset, weight)`.
+    /// Computing them in batches lets the processor overlap the
+    /// independent cells instead of waiting on each one's logarithm.
+    jobs: Vec<(usize, usize, f64)>,
 }
 
-impl FastBeam<'_> {
+/// Gains computed per batch.
+const BATCH: usize = 64;
+
+impl<'a> FastBeam<'a, 0> {
+    fn with_bins<const N: usize>(self) -> FastBeam<'a, N> {
+        let FastBeam {
+            map,
+            cache,
+            table,
+            hypotheses,
+            sparse,
+            suffix,
+            inv_step_m,
+            band_m,
+            half_cell_m,
+            no_echo,
+            none_lookup,
+            none_reach,
+            total,
+            jobs,
+        } = self;
+        FastBeam {
+            map,
+            cache,
+            table,
+            hypotheses,
+            sparse,
+            suffix,
+            inv_step_m,
+            band_m,
+            half_cell_m,
+            no_echo,
+            none_lookup,
+            none_reach,
+            total,
+            jobs,
+        }
+    }
+}
+
+impl<const N: usize> FastBeam<'_, N> {
     /// The first index in `0..=n` where the monotone predicate `pred` holds,
     /// starting the search from the estimate `guess`.
     #[inline(always)]
     fn first(n: usize, guess: f64, pred: impl Fn(usize) -> bool) -> usize {
-        let mut j = if guess <= 0.0 { 0 } else { (guess as usize).min(n) };
+        let mut j = guess.clamp(0.0, n as f64) as usize;
         while j > 0 && pred(j - 1) {
             j -= 1;
         }
@@ -409,57 +477,111 @@ impl FastBeam<'_> {
         j
     }
 
+    /// Compute the waiting gains, in the order they were queued.
+    fn flush(&mut self) {
+        self.total += self.batch();
+        self.jobs.clear();
+    }
+
+    /// The weighted gains of the waiting jobs, summed in order.
+    #[inline(always)]
+    fn batch(&self) -> f64 {
+        let mut total = 0.0;
+        for &(i, offset, w) in &self.jobs {
+            total += w * self.gain(i, offset);
+        }
+        total
+    }
+
     /// `I(h_i | k)` for the kernel at `offset`, with one logarithm.
     #[inline(always)]
     fn gain(&self, i: usize, offset: usize) -> f64 {
-        let bins = self.map.bins();
+        let bins = if N == 0 { self.map.bins() } else { N };
         let h = &self.map.histograms()[i * bins..(i + 1) * bins];
         let log_h = &self.cache.log_h[i * bins..(i + 1) * bins];
-        let k = self.table.at(offset);
-        let log_k = self.table.log_at(offset);
-        let (mut z, mut a) = ([0.0f64; 4], [0.0f64; 4]);
-        for (((hc, lhc), kc), lkc) in h.chunks(4).zip(log_h.chunks(4)).zip(k.chunks(4)).zip(log_k.chunks(4)) {
-            for b in 0..hc.len() {
-                let hk = f64::from(hc[b]) * f64::from(kc[b]);
-                z[b] += hk;
-                a[b] += hk * (f64::from(lhc[b]) + lkc[b]);
-            }
-        }
-        let (z, a) = ((z[0] + z[2]) + (z[1] + z[3]), (a[0] + a[2]) + (a[1] + a[3]));
+        let (z, a) = if N == 0 {
+            sums_any(h, log_h, self.table.at_f64(offset), self.table.log_at(offset))
+        } else {
+            sums_fixed::<N>(h, log_h, self.table.at_f64(offset), self.table.log_at(offset))
+        };
         self.cache.entropy[i] - (z.ln() - a / z)
     }
 }
 
-impl CellVisitor for FastBeam<'_> {
+/// `Z = sum h k` and `A = sum h k (ln h + ln k)` for `N` bins (a multiple of
+/// 4), in four lanes added in a fixed order.
+#[inline(always)]
+fn sums_fixed<const N: usize>(h: &[f32], log_h: &[f64], k: &[f64], log_k: &[f64]) -> (f64, f64) {
+    let (Ok(h), Ok(log_h), Ok(k), Ok(log_k)) =
+        (<&[f32; N]>::try_from(h), <&[f64; N]>::try_from(log_h), <&[f64; N]>::try_from(k), <&[f64; N]>::try_from(log_k))
+    else {
+        unreachable!("the caller passes slices of N bins")
+    };
+    let mut z = [0.0f64; 4];
+    let mut a = [0.0f64; 4];
+    for c in 0..N / 4 {
+        for l in 0..4 {
+            let b = 4 * c + l;
+            let hk = f64::from(h[b]) * k[b];
+            z[l] += hk;
+            a[l] += hk * (log_h[b] + log_k[b]);
+        }
+    }
+    ((z[0] + z[2]) + (z[1] + z[3]), (a[0] + a[2]) + (a[1] + a[3]))
+}
+
+/// [`sums_fixed`] for any bin count.
+fn sums_any(h: &[f32], log_h: &[f64], k: &[f64], log_k: &[f64]) -> (f64, f64) {
+    let (mut z, mut a) = (0.0, 0.0);
+    for b in 0..h.len() {
+        let hk = f64::from(h[b]) * k[b];
+        z += hk;
+        a += hk * (log_h[b] + log_k[b]);
+    }
+    (z, a)
+}
+
+impl<const N: usize> CellVisitor for FastBeam<'_, N> {
     #[inline(always)]
     fn cell(&mut self, i: usize, d_l: f64, enter: f64) {
-        let hyps = self.hypotheses;
-        let n = hyps.len();
-        // Echoes whose footprint holds the cell: `j >= reach_from`; echoes
-        // that leave it in free space: `j >= free_from`.
-        let reach_from = Self::first(n, (enter - self.band_m) / self.step_m, |j| enter <= hyps[j].reach);
-        let free_from =
-            Self::first(n, (d_l + self.half_cell_m) / self.step_m, |j| hyps[j].lookup.is_free(d_l)).max(reach_from);
-        let mut total = 0.0;
-        for h in &hyps[reach_from..free_from] {
-            if h.p > 0.0 {
-                total += h.p * self.gain(i, h.lookup.offset(d_l));
+        // Every echo that leaves the cell in free space gives it the same
+        // kernel as no echo does: region 0 at distance min(d_l, d) = d_l.
+        let mut free_weight = 0.0;
+        if let Some(sparse) = self.sparse {
+            // Few echoes have any probability: test each.
+            for h in sparse {
+                if enter <= h.reach {
+                    if h.lookup.is_free(d_l) {
+                        free_weight += h.p;
+                    } else {
+                        self.jobs.push((i, h.lookup.offset(d_l), h.p));
+                    }
+                }
             }
-        }
-        let mut free_weight = self.suffix[free_from];
-        let free_offset = (free_from < n).then(|| hyps[free_from].lookup.offset(d_l));
-        if self.no_echo > 0.0 && enter <= self.none_reach {
-            let offset = self.none_lookup.offset(d_l);
-            if Some(offset) == free_offset {
-                free_weight += self.no_echo;
-            } else {
-                total += self.no_echo * self.gain(i, offset);
+        } else {
+            // Echoes whose footprint holds the cell: `j >= reach_from`; echoes
+            // that leave it in free space: `j >= free_from`, a suffix sum.
+            let hyps = self.hypotheses;
+            let n = hyps.len();
+            let reach_from = Self::first(n, (enter - self.band_m) * self.inv_step_m, |j| enter <= hyps[j].reach);
+            let free_from =
+                Self::first(n, (d_l + self.half_cell_m) * self.inv_step_m, |j| hyps[j].lookup.is_free(d_l)).max(reach_from);
+            for h in &hyps[reach_from..free_from] {
+                if h.p > 0.0 {
+                    self.jobs.push((i, h.lookup.offset(d_l), h.p));
+                }
             }
+            free_weight = self.suffix[free_from];
         }
-        if let Some(offset) = free_offset.filter(|_| free_weight > 0.0) {
-            total += free_weight * self.gain(i, offset);
+        if enter <= self.none_reach {
+            free_weight += self.no_echo;
         }
-        self.total += total;
+        if free_weight > 0.0 {
+            self.jobs.push((i, self.none_lookup.offset(d_l), free_weight));
+        }
+        if self.jobs.len() >= BATCH {
+            self.flush();
+        }
     }
 }
 

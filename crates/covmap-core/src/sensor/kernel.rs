@@ -31,7 +31,9 @@ pub struct KernelTable {
     inv_slice: f64,
     /// `[region][s][bin]`, each kernel normalised to sum 1.
     values: Vec<f32>,
-    /// `ln` of every value, in `f64`, for entropies of updated histograms.
+    /// Every value in `f64`, and its logarithm, for the entropies of updated
+    /// histograms ([`crate::gain`]).
+    values_f64: Vec<f64>,
     log_values: Vec<f64>,
 }
 
@@ -65,8 +67,18 @@ impl KernelTable {
                 values.extend(kernel_values(mu, sigma, model.xi(s), bins).into_iter().map(|v| v as f32));
             }
         }
-        let log_values = values.iter().map(|&v| f64::from(v).ln()).collect();
-        Ok(Self { model: *model, resolution_m, bins, inv_step_s: 1.0 / step_s, inv_slice: 1.0 / slice, values, log_values })
+        let values_f64: Vec<f64> = values.iter().map(|&v| f64::from(v)).collect();
+        let log_values = values_f64.iter().map(|v| v.ln()).collect();
+        Ok(Self {
+            model: *model,
+            resolution_m,
+            bins,
+            inv_step_s: 1.0 / step_s,
+            inv_slice: 1.0 / slice,
+            values,
+            values_f64,
+            log_values,
+        })
     }
 
     /// The model this table was made from.
@@ -114,6 +126,12 @@ impl KernelTable {
     #[inline(always)]
     pub(crate) fn at(&self, offset: usize) -> &[f32] {
         &self.values[offset..offset + self.bins]
+    }
+
+    /// The kernel at a table offset, in `f64`.
+    #[inline(always)]
+    pub(crate) fn at_f64(&self, offset: usize) -> &[f64] {
+        &self.values_f64[offset..offset + self.bins]
     }
 
     /// The logarithms of the kernel at a table offset.

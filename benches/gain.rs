@@ -1,0 +1,66 @@
+//! Expected information gain: the fast evaluator against the exact reference,
+//! on one thread and on two.
+//!
+//! A 20 m x 20 m map at 5 cm, partly explored by 60 seeded sonar scans from
+//! random poses; a ring of 24 sonar cones; 1000 candidate poses on a grid.
+//! Throughput of the fast evaluator is in (beam, cell) pairs: the cells of each
+//! beam's widest footprint. The exact evaluator costs seconds per candidate, so
+//! it is timed on 4 candidates: compare time per candidate.
+//!
+//! Run: `cargo bench --bench gain`
+
+use covmap::gain::{GainEvaluator, GainMethod, GainOptions};
+use covmap::{CoverageMap, Grid, Pose, SonarModel};
+use criterion::{Criterion, Throughput, criterion_group, criterion_main};
+use rand::{RngExt, SeedableRng};
+use rand_chacha::ChaCha8Rng;
+
+fn explored_map(sonar: &SonarModel, bearings: &[f64]) -> CoverageMap {
+    let mut map = CoverageMap::new(Grid::new([0.0, 0.0], 0.05, 400, 400).expect("valid grid"));
+    let mut rng = ChaCha8Rng::seed_from_u64(5);
+    for _ in 0..60 {
+        let pose = Pose::new(rng.random_range(2.0..18.0), rng.random_range(2.0..18.0), rng.random_range(-3.1..3.1));
+        let ranges: Vec<f64> = bearings.iter().map(|_| rng.random_range(0.5..6.0)).collect();
+        map.integrate(&pose, &ranges, bearings, sonar).expect("valid scan");
+    }
+    map
+}
+
+fn candidates() -> Vec<Pose> {
+    (0..1000).map(|k| Pose::new(0.5 + 0.6 * (k % 32) as f64, 0.5 + 0.6 * (k / 32) as f64, 0.1 * k as f64)).collect()
+}
+
+fn gain(c: &mut Criterion) {
+    let sonar = SonarModel::default();
+    let bearings: Vec<f64> = (0..24).map(|i| i as f64 * std::f64::consts::TAU / 24.0).collect();
+    let map = explored_map(&sonar, &bearings);
+    let eval = GainEvaluator::new(&map, &sonar, GainOptions::default()).expect("valid options");
+    let poses = candidates();
+    let pairs = eval.pairs(&poses, &bearings).expect("valid poses");
+
+    let mut group = c.benchmark_group("gain_1000_candidates_24_sonars");
+    group.sample_size(10).measurement_time(std::time::Duration::from_secs(10));
+    group.throughput(Throughput::Elements(pairs));
+    for threads in [1, 2] {
+        let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().expect("thread pool");
+        group.bench_function(format!("fast_{threads}_threads"), |b| {
+            b.iter(|| pool.install(|| eval.evaluate(&poses, &bearings, GainMethod::Fast).expect("valid")))
+        });
+    }
+    group.finish();
+
+    let few = &poses[..4];
+    let mut group = c.benchmark_group("gain_4_candidates_24_sonars");
+    group.sample_size(10).measurement_time(std::time::Duration::from_secs(20));
+    let pool = rayon::ThreadPoolBuilder::new().num_threads(1).build().expect("thread pool");
+    group.bench_function("exact_1_thread", |b| {
+        b.iter(|| pool.install(|| eval.evaluate(few, &bearings, GainMethod::Exact).expect("valid")))
+    });
+    group.bench_function("fast_1_thread", |b| {
+        b.iter(|| pool.install(|| eval.evaluate(few, &bearings, GainMethod::Fast).expect("valid")))
+    });
+    group.finish();
+}
+
+criterion_group!(benches, gain);
+criterion_main!(benches);
