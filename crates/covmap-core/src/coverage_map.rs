@@ -39,6 +39,26 @@ pub struct CoverageMap {
     data: Vec<f32>,
     /// The last sensor model's kernels, rebuilt when the model changes.
     table: Option<Box<KernelTable>>,
+    /// Per-cell entropy history, when tracked.
+    history: Option<Box<History>>,
+}
+
+/// Measurements of a cell an entropy change is judged over.
+pub const STAGNATION_MEASUREMENTS: usize = 5;
+/// Entropy change (nats) below which a cell has stagnated.
+pub const STAGNATION_NATS: f32 = 0.001;
+
+/// The entropies of each cell after its last measurements, for the paper's
+/// termination rule.
+#[derive(Clone, Debug)]
+struct History {
+    /// A ring of the last `STAGNATION_MEASUREMENTS + 1` entropies of each cell.
+    entropies: Vec<[f32; STAGNATION_MEASUREMENTS + 1]>,
+    /// Measurements of each cell so far.
+    count: Vec<u32>,
+    /// The scan that last touched each cell.
+    stamp: Vec<u32>,
+    scan: u32,
 }
 
 impl CoverageMap {
@@ -51,7 +71,14 @@ impl CoverageMap {
     pub fn with_bins(grid: Grid, bins: usize) -> Result<Self> {
         histogram::check_bins(bins)?;
         let p = 1.0 / bins as f32;
-        Ok(Self { grid, bins, floor: histogram::bin_floor(bins), data: vec![p; grid.len() * bins], table: None })
+        Ok(Self {
+            grid,
+            bins,
+            floor: histogram::bin_floor(bins),
+            data: vec![p; grid.len() * bins],
+            table: None,
+            history: None,
+        })
     }
 
     /// A map from stored histograms (`grid.len() * bins` values, cell-major).
@@ -84,7 +111,7 @@ impl CoverageMap {
                 histogram::update(h, &uniform, floor);
             }
         }
-        Ok(Self { grid, bins, floor, data, table: None })
+        Ok(Self { grid, bins, floor, data, table: None, history: None })
     }
 
     /// The kernel table of the last model integrated, if any.
@@ -160,7 +187,74 @@ impl CoverageMap {
             32 => self.apply::<32, M>(pose, ranges, bearings, model),
             _ => self.apply::<0, M>(pose, ranges, bearings, model),
         };
+        if self.history.is_some() {
+            self.record_history(pose, ranges, bearings, model);
+        }
         Ok(updates)
+    }
+
+    /// Keep (or stop keeping) each cell's entropy after its last measurements,
+    /// for [`CoverageMap::stagnated`]. A scan that updates a cell counts as one
+    /// measurement of it, however many of its beams do. Off by default: it
+    /// costs an entropy per touched cell per scan. Turning it on starts an
+    /// empty history.
+    pub fn track_history(&mut self, on: bool) {
+        self.history = on.then(|| {
+            Box::new(History {
+                entropies: vec![[0.0; STAGNATION_MEASUREMENTS + 1]; self.grid.len()],
+                count: vec![0; self.grid.len()],
+                stamp: vec![0; self.grid.len()],
+                scan: 0,
+            })
+        });
+    }
+
+    /// Whether the history is kept.
+    pub fn tracks_history(&self) -> bool {
+        self.history.is_some()
+    }
+
+    /// Measurements of cell `index` since the history was turned on.
+    pub fn measurements(&self, index: usize) -> u32 {
+        self.history.as_ref().map_or(0, |h| h.count[index])
+    }
+
+    /// Whether cell `index`'s entropy changed by less than
+    /// [`STAGNATION_NATS`] over its last [`STAGNATION_MEASUREMENTS`]
+    /// measurements (false while the history is off or too short).
+    pub fn stagnated(&self, index: usize) -> bool {
+        let Some(h) = &self.history else { return false };
+        let n = h.count[index] as usize;
+        if n <= STAGNATION_MEASUREMENTS {
+            return false;
+        }
+        let ring = &h.entropies[index];
+        let len = STAGNATION_MEASUREMENTS + 1;
+        (ring[(n - 1) % len] - ring[(n - 1 - STAGNATION_MEASUREMENTS) % len]).abs() < STAGNATION_NATS
+    }
+
+    fn record_history<M: SensorModel + ?Sized>(&mut self, pose: &Pose, ranges: &[f64], bearings: &[f64], model: &M) {
+        let Self { grid, bins, data, history, .. } = self;
+        let Some(h) = history.as_deref_mut() else { return };
+        h.scan = h.scan.wrapping_add(1).max(1);
+        let scan = h.scan;
+        let range = model.range_model();
+        let mut touched = Vec::new();
+        for (&r, &bearing) in ranges.iter().zip(bearings) {
+            let (reach, _) = range.reach(r);
+            visit(grid, [pose.x_m, pose.y_m], pose.theta_rad + bearing, reach, model.footprint(), &mut |i, _| {
+                if h.stamp[i] != scan {
+                    h.stamp[i] = scan;
+                    touched.push(i);
+                }
+            });
+        }
+        let len = STAGNATION_MEASUREMENTS + 1;
+        for i in touched {
+            let n = h.count[i] as usize;
+            h.entropies[i][n % len] = histogram::entropy(&data[i * *bins..(i + 1) * *bins]);
+            h.count[i] = h.count[i].saturating_add(1);
+        }
     }
 
     /// Multiply the kernels of a validated scan into the map, `N` bins per
@@ -172,7 +266,7 @@ impl CoverageMap {
         bearings: &[f64],
         model: &M,
     ) -> usize {
-        let Self { grid, bins, floor, data, table } = self;
+        let Self { grid, bins, floor, data, table, .. } = self;
         let Some(table) = table.as_deref() else { return 0 };
         let range = model.range_model();
         let footprint = model.footprint();
@@ -294,6 +388,29 @@ mod tests {
         for (x, y) in a.histograms().iter().zip(b.histograms()) {
             assert!((x - y).abs() < 1e-6);
         }
+    }
+
+    #[test]
+    fn stagnation_needs_five_measurements_of_little_change() {
+        let g = Grid::new([0.0, 0.0], 0.05, 4, 40).unwrap();
+        let mut map = CoverageMap::new(g);
+        map.track_history(true);
+        let laser = LaserModel::default();
+        let pose = Pose::new(0.01, 0.1, 0.0);
+        let cell = g.index(g.world_to_cell(0.5, 0.1).unwrap()).unwrap();
+        for k in 0..5 {
+            map.integrate(&pose, &[1.0], &[0.0], &laser).unwrap();
+            assert_eq!(map.measurements(cell), k + 1);
+            assert!(!map.stagnated(cell), "not after {} measurements", k + 1);
+        }
+        // Many readings per scan: the cell's entropy has settled.
+        for _ in 0..40 {
+            map.integrate(&pose, &vec![1.0; 50], &[0.0; 50], &laser).unwrap();
+        }
+        assert!(map.stagnated(cell));
+        let untouched = g.index(g.world_to_cell(1.9, 0.1).unwrap()).unwrap();
+        assert_eq!(map.measurements(untouched), 0);
+        assert!(!map.stagnated(untouched));
     }
 
     #[test]

@@ -32,11 +32,12 @@ pub mod gain;
 mod grid;
 pub mod histogram;
 mod occupancy;
+pub mod planner;
 mod scan;
 pub mod sensor;
 
 pub use counting::ScanCounts;
-pub use coverage_map::CoverageMap;
+pub use coverage_map::{CoverageMap, STAGNATION_MEASUREMENTS, STAGNATION_NATS};
 pub use error::{CovmapError, Result};
 pub use grid::{Cell, Grid, MAX_CELLS};
 pub use occupancy::{OccupancyGrid, OccupancyModel};

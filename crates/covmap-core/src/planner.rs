@@ -1,0 +1,511 @@
+//! The decision-theoretic choice of the next viewpoint (MODEL.md section 4, paper
+//! eq. 14), reachability and path costs for a disc robot, and termination.
+//!
+//! # Traversability
+//! A cell is *blocked* when its mean coverage exceeds `blocked_coverage`, and
+//! *unknown* while its entropy is at least `unknown_entropy_fraction` of the
+//! prior's. Where the robot's centre may be: no blocked cell (and, unless
+//! `unknown_is_free`, no unknown cell) within `robot_radius_m` of it, i.e. the
+//! obstacles inflated by the robot's radius. Paths run between cell centres,
+//! 8-connected, with Euclidean step lengths (Dijkstra). Cells the robot stands
+//! on are always allowed, so that a robot inside freshly seen space can leave it.
+//!
+//! # Candidates and choice
+//! Candidate viewpoints are the reachable cells on a lattice of
+//! `candidate_stride_m`, at least `min_travel_m` away along the path, whose
+//! expected information gain exceeds `min_gain_nats` (a negligible gain makes no
+//! goal). Of those, the pose maximising
+//! `alpha * gain / max gain - (1 - alpha) * cost / max cost` is chosen (ties to
+//! the lower cell index). Candidates keep the robot's heading: a full sonar ring
+//! sees the same from any heading up to its spacing.
+//!
+//! # Termination
+//! Exploration is done when every cell the robot could reach, passing through
+//! unknown space (the cells connected to it through cells not blocked), is
+//! either certain (entropy below `epsilon`) or stagnated: its entropy changed by
+//! less than 0.001 over its last five measurements ([`CoverageMap::track_history`]).
+
+use std::cmp::Ordering;
+use std::collections::BinaryHeap;
+
+use serde::{Deserialize, Serialize};
+
+use crate::coverage_map::CoverageMap;
+use crate::error::{CovmapError, Result};
+use crate::gain::{GainEvaluator, GainMethod, GainOptions};
+use crate::grid::{Cell, Grid};
+use crate::scan::Pose;
+use crate::sensor::SensorModel;
+
+/// Settings of the planner. See the [module documentation](self).
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct PlannerConfig {
+    /// Weight of information against travel, in `[0, 1]`: 0 is greedy
+    /// nearest, 1 pure information gain.
+    pub alpha: f64,
+    /// Radius of the disc robot, metres.
+    pub robot_radius_m: f64,
+    /// Spacing of the candidate lattice, metres.
+    pub candidate_stride_m: f64,
+    /// Candidates closer than this along the path are not goals, metres.
+    pub min_travel_m: f64,
+    /// Candidates whose expected gain is at most this are not goals, nats.
+    pub min_gain_nats: f64,
+    /// Mean coverage above which a cell blocks the robot.
+    pub blocked_coverage: f64,
+    /// A cell is unknown while its entropy is at least this fraction of the
+    /// prior's (`ln bins`).
+    pub unknown_entropy_fraction: f64,
+    /// Whether the robot may plan through unknown cells.
+    pub unknown_is_free: bool,
+    /// Entropy below which a cell counts as explored, nats (the paper's
+    /// epsilon; its Fig. 7 uses 0.65).
+    pub epsilon: f64,
+    /// Settings of the gain computation.
+    pub gain: GainOptions,
+}
+
+impl Default for PlannerConfig {
+    fn default() -> Self {
+        Self {
+            alpha: 0.5,
+            robot_radius_m: 0.25,
+            candidate_stride_m: 0.5,
+            min_travel_m: 0.0,
+            min_gain_nats: 1.0,
+            blocked_coverage: 0.5,
+            unknown_entropy_fraction: 0.95,
+            unknown_is_free: false,
+            epsilon: 0.65,
+            gain: GainOptions::default(),
+        }
+    }
+}
+
+impl PlannerConfig {
+    /// Errors unless every setting lies in its valid range.
+    pub fn validate(&self) -> Result<()> {
+        let bad = |name, value, expected| Err(CovmapError::InvalidParameter { name, value, expected });
+        if !(0.0..=1.0).contains(&self.alpha) {
+            return bad("alpha", self.alpha, "a weight in [0, 1]");
+        }
+        if !(self.robot_radius_m >= 0.0 && self.robot_radius_m.is_finite()) {
+            return bad("robot_radius_m", self.robot_radius_m, "a non-negative, finite radius");
+        }
+        if !(self.candidate_stride_m > 0.0 && self.candidate_stride_m.is_finite()) {
+            return bad("candidate_stride_m", self.candidate_stride_m, "a positive, finite spacing");
+        }
+        if !(self.min_travel_m >= 0.0 && self.min_travel_m.is_finite()) {
+            return bad("min_travel_m", self.min_travel_m, "a non-negative, finite distance");
+        }
+        if !(self.min_gain_nats >= 0.0 && self.min_gain_nats.is_finite()) {
+            return bad("min_gain_nats", self.min_gain_nats, "a non-negative, finite gain");
+        }
+        if !(0.0..1.0).contains(&self.blocked_coverage) {
+            return bad("blocked_coverage", self.blocked_coverage, "a coverage in [0, 1)");
+        }
+        if !(self.unknown_entropy_fraction > 0.0 && self.unknown_entropy_fraction <= 1.0) {
+            return bad("unknown_entropy_fraction", self.unknown_entropy_fraction, "a fraction in (0, 1]");
+        }
+        if !(self.epsilon > 0.0 && self.epsilon.is_finite()) {
+            return bad("epsilon", self.epsilon, "a positive, finite entropy");
+        }
+        Ok(())
+    }
+}
+
+/// Every candidate considered, with its figures.
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct Candidates {
+    /// Candidate poses.
+    pub poses: Vec<Pose>,
+    /// Expected information gain of each, nats.
+    pub gains: Vec<f64>,
+    /// Path length from the robot to each, metres.
+    pub costs: Vec<f64>,
+    /// Eq. 14's utility of each (`-inf` for those that are no goal).
+    pub utilities: Vec<f64>,
+}
+
+/// The planner's answer.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Plan {
+    /// The chosen viewpoint, or `None` when no candidate is worth visiting.
+    pub pose: Option<Pose>,
+    /// The path to it: cell centres from the robot's cell to the goal's.
+    pub path: Vec<[f64; 2]>,
+    /// Index of the chosen candidate in `candidates`.
+    pub chosen: Option<usize>,
+    /// All candidates.
+    pub candidates: Candidates,
+}
+
+/// Shortest path lengths over the free cells from one start cell.
+#[derive(Clone, Debug)]
+pub struct Reachability {
+    grid: Grid,
+    /// Path length to each cell, metres (`inf` where unreachable).
+    cost: Vec<f64>,
+    /// The previous cell on a shortest path (`usize::MAX` at the start and
+    /// unreachable cells).
+    previous: Vec<usize>,
+}
+
+impl Reachability {
+    /// Path length to a cell, metres (`inf` where unreachable).
+    pub fn cost(&self, index: usize) -> f64 {
+        self.cost[index]
+    }
+    /// All path lengths, row-major.
+    pub fn costs(&self) -> &[f64] {
+        &self.cost
+    }
+    /// Whether the cell can be reached.
+    pub fn reachable(&self, index: usize) -> bool {
+        self.cost[index].is_finite()
+    }
+    /// The cell centres of a shortest path from the start to `index`.
+    pub fn path_to(&self, index: usize) -> Vec<[f64; 2]> {
+        if !self.reachable(index) {
+            return Vec::new();
+        }
+        let mut cells = vec![index];
+        let mut at = index;
+        while self.previous[at] != usize::MAX {
+            at = self.previous[at];
+            cells.push(at);
+        }
+        cells.iter().rev().map(|&i| self.grid.cell_center(self.grid.cell(i))).collect()
+    }
+}
+
+/// A heap entry ordered by increasing cost, then index (deterministic ties).
+#[derive(PartialEq)]
+struct Entry(f64, usize);
+impl Eq for Entry {}
+impl Ord for Entry {
+    fn cmp(&self, other: &Self) -> Ordering {
+        other.0.total_cmp(&self.0).then_with(|| other.1.cmp(&self.1))
+    }
+}
+impl PartialOrd for Entry {
+    fn partial_cmp(&self, other: &Self) -> Option<Ordering> {
+        Some(self.cmp(other))
+    }
+}
+
+/// Dijkstra over the 8-connected cells where `passable` holds, from `start`.
+pub fn shortest_paths(grid: &Grid, passable: &[bool], start: Cell) -> Result<Reachability> {
+    if passable.len() != grid.len() {
+        return Err(CovmapError::LengthMismatch { what: "passable mask and grid cells", left: passable.len(), right: grid.len() });
+    }
+    let start = grid.index(start)?;
+    let (rows, cols) = (grid.rows() as i64, grid.cols() as i64);
+    let r = grid.resolution_m();
+    let mut cost = vec![f64::INFINITY; grid.len()];
+    let mut previous = vec![usize::MAX; grid.len()];
+    let mut heap = BinaryHeap::new();
+    cost[start] = 0.0;
+    heap.push(Entry(0.0, start));
+    const STEPS: [(i64, i64, f64); 8] = [
+        (0, 1, 1.0),
+        (1, 0, 1.0),
+        (0, -1, 1.0),
+        (-1, 0, 1.0),
+        (1, 1, std::f64::consts::SQRT_2),
+        (1, -1, std::f64::consts::SQRT_2),
+        (-1, 1, std::f64::consts::SQRT_2),
+        (-1, -1, std::f64::consts::SQRT_2),
+    ];
+    while let Some(Entry(c, i)) = heap.pop() {
+        if c > cost[i] {
+            continue;
+        }
+        let (row, col) = ((i / grid.cols()) as i64, (i % grid.cols()) as i64);
+        for &(dr, dc, len) in &STEPS {
+            let (nr, nc) = (row + dr, col + dc);
+            if nr < 0 || nc < 0 || nr >= rows || nc >= cols {
+                continue;
+            }
+            let n = (nr * cols + nc) as usize;
+            // No corner cutting: a diagonal step needs both side cells free.
+            if !passable[n]
+                || (dr != 0 && dc != 0 && !(passable[(row * cols + nc) as usize] && passable[(nr * cols + col) as usize]))
+            {
+                continue;
+            }
+            let next = c + len * r;
+            if next < cost[n] {
+                cost[n] = next;
+                previous[n] = i;
+                heap.push(Entry(next, n));
+            }
+        }
+    }
+    Ok(Reachability { grid: *grid, cost, previous })
+}
+
+/// The decision-theoretic exploration planner.
+///
+/// # Example
+/// ```
+/// use covmap_core::planner::{Planner, PlannerConfig};
+/// use covmap_core::{CoverageMap, Grid, Pose, SonarModel};
+/// let sonar = SonarModel::default();
+/// let bearings: Vec<f64> = (0..24).map(|i| i as f64 * std::f64::consts::TAU / 24.0).collect();
+/// let mut map = CoverageMap::new(Grid::new([0.0, 0.0], 0.05, 200, 200).unwrap());
+/// let pose = Pose::new(5.0, 5.0, 0.0);
+/// map.integrate(&pose, &vec![3.0; 24], &bearings, &sonar).unwrap(); // a round room
+/// let planner = Planner::new(PlannerConfig::default()).unwrap();
+/// let plan = planner.next_viewpoint(&map, &pose, &bearings, &sonar).unwrap();
+/// let goal = plan.pose.unwrap();
+/// assert!(((goal.x_m - 5.0).powi(2) + (goal.y_m - 5.0).powi(2)).sqrt() < 3.0); // inside the room
+/// assert_eq!(plan.path.first().map(|p| map.grid().world_to_cell(p[0], p[1])), Some(map.grid().world_to_cell(5.0, 5.0)));
+/// ```
+#[derive(Clone, Debug, PartialEq)]
+pub struct Planner {
+    config: PlannerConfig,
+}
+
+impl Planner {
+    /// A planner with `config`, validated.
+    pub fn new(config: PlannerConfig) -> Result<Self> {
+        config.validate()?;
+        Ok(Self { config })
+    }
+
+    /// The settings.
+    pub fn config(&self) -> &PlannerConfig {
+        &self.config
+    }
+
+    /// Where the robot's centre may be on `map`: see the module documentation.
+    pub fn free_space(&self, map: &CoverageMap) -> Vec<bool> {
+        let grid = map.grid();
+        let blocked = self.blocked(map, !self.config.unknown_is_free);
+        let reach = (self.config.robot_radius_m / grid.resolution_m()).floor() as i64;
+        let (rows, cols) = (grid.rows() as i64, grid.cols() as i64);
+        let mut free = vec![true; grid.len()];
+        for (i, _) in blocked.iter().enumerate().filter(|(_, b)| **b) {
+            let (row, col) = ((i / grid.cols()) as i64, (i % grid.cols()) as i64);
+            for dr in -reach..=reach {
+                for dc in -reach..=reach {
+                    let (nr, nc) = (row + dr, col + dc);
+                    if dr * dr + dc * dc <= reach * reach && nr >= 0 && nc >= 0 && nr < rows && nc < cols {
+                        free[(nr * cols + nc) as usize] = false;
+                    }
+                }
+            }
+        }
+        free
+    }
+
+    /// Cells that block: covered above the threshold, or, with
+    /// `unknown_blocks`, still unknown.
+    fn blocked(&self, map: &CoverageMap, unknown_blocks: bool) -> Vec<bool> {
+        let unknown_entropy = self.config.unknown_entropy_fraction * (map.bins() as f64).ln();
+        let mean = map.mean();
+        let entropy = map.entropy();
+        mean.iter()
+            .zip(&entropy)
+            .map(|(&m, &h)| f64::from(m) > self.config.blocked_coverage || (unknown_blocks && f64::from(h) >= unknown_entropy))
+            .collect()
+    }
+
+    /// Shortest paths from `pose` over the robot's free space.
+    pub fn reachability(&self, map: &CoverageMap, pose: &Pose) -> Result<Reachability> {
+        let start = self.start_cell(map, pose)?;
+        let mut free = self.free_space(map);
+        free[map.grid().index(start)?] = true;
+        shortest_paths(map.grid(), &free, start)
+    }
+
+    fn start_cell(&self, map: &CoverageMap, pose: &Pose) -> Result<Cell> {
+        if !(pose.x_m.is_finite() && pose.y_m.is_finite() && pose.theta_rad.is_finite()) {
+            return Err(CovmapError::InvalidPose { x: pose.x_m, y: pose.y_m, theta: pose.theta_rad });
+        }
+        map.grid().check_inside(pose.x_m, pose.y_m)?;
+        map.grid().world_to_cell(pose.x_m, pose.y_m).ok_or(CovmapError::PoseOutsideMap {
+            x: pose.x_m,
+            y: pose.y_m,
+            x_min: map.grid().bounds_m()[0],
+            x_max: map.grid().bounds_m()[2],
+            y_min: map.grid().bounds_m()[1],
+            y_max: map.grid().bounds_m()[3],
+        })
+    }
+
+    /// Choose the next viewpoint for a robot at `pose` scanning with beams at
+    /// `bearings` through `model` (eq. 14).
+    pub fn next_viewpoint<M: SensorModel + ?Sized>(
+        &self,
+        map: &CoverageMap,
+        pose: &Pose,
+        bearings: &[f64],
+        model: &M,
+    ) -> Result<Plan> {
+        let reach = self.reachability(map, pose)?;
+        let grid = map.grid();
+        let stride = ((self.config.candidate_stride_m / grid.resolution_m()).round() as usize).max(1);
+        let mut indices = Vec::new();
+        for row in (stride / 2..grid.rows()).step_by(stride) {
+            for col in (stride / 2..grid.cols()).step_by(stride) {
+                let i = row * grid.cols() + col;
+                if reach.reachable(i) && reach.cost(i) >= self.config.min_travel_m {
+                    indices.push(i);
+                }
+            }
+        }
+        let poses: Vec<Pose> = indices
+            .iter()
+            .map(|&i| {
+                let [x, y] = grid.cell_center(grid.cell(i));
+                Pose::new(x, y, pose.theta_rad)
+            })
+            .collect();
+        let evaluator = GainEvaluator::new(map, model, self.config.gain)?;
+        let gains = evaluator.evaluate(&poses, bearings, GainMethod::Fast)?;
+        let costs: Vec<f64> = indices.iter().map(|&i| reach.cost(i)).collect();
+        let utilities = self.utilities(&gains, &costs);
+        let chosen = (0..utilities.len())
+            .filter(|&k| utilities[k] > f64::NEG_INFINITY)
+            .max_by(|&a, &b| utilities[a].total_cmp(&utilities[b]).then_with(|| b.cmp(&a)));
+        Ok(Plan {
+            pose: chosen.map(|k| poses[k]),
+            path: chosen.map_or_else(Vec::new, |k| reach.path_to(indices[k])),
+            chosen,
+            candidates: Candidates { poses, gains, costs, utilities },
+        })
+    }
+
+    /// Eq. 14 over the candidates worth visiting; `-inf` for the others.
+    pub fn utilities(&self, gains: &[f64], costs: &[f64]) -> Vec<f64> {
+        let worth = |k: usize| gains[k] > self.config.min_gain_nats;
+        let max_gain = (0..gains.len()).filter(|&k| worth(k)).map(|k| gains[k]).fold(0.0, f64::max);
+        let max_cost = (0..gains.len()).filter(|&k| worth(k)).map(|k| costs[k]).fold(0.0, f64::max);
+        let a = self.config.alpha;
+        (0..gains.len())
+            .map(|k| {
+                if !worth(k) {
+                    return f64::NEG_INFINITY;
+                }
+                let g = if max_gain > 0.0 { gains[k] / max_gain } else { 0.0 };
+                let c = if max_cost > 0.0 { costs[k] / max_cost } else { 0.0 };
+                a * g - (1.0 - a) * c
+            })
+            .collect()
+    }
+
+    /// The exploration status of `map` for a robot at `pose`.
+    pub fn status(&self, map: &CoverageMap, pose: &Pose) -> Result<ExplorationStatus> {
+        let start = self.start_cell(map, pose)?;
+        let mut passable: Vec<bool> = self.blocked(map, false).iter().map(|b| !b).collect();
+        passable[map.grid().index(start)?] = true;
+        let reach = shortest_paths(map.grid(), &passable, start)?;
+        let entropy = map.entropy();
+        let mut status = ExplorationStatus::default();
+        for (i, &h) in entropy.iter().enumerate() {
+            if !reach.reachable(i) {
+                continue;
+            }
+            status.reachable_cells += 1;
+            if f64::from(h) < self.config.epsilon {
+                status.certain_cells += 1;
+            } else if map.stagnated(i) {
+                status.stagnated_cells += 1;
+            }
+        }
+        status.done =
+            status.reachable_cells > 0 && status.certain_cells + status.stagnated_cells == status.reachable_cells;
+        Ok(status)
+    }
+}
+
+/// How far exploration has come.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+pub struct ExplorationStatus {
+    /// Cells connected to the robot through cells not blocked.
+    pub reachable_cells: usize,
+    /// Of those, cells with entropy below epsilon.
+    pub certain_cells: usize,
+    /// Of the rest, cells whose entropy stagnated.
+    pub stagnated_cells: usize,
+    /// Whether every reachable cell is certain or stagnated.
+    pub done: bool,
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::sensor::SonarModel;
+
+    fn ring() -> Vec<f64> {
+        (0..24).map(|i| i as f64 * std::f64::consts::TAU / 24.0).collect()
+    }
+
+    /// A square room 4 m wide seen from its centre a few times.
+    fn room() -> (CoverageMap, Pose) {
+        let mut map = CoverageMap::new(Grid::new([0.0, 0.0], 0.05, 160, 160).unwrap());
+        let pose = Pose::new(4.0, 4.0, 0.0);
+        let sonar = SonarModel::default();
+        let bearings = ring();
+        let ranges: Vec<f64> = bearings.iter().map(|b| 2.0 / b.cos().abs().max(b.sin().abs())).collect();
+        for _ in 0..3 {
+            map.integrate(&pose, &ranges, &bearings, &sonar).unwrap();
+        }
+        (map, pose)
+    }
+
+    #[test]
+    fn dijkstra_lengths() {
+        let grid = Grid::new([0.0, 0.0], 1.0, 5, 5).unwrap();
+        let mut passable = vec![true; 25];
+        passable[2 * 5 + 2] = false;
+        let r = shortest_paths(&grid, &passable, Cell { row: 0, col: 0 }).unwrap();
+        assert_eq!(r.cost(4), 4.0);
+        assert!((r.cost(24) - 4.0 * std::f64::consts::SQRT_2 - 0.0).abs() > 1e-9, "the centre is blocked");
+        assert!(!r.reachable(12));
+        assert_eq!(r.path_to(4).len(), 5);
+    }
+
+    #[test]
+    fn never_picks_unreachable_or_colliding_poses() {
+        let (map, pose) = room();
+        let planner = Planner::new(PlannerConfig::default()).unwrap();
+        let plan = planner.next_viewpoint(&map, &pose, &ring(), &SonarModel::default()).unwrap();
+        let free = planner.free_space(&map);
+        let reach = planner.reachability(&map, &pose).unwrap();
+        for p in &plan.candidates.poses {
+            let i = map.grid().index(map.grid().world_to_cell(p.x_m, p.y_m).unwrap()).unwrap();
+            assert!(free[i] && reach.reachable(i));
+            // Inside the room's walls, minus the robot's radius.
+            assert!((p.x_m - 4.0).abs() < 2.0 - 0.2 && (p.y_m - 4.0).abs() < 2.0 - 0.2, "{p:?}");
+        }
+        assert!(plan.pose.is_some());
+    }
+
+    #[test]
+    fn alpha_extremes() {
+        let (map, pose) = room();
+        let sonar = SonarModel::default();
+        let mut config = PlannerConfig { alpha: 0.0, min_travel_m: 0.3, ..PlannerConfig::default() };
+        let near = Planner::new(config).unwrap().next_viewpoint(&map, &pose, &ring(), &sonar).unwrap();
+        config.alpha = 1.0;
+        let far = Planner::new(config).unwrap().next_viewpoint(&map, &pose, &ring(), &sonar).unwrap();
+        let c = &near.candidates;
+        let worth: Vec<usize> = (0..c.gains.len()).filter(|&k| c.gains[k] > config.min_gain_nats).collect();
+        let min_cost = worth.iter().map(|&k| c.costs[k]).fold(f64::INFINITY, f64::min);
+        let max_gain = worth.iter().map(|&k| c.gains[k]).fold(0.0, f64::max);
+        assert_eq!(c.costs[near.chosen.unwrap()], min_cost);
+        assert_eq!(far.candidates.gains[far.chosen.unwrap()], max_gain);
+        assert!(max_gain > c.gains[near.chosen.unwrap()]);
+    }
+
+    #[test]
+    fn rejects_bad_config() {
+        assert!(Planner::new(PlannerConfig { alpha: 1.5, ..PlannerConfig::default() }).is_err());
+        assert!(Planner::new(PlannerConfig { candidate_stride_m: 0.0, ..PlannerConfig::default() }).is_err());
+        assert!(Planner::new(PlannerConfig { robot_radius_m: f64::NAN, ..PlannerConfig::default() }).is_err());
+    }
+}
