@@ -1,2 +1,3 @@
 mod fig1;
+mod gain;
 mod properties;
