@@ -124,7 +124,7 @@ impl PySonarModel {
     fn sigma_min(&self) -> f64 {
         self.0.range.sigma_min
     }
-    /// Growth of that standard deviation per metre of mean distance.
+    /// Growth of that standard deviation per metre of distance min(d_l, d).
     #[getter]
     fn sigma_per_m(&self) -> f64 {
         self.0.range.sigma_per_m
@@ -139,7 +139,7 @@ impl PySonarModel {
     fn xi_min(&self) -> f64 {
         self.0.range.xi_min
     }
-    /// Growth of the uniform weight per metre of mean distance.
+    /// Growth of the uniform weight per metre of distance min(d_l, d).
     #[getter]
     fn xi_per_m(&self) -> f64 {
         self.0.range.xi_per_m
@@ -247,7 +247,7 @@ impl PyLaserModel {
     fn sigma_min(&self) -> f64 {
         self.0.range.sigma_min
     }
-    /// Growth of that standard deviation per metre of mean distance.
+    /// Growth of that standard deviation per metre of distance min(d_l, d).
     #[getter]
     fn sigma_per_m(&self) -> f64 {
         self.0.range.sigma_per_m
@@ -262,7 +262,7 @@ impl PyLaserModel {
     fn xi_min(&self) -> f64 {
         self.0.range.xi_min
     }
-    /// Growth of the uniform weight per metre of mean distance.
+    /// Growth of the uniform weight per metre of distance min(d_l, d).
     #[getter]
     fn xi_per_m(&self) -> f64 {
         self.0.range.xi_per_m
