@@ -22,7 +22,11 @@ fn scans(beams: usize, fov_rad: f64, max_range_m: f64, seed: u64) -> Vec<Scan> {
     let bearings: Vec<f64> = (0..beams).map(|i| -0.5 * fov_rad + fov_rad * i as f64 / beams as f64).collect();
     (0..64)
         .map(|_| Scan {
-            pose: Pose::new(rng.random_range(1.0..19.0), rng.random_range(1.0..19.0), rng.random_range(-3.14..3.14)),
+            pose: Pose::new(
+                rng.random_range(1.0..19.0),
+                rng.random_range(1.0..19.0),
+                rng.random_range(-std::f64::consts::PI..std::f64::consts::PI),
+            ),
             ranges: (0..beams).map(|_| rng.random_range(0.3..max_range_m)).collect(),
             bearings: bearings.clone(),
         })

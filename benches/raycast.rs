@@ -6,9 +6,9 @@
 
 use std::hint::black_box;
 
-use covmap::sim::{sim_rng, World};
 use covmap::Grid;
-use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion, Throughput};
+use covmap::sim::{World, sim_rng};
+use criterion::{BenchmarkId, Criterion, Throughput, criterion_group, criterion_main};
 use rand::RngExt;
 
 /// `n` rays from random free points of the world's box, in random directions.
@@ -17,17 +17,12 @@ fn rays(world: &World, n: usize, seed: u64) -> (Vec<[f64; 2]>, Vec<f64>) {
     let [x0, y0, x1, y1] = world.bounds_m();
     let mut origins = Vec::with_capacity(n);
     while origins.len() < n {
-        let p = [
-            x0 + (x1 - x0) * rng.random::<f64>(),
-            y0 + (y1 - y0) * rng.random::<f64>(),
-        ];
+        let p = [x0 + (x1 - x0) * rng.random::<f64>(), y0 + (y1 - y0) * rng.random::<f64>()];
         if world.distance_to_obstacle_m(p) > 0.05 {
             origins.push(p);
         }
     }
-    let angles = (0..n)
-        .map(|_| rng.random::<f64>() * std::f64::consts::TAU)
-        .collect();
+    let angles = (0..n).map(|_| rng.random::<f64>() * std::f64::consts::TAU).collect();
     (origins, angles)
 }
 
@@ -39,16 +34,12 @@ fn raycast(c: &mut Criterion) {
     group.throughput(Throughput::Elements(n as u64));
     group.sample_size(20);
     for max_range_m in [5.0, 30.0] {
-        group.bench_with_input(
-            BenchmarkId::new("sequential", max_range_m),
-            &max_range_m,
-            |b, &m| b.iter(|| black_box(world.cast_batch_sequential(&origins, &angles, m))),
-        );
-        group.bench_with_input(
-            BenchmarkId::new("parallel", max_range_m),
-            &max_range_m,
-            |b, &m| b.iter(|| black_box(world.cast_batch(&origins, &angles, m))),
-        );
+        group.bench_with_input(BenchmarkId::new("sequential", max_range_m), &max_range_m, |b, &m| {
+            b.iter(|| black_box(world.cast_batch_sequential(&origins, &angles, m)))
+        });
+        group.bench_with_input(BenchmarkId::new("parallel", max_range_m), &max_range_m, |b, &m| {
+            b.iter(|| black_box(world.cast_batch(&origins, &angles, m)))
+        });
     }
     group.finish();
 }
@@ -60,9 +51,7 @@ fn ground_truth(c: &mut Criterion) {
     let mut group = c.benchmark_group("coverage_office_5cm");
     group.throughput(Throughput::Elements(grid.len() as u64));
     group.sample_size(10);
-    group.bench_function("sequential", |b| {
-        b.iter(|| black_box(world.coverage_sequential(&grid)))
-    });
+    group.bench_function("sequential", |b| b.iter(|| black_box(world.coverage_sequential(&grid))));
     group.bench_function("parallel", |b| b.iter(|| black_box(world.coverage(&grid))));
     group.finish();
 }

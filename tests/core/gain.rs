@@ -92,8 +92,10 @@ fn certain_map_has_no_gain() {
     let gains = eval.evaluate(&poses, &ring(), GainMethod::Fast).unwrap();
     let pairs = eval.pairs(&poses, &ring()).unwrap() as f64;
     let prior = CoverageMap::new(g);
-    let prior_gains =
-        GainEvaluator::new(&prior, &sonar, GainOptions::default()).unwrap().evaluate(&poses, &ring(), GainMethod::Fast).unwrap();
+    let prior_gains = GainEvaluator::new(&prior, &sonar, GainOptions::default())
+        .unwrap()
+        .evaluate(&poses, &ring(), GainMethod::Fast)
+        .unwrap();
     for (g, p) in gains.iter().zip(&prior_gains) {
         assert!(g.abs() < 1e-5 * pairs / 12.0, "gain {g} on a certain map");
         assert!(g.abs() < 1e-4 * p, "certain {g} vs prior {p}");
@@ -105,7 +107,8 @@ fn prior_map_gains_everywhere() {
     let map = CoverageMap::new(grid());
     for sensor in [model(0, 2.0, 0.0), model(1, 2.0, 0.3)] {
         for stop_coverage in [StopCoverage::MaximumLikelihood, StopCoverage::Mean] {
-            let eval = GainEvaluator::new(&map, sensor.as_ref(), GainOptions { range_step_m: None, stop_coverage }).unwrap();
+            let eval =
+                GainEvaluator::new(&map, sensor.as_ref(), GainOptions { range_step_m: None, stop_coverage }).unwrap();
             let poses: Vec<Pose> =
                 (0..30).map(|k| Pose::new(0.05 + 0.12 * k as f64, 0.05 + 0.1 * k as f64, 0.7 * k as f64)).collect();
             for (pose, g) in poses.iter().zip(eval.evaluate(&poses, &[0.0, 2.0], GainMethod::Fast).unwrap()) {
@@ -124,13 +127,16 @@ fn unexplored_space_is_worth_more() {
     for k in 0..20 {
         let pose = Pose::new(0.6 + 0.2 * (k % 5) as f64, 1.0 + 0.25 * (k / 5) as f64, 0.3 * k as f64);
         // Walls at x = 0, y = 0 and y = 6; open space to the right (no echo).
-        let ranges: Vec<f64> = ring().iter().map(|b| {
-            let a = pose.theta_rad + b;
-            let (c, s) = (a.cos(), a.sin());
-            let tx = if c < 0.0 { -pose.x_m / c } else { f64::INFINITY };
-            let ty = if s < 0.0 { -pose.y_m / s } else { (6.0 - pose.y_m) / s };
-            tx.min(ty).min(10.0)
-        }).collect();
+        let ranges: Vec<f64> = ring()
+            .iter()
+            .map(|b| {
+                let a = pose.theta_rad + b;
+                let (c, s) = (a.cos(), a.sin());
+                let tx = if c < 0.0 { -pose.x_m / c } else { f64::INFINITY };
+                let ty = if s < 0.0 { -pose.y_m / s } else { (6.0 - pose.y_m) / s };
+                tx.min(ty).min(10.0)
+            })
+            .collect();
         map.integrate(&pose, &ranges, &ring(), &sonar).unwrap();
     }
     let eval = GainEvaluator::new(&map, &sonar, GainOptions::default()).unwrap();

@@ -512,9 +512,12 @@ impl<const N: usize> FastBeam<'_, N> {
 /// 4), in four lanes added in a fixed order.
 #[inline(always)]
 fn sums_fixed<const N: usize>(h: &[f32], log_h: &[f64], k: &[f64], log_k: &[f64]) -> (f64, f64) {
-    let (Ok(h), Ok(log_h), Ok(k), Ok(log_k)) =
-        (<&[f32; N]>::try_from(h), <&[f64; N]>::try_from(log_h), <&[f64; N]>::try_from(k), <&[f64; N]>::try_from(log_k))
-    else {
+    let (Ok(h), Ok(log_h), Ok(k), Ok(log_k)) = (
+        <&[f32; N]>::try_from(h),
+        <&[f64; N]>::try_from(log_h),
+        <&[f64; N]>::try_from(k),
+        <&[f64; N]>::try_from(log_k),
+    ) else {
         unreachable!("the caller passes slices of N bins")
     };
     let mut z = [0.0f64; 4];
@@ -564,8 +567,8 @@ impl<const N: usize> CellVisitor for FastBeam<'_, N> {
             let hyps = self.hypotheses;
             let n = hyps.len();
             let reach_from = Self::first(n, (enter - self.band_m) * self.inv_step_m, |j| enter <= hyps[j].reach);
-            let free_from =
-                Self::first(n, (d_l + self.half_cell_m) * self.inv_step_m, |j| hyps[j].lookup.is_free(d_l)).max(reach_from);
+            let free_from = Self::first(n, (d_l + self.half_cell_m) * self.inv_step_m, |j| hyps[j].lookup.is_free(d_l))
+                .max(reach_from);
             for h in &hyps[reach_from..free_from] {
                 if h.p > 0.0 {
                     self.jobs.push((i, h.lookup.offset(d_l), h.p));
@@ -642,12 +645,14 @@ mod tests {
         let sonar = SonarModel::default();
         let bearings: Vec<f64> = (0..8).map(|i| i as f64 * 0.785).collect();
         map.integrate(&Pose::new(3.0, 2.5, 0.1), &[1.2, 2.0, 6.0, 0.7, 1.5, 2.2, 3.0, 0.4], &bearings, &sonar).unwrap();
-        map.integrate(&Pose::new(5.0, 2.0, -0.3), &[2.5, 1.0, 1.7, 0.9, 5.5, 2.2, 1.0, 0.8], &bearings, &sonar).unwrap();
+        map.integrate(&Pose::new(5.0, 2.0, -0.3), &[2.5, 1.0, 1.7, 0.9, 5.5, 2.2, 1.0, 0.8], &bearings, &sonar)
+            .unwrap();
         for model in [&sonar as &dyn SensorModel, &LaserModel::default()] {
             for stop_coverage in [StopCoverage::MaximumLikelihood, StopCoverage::Mean] {
                 let options = GainOptions { range_step_m: None, stop_coverage };
                 let eval = GainEvaluator::new(&map, model, options).unwrap();
-                let poses: Vec<Pose> = (0..6).map(|k| Pose::new(0.4 + 1.1 * k as f64, 1.0 + 0.6 * k as f64, k as f64)).collect();
+                let poses: Vec<Pose> =
+                    (0..6).map(|k| Pose::new(0.4 + 1.1 * k as f64, 1.0 + 0.6 * k as f64, k as f64)).collect();
                 let fast = eval.evaluate(&poses, &bearings, GainMethod::Fast).unwrap();
                 let exact = eval.evaluate(&poses, &bearings, GainMethod::Exact).unwrap();
                 for (f, e) in fast.iter().zip(&exact) {

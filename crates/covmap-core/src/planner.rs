@@ -198,7 +198,11 @@ impl PartialOrd for Entry {
 /// Dijkstra over the 8-connected cells where `passable` holds, from `start`.
 pub fn shortest_paths(grid: &Grid, passable: &[bool], start: Cell) -> Result<Reachability> {
     if passable.len() != grid.len() {
-        return Err(CovmapError::LengthMismatch { what: "passable mask and grid cells", left: passable.len(), right: grid.len() });
+        return Err(CovmapError::LengthMismatch {
+            what: "passable mask and grid cells",
+            left: passable.len(),
+            right: grid.len(),
+        });
     }
     let start = grid.index(start)?;
     let (rows, cols) = (grid.rows() as i64, grid.cols() as i64);
@@ -231,7 +235,9 @@ pub fn shortest_paths(grid: &Grid, passable: &[bool], start: Cell) -> Result<Rea
             let n = (nr * cols + nc) as usize;
             // No corner cutting: a diagonal step needs both side cells free.
             if !passable[n]
-                || (dr != 0 && dc != 0 && !(passable[(row * cols + nc) as usize] && passable[(nr * cols + col) as usize]))
+                || (dr != 0
+                    && dc != 0
+                    && !(passable[(row * cols + nc) as usize] && passable[(nr * cols + col) as usize]))
             {
                 continue;
             }
@@ -309,7 +315,9 @@ impl Planner {
         let entropy = map.entropy();
         mean.iter()
             .zip(&entropy)
-            .map(|(&m, &h)| f64::from(m) > self.config.blocked_coverage || (unknown_blocks && f64::from(h) >= unknown_entropy))
+            .map(|(&m, &h)| {
+                f64::from(m) > self.config.blocked_coverage || (unknown_blocks && f64::from(h) >= unknown_entropy)
+            })
             .collect()
     }
 

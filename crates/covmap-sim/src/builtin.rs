@@ -38,10 +38,7 @@ impl World {
             "office" => office()?,
             "partial" => vec![Polygon::rectangle([2.04, -1.0], [2.5, 1.0], Wall)?],
             _ => {
-                return Err(SimError::UnknownWorld {
-                    name: name.to_string(),
-                    available: NAMES.join(", "),
-                });
+                return Err(SimError::UnknownWorld { name: name.to_string(), available: NAMES.join(", ") });
             }
         };
         Ok(World::new(polygons))
@@ -121,12 +118,8 @@ fn office() -> Result<Vec<Polygon>> {
     const Y: f64 = 20.0;
     const S: f64 = 8.5; // corridor's south face
     const C: f64 = 11.0; // corridor's north face
-    let mut p = vec![
-        rect(-T, -T, X + T, 0.0)?,
-        rect(-T, Y, X + T, Y + T)?,
-        rect(-T, 0.0, 0.0, Y)?,
-        rect(X, 0.0, X + T, Y)?,
-    ];
+    let mut p =
+        vec![rect(-T, -T, X + T, 0.0)?, rect(-T, Y, X + T, Y + T)?, rect(-T, 0.0, 0.0, Y)?, rect(X, 0.0, X + T, Y)?];
     // South rooms: five, 6 m wide, 1 m doors in the corridor wall.
     for k in 0..5 {
         let x0 = 6.0 * k as f64;

@@ -70,11 +70,7 @@ impl Edge {
     fn y_at(&self, x: f64) -> f64 {
         // Interpolate from the nearer end: exact at both ends.
         let t = (x - self.x0) / (self.x1 - self.x0);
-        if t <= 0.5 {
-            self.y0 + t * (self.y1 - self.y0)
-        } else {
-            self.y1 + (1.0 - t) * (self.y0 - self.y1)
-        }
+        if t <= 0.5 { self.y0 + t * (self.y1 - self.y0) } else { self.y1 + (1.0 - t) * (self.y0 - self.y1) }
     }
 }
 
@@ -108,13 +104,7 @@ fn coverage(polygons: &[Polygon], grid: &Grid, parallel: bool) -> Vec<f64> {
                     continue;
                 }
                 let (l, r) = if a[0] < b[0] { (a, b) } else { (b, a) };
-                edges.push(Edge {
-                    x0: l[0],
-                    y0: l[1],
-                    x1: r[0],
-                    y1: r[1],
-                    polygon: pi as u32,
-                });
+                edges.push(Edge { x0: l[0], y0: l[1], x1: r[0], y1: r[1], polygon: pi as u32 });
             }
         }
     }
@@ -215,14 +205,7 @@ fn column_areas(edges: &[Edge], ids: &[u32], grid: &Grid, c: usize) -> Vec<(u32,
             continue;
         }
         let polygon = polys.binary_search(&e.polygon).unwrap_or(0) as u32;
-        local.push(Local {
-            xl,
-            xr,
-            yl: e.y_at(xl),
-            yr: e.y_at(xr),
-            edge: i,
-            polygon,
-        });
+        local.push(Local { xl, xr, yl: e.y_at(xl), yr: e.y_at(xr), edge: i, polygon });
     }
 
     // Slab boundaries: the column's sides, edge ends, edge crossings.
@@ -301,24 +284,12 @@ fn column_areas(edges: &[Edge], ids: &[u32], grid: &Grid, c: usize) -> Vec<(u32,
     }
     touched.sort_unstable();
     touched.dedup();
-    touched
-        .into_iter()
-        .filter(|&j| area[j as usize] > 0.0)
-        .map(|j| (j, area[j as usize]))
-        .collect()
+    touched.into_iter().filter(|&j| area[j as usize] > 0.0).map(|j| (j, area[j as usize])).collect()
 }
 
 /// Add the area between the lines `lo` and `hi` (values at the slab's two
 /// sides) over a slab of `width`, split among the cell rows it crosses.
-fn add_trapezoid(
-    area: &mut [f64],
-    touched: &mut Vec<u32>,
-    oy: f64,
-    r: f64,
-    width: f64,
-    lo: [f64; 2],
-    hi: [f64; 2],
-) {
+fn add_trapezoid(area: &mut [f64], touched: &mut Vec<u32>, oy: f64, r: f64, width: f64, lo: [f64; 2], hi: [f64; 2]) {
     let rows = area.len();
     let bottom = lo[0].min(lo[1]);
     let top = hi[0].max(hi[1]);
@@ -329,8 +300,7 @@ fn add_trapezoid(
     let last = (((top - oy) / r).ceil().max(1.0) as usize).min(rows);
     for (j, cell) in area.iter_mut().enumerate().take(last).skip(first) {
         let y0 = oy + j as f64 * r;
-        let a = width
-            * (clamped_mean(hi[0] - y0, hi[1] - y0, r) - clamped_mean(lo[0] - y0, lo[1] - y0, r));
+        let a = width * (clamped_mean(hi[0] - y0, hi[1] - y0, r) - clamped_mean(lo[0] - y0, lo[1] - y0, r));
         if a > 0.0 {
             *cell += a;
             touched.push(j as u32);
@@ -581,9 +551,6 @@ mod tests {
         let w = World::builtin("office").unwrap();
         let [x0, y0, x1, y1] = w.bounds_m();
         let g = Grid::covering(x0 - 0.3, y0 - 0.3, x1 + 0.3, y1 + 0.3, 0.1).unwrap();
-        assert_eq!(
-            coverage(w.polygons(), &g, true),
-            coverage(w.polygons(), &g, false)
-        );
+        assert_eq!(coverage(w.polygons(), &g, true), coverage(w.polygons(), &g, false));
     }
 }

@@ -86,19 +86,6 @@ pub enum SimError {
 pub type Result<T, E = SimError> = std::result::Result<T, E>;
 
 /// Errors unless `value` is finite and `ok` holds.
-pub(crate) fn check_param(
-    name: &'static str,
-    value: f64,
-    ok: bool,
-    expected: &'static str,
-) -> Result<()> {
-    if ok && value.is_finite() {
-        Ok(())
-    } else {
-        Err(SimError::InvalidParameter {
-            name,
-            value,
-            expected,
-        })
-    }
+pub(crate) fn check_param(name: &'static str, value: f64, ok: bool, expected: &'static str) -> Result<()> {
+    if ok && value.is_finite() { Ok(()) } else { Err(SimError::InvalidParameter { name, value, expected }) }
 }

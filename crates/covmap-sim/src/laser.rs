@@ -6,9 +6,9 @@ use covmap_core::{LaserModel, Pose};
 use rand::{Rng, RngExt};
 use rand_distr::StandardNormal;
 
-use crate::error::{check_param, Result, SimError};
+use crate::error::{Result, SimError, check_param};
 use crate::scan::Scan;
-use crate::simulate::{check_pose, RangeSensor};
+use crate::simulate::{RangeSensor, check_pose};
 use crate::world::World;
 
 /// A laser scanner: thin beams, small Gaussian noise.
@@ -47,18 +47,12 @@ impl Laser {
         check_param("beams", beams as f64, beams >= 2, "at least 2 beams")?;
         check_param("fov_rad", fov_rad, fov_rad > 0.0 && fov_rad <= 2.0 * PI, "an angle in (0, 2 pi] radians")?;
         let step = fov_rad / (beams - 1) as f64;
-        Ok(Self::with_bearings(
-            (0..beams).map(|i| -0.5 * fov_rad + i as f64 * step).collect(),
-        ))
+        Ok(Self::with_bearings((0..beams).map(|i| -0.5 * fov_rad + i as f64 * step).collect()))
     }
 
     /// Beams at the given bearings (radians), with the default range and noise.
     pub fn with_bearings(bearings_rad: Vec<f64>) -> Self {
-        Self {
-            bearings_rad,
-            max_range_m: LaserModel::default().range.max_range_m,
-            noise_std_m: 0.01,
-        }
+        Self { bearings_rad, max_range_m: LaserModel::default().range.max_range_m, noise_std_m: 0.01 }
     }
 
     /// 180 beams one degree apart from -90 degrees (to +89), the layout of
@@ -84,18 +78,10 @@ impl RangeSensor for Laser {
 
     fn validate(&self) -> Result<()> {
         if self.bearings_rad.is_empty() {
-            return Err(SimError::InvalidParameter {
-                name: "bearings_rad",
-                value: 0.0,
-                expected: "at least one beam",
-            });
+            return Err(SimError::InvalidParameter { name: "bearings_rad", value: 0.0, expected: "at least one beam" });
         }
         if let Some((index, &value)) = self.bearings_rad.iter().enumerate().find(|(_, b)| !b.is_finite()) {
-            return Err(SimError::InvalidValue {
-                what: "laser bearing",
-                index,
-                value,
-            });
+            return Err(SimError::InvalidValue { what: "laser bearing", index, value });
         }
         check_param("max_range_m", self.max_range_m, self.max_range_m > 0.0, "a positive distance")?;
         check_param("noise_std_m", self.noise_std_m, self.noise_std_m >= 0.0, "a non-negative standard deviation")
@@ -119,11 +105,7 @@ impl RangeSensor for Laser {
                 if r >= max { max } else { r }
             })
             .collect();
-        Ok(Scan {
-            pose: *pose,
-            ranges_m,
-            bearings_rad: self.bearings_rad.clone(),
-        })
+        Ok(Scan { pose: *pose, ranges_m, bearings_rad: self.bearings_rad.clone() })
     }
 }
 
@@ -162,9 +144,8 @@ mod tests {
         }
         l.noise_std_m = 0.02;
         let mut rng = sim_rng(11);
-        let v: Vec<f64> = (0..5000)
-            .map(|_| l.scan(&w, &Pose::new(0.0, 0.0, 0.0), &mut rng).unwrap().ranges_m[180])
-            .collect();
+        let v: Vec<f64> =
+            (0..5000).map(|_| l.scan(&w, &Pose::new(0.0, 0.0, 0.0), &mut rng).unwrap().ranges_m[180]).collect();
         let m = v.iter().sum::<f64>() / v.len() as f64;
         let sd = (v.iter().map(|x| (x - m).powi(2)).sum::<f64>() / (v.len() - 1) as f64).sqrt();
         // 5 standard errors: 0.02 / sqrt(5000) = 2.8e-4 for the mean, 1 % for the sd.

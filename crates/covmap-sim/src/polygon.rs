@@ -37,19 +37,11 @@ impl Polygon {
     }
 
     /// A polygon with holes.
-    pub fn with_holes(
-        exterior: Vec<[f64; 2]>,
-        holes: Vec<Vec<[f64; 2]>>,
-        material: Material,
-    ) -> Result<Self> {
+    pub fn with_holes(exterior: Vec<[f64; 2]>, holes: Vec<Vec<[f64; 2]>>, material: Material) -> Result<Self> {
         let invalid = |reason: String| SimError::InvalidPolygon { index: 0, reason };
         let mut rings = Vec::with_capacity(1 + holes.len());
         for (k, ring) in std::iter::once(exterior).chain(holes).enumerate() {
-            let name = if k == 0 {
-                "exterior ring".to_string()
-            } else {
-                format!("hole {}", k - 1)
-            };
+            let name = if k == 0 { "exterior ring".to_string() } else { format!("hole {}", k - 1) };
             rings.push(clean_ring(ring).map_err(|e| invalid(format!("{name}: {e}")))?);
         }
         if let Some((a, b)) = first_crossing(&rings) {
@@ -61,18 +53,11 @@ impl Polygon {
         }
         for (k, hole) in rings.iter().enumerate().skip(1) {
             if !ring_contains(&rings[0], hole[0]) {
-                return Err(invalid(format!(
-                    "hole {} lies outside the exterior ring",
-                    k - 1
-                )));
+                return Err(invalid(format!("hole {} lies outside the exterior ring", k - 1)));
             }
         }
         let bounds_m = ring_bounds(&rings[0]);
-        Ok(Self {
-            rings,
-            material,
-            bounds_m,
-        })
+        Ok(Self { rings, material, bounds_m })
     }
 
     /// The axis-aligned rectangle `[min, max]`.
@@ -104,10 +89,7 @@ impl Polygon {
         if !(len.is_finite() && len > 0.0) {
             return Err(SimError::InvalidPolygon {
                 index: 0,
-                reason: format!(
-                    "wall from ({}, {}) to ({}, {}) has no length",
-                    a_m[0], a_m[1], b_m[0], b_m[1]
-                ),
+                reason: format!("wall from ({}, {}) to ({}, {}) has no length", a_m[0], a_m[1], b_m[0], b_m[1]),
             });
         }
         let h = 0.5 * thickness_m;
@@ -116,12 +98,7 @@ impl Polygon {
         let a = [a_m[0] - ux, a_m[1] - uy];
         let b = [b_m[0] + ux, b_m[1] + uy];
         Self::new(
-            vec![
-                [a[0] - nx, a[1] - ny],
-                [b[0] - nx, b[1] - ny],
-                [b[0] + nx, b[1] + ny],
-                [a[0] + nx, a[1] + ny],
-            ],
+            vec![[a[0] - nx, a[1] - ny], [b[0] - nx, b[1] - ny], [b[0] + nx, b[1] + ny], [a[0] + nx, a[1] + ny]],
             material,
         )
     }
@@ -153,10 +130,7 @@ impl Polygon {
         let vertices = (0..sides)
             .map(|i| {
                 let a = rotation_rad + i as f64 * step;
-                [
-                    center_m[0] + radius_m * a.cos(),
-                    center_m[1] + radius_m * a.sin(),
-                ]
+                [center_m[0] + radius_m * a.cos(), center_m[1] + radius_m * a.sin()]
             })
             .collect();
         Self::new(vertices, material)
@@ -186,10 +160,7 @@ impl Polygon {
     /// The area inside the polygon, square metres (exterior minus holes).
     pub fn area_m2(&self) -> f64 {
         let ext = ring_area(&self.rings[0]).abs();
-        ext - self.rings[1..]
-            .iter()
-            .map(|r| ring_area(r).abs())
-            .sum::<f64>()
+        ext - self.rings[1..].iter().map(|r| ring_area(r).abs()).sum::<f64>()
     }
 
     /// Whether the point lies inside (even-odd rule over all rings; points on
@@ -236,10 +207,9 @@ pub(crate) fn ring_area(ring: &[[f64; 2]]) -> f64 {
 }
 
 fn ring_bounds(ring: &[[f64; 2]]) -> [f64; 4] {
-    ring.iter().fold(
-        [f64::INFINITY, f64::INFINITY, f64::NEG_INFINITY, f64::NEG_INFINITY],
-        |b, p| [b[0].min(p[0]), b[1].min(p[1]), b[2].max(p[0]), b[3].max(p[1])],
-    )
+    ring.iter().fold([f64::INFINITY, f64::INFINITY, f64::NEG_INFINITY, f64::NEG_INFINITY], |b, p| {
+        [b[0].min(p[0]), b[1].min(p[1]), b[2].max(p[0]), b[3].max(p[1])]
+    })
 }
 
 /// Even-odd point-in-ring test (crossings of a ray towards +x).
@@ -262,15 +232,8 @@ pub(crate) fn ring_contains(ring: &[[f64; 2]], p: [f64; 2]) -> bool {
 
 /// Drop a closing vertex and repeated vertices; check the rest.
 fn clean_ring(ring: Vec<[f64; 2]>) -> std::result::Result<Vec<[f64; 2]>, String> {
-    if let Some((i, p)) = ring
-        .iter()
-        .enumerate()
-        .find(|(_, p)| !(p[0].is_finite() && p[1].is_finite()))
-    {
-        return Err(format!(
-            "vertex {i} ({}, {}) is not finite",
-            p[0], p[1]
-        ));
+    if let Some((i, p)) = ring.iter().enumerate().find(|(_, p)| !(p[0].is_finite() && p[1].is_finite())) {
+        return Err(format!("vertex {i} ({}, {}) is not finite", p[0], p[1]));
     }
     let mut out: Vec<[f64; 2]> = Vec::with_capacity(ring.len());
     for p in ring {
@@ -282,10 +245,7 @@ fn clean_ring(ring: Vec<[f64; 2]>) -> std::result::Result<Vec<[f64; 2]>, String>
         out.pop();
     }
     if out.len() < 3 {
-        return Err(format!(
-            "{} distinct vertices (at least 3 are needed)",
-            out.len()
-        ));
+        return Err(format!("{} distinct vertices (at least 3 are needed)", out.len()));
     }
     let area = ring_area(&out);
     let [x0, y0, x1, y1] = ring_bounds(&out);
@@ -302,10 +262,7 @@ type EdgeRef = (usize, usize);
 fn describe_edge(rings: &[Vec<[f64; 2]>], (r, i): EdgeRef) -> String {
     let ring = &rings[r];
     let (a, b) = (ring[i], ring[(i + 1) % ring.len()]);
-    format!(
-        "ring {r} edge {i} ({}, {})-({}, {})",
-        a[0], a[1], b[0], b[1]
-    )
+    format!("ring {r} edge {i} ({}, {})-({}, {})", a[0], a[1], b[0], b[1])
 }
 
 /// The first pair of edges that cross or touch, other than neighbours sharing
@@ -369,9 +326,7 @@ fn on_segment(a: [f64; 2], b: [f64; 2], p: [f64; 2]) -> bool {
 pub(crate) fn segments_touch(a: [f64; 2], b: [f64; 2], c: [f64; 2], d: [f64; 2]) -> bool {
     let (d1, d2) = (orient(c, d, a), orient(c, d, b));
     let (d3, d4) = (orient(a, b, c), orient(a, b, d));
-    if ((d1 > 0.0 && d2 < 0.0) || (d1 < 0.0 && d2 > 0.0))
-        && ((d3 > 0.0 && d4 < 0.0) || (d3 < 0.0 && d4 > 0.0))
-    {
+    if ((d1 > 0.0 && d2 < 0.0) || (d1 < 0.0 && d2 > 0.0)) && ((d3 > 0.0 && d4 < 0.0) || (d3 < 0.0 && d4 > 0.0)) {
         return true;
     }
     (d1 == 0.0 && on_segment(c, d, a))
@@ -396,10 +351,7 @@ pub(crate) fn clip_ring_to_rect(ring: &[[f64; 2]], rect: [f64; 4]) -> Vec<[f64; 
             let (ci, pi) = (inside(&cur), inside(&prev));
             if ci != pi {
                 let t = (bound - prev[axis]) / (cur[axis] - prev[axis]);
-                let mut x = [
-                    prev[0] + t * (cur[0] - prev[0]),
-                    prev[1] + t * (cur[1] - prev[1]),
-                ];
+                let mut x = [prev[0] + t * (cur[0] - prev[0]), prev[1] + t * (cur[1] - prev[1])];
                 x[axis] = bound;
                 out.push(x);
             }
@@ -472,11 +424,9 @@ mod tests {
     #[test]
     fn concave_clip_area() {
         // An L: the unit square [0,2]^2 minus [1,2]^2.
-        let l = Polygon::new(
-            vec![[0.0, 0.0], [2.0, 0.0], [2.0, 1.0], [1.0, 1.0], [1.0, 2.0], [0.0, 2.0]],
-            Material::Wall,
-        )
-        .unwrap();
+        let l =
+            Polygon::new(vec![[0.0, 0.0], [2.0, 0.0], [2.0, 1.0], [1.0, 1.0], [1.0, 2.0], [0.0, 2.0]], Material::Wall)
+                .unwrap();
         assert_eq!(l.area_m2(), 3.0);
         assert!((l.area_in_rect_m2([0.5, 0.5, 1.5, 1.5]) - 0.75).abs() < 1e-12);
         assert_eq!(l.area_in_rect_m2([1.0, 1.0, 2.0, 2.0]), 0.0);

@@ -2,11 +2,12 @@
 
 use parry2d_f64::partitioning::BvhNode;
 
-use crate::error::{check_param, Result, SimError};
+use crate::error::{Result, SimError, check_param};
 use crate::material::Material;
 use crate::world::World;
 
 /// Batches at least this long are split over rayon's threads.
+#[cfg(feature = "parallel")]
 const PARALLEL_MIN_RAYS: usize = 4096;
 
 /// What one ray met first.
@@ -28,12 +29,7 @@ pub struct RayHit {
 impl RayHit {
     /// A miss at `max_range_m`.
     pub fn miss(max_range_m: f64) -> Self {
-        Self {
-            distance_m: max_range_m,
-            incidence_rad: f64::NAN,
-            normal: [0.0, 0.0],
-            material: None,
-        }
+        Self { distance_m: max_range_m, incidence_rad: f64::NAN, normal: [0.0, 0.0], material: None }
     }
     /// Whether a surface was hit within the maximum range.
     pub fn is_hit(&self) -> bool {
@@ -69,6 +65,22 @@ impl World {
         let d = [c, s];
         let inv = [1.0 / c, 1.0 / s];
         let o = origin_m;
+        // The ray's parameter interval inside the slab `[lo, hi]` of one axis;
+        // along an axis the ray does not move (an exactly zero component) the
+        // slab is everything or nothing, which keeps rays that run exactly
+        // along a box's side inside the box (no 0 * inf = NaN).
+        let slab = |axis: usize, lo: f64, hi: f64| -> (f64, f64) {
+            if d[axis] == 0.0 {
+                if lo <= o[axis] && o[axis] <= hi {
+                    (f64::NEG_INFINITY, f64::INFINITY)
+                } else {
+                    (f64::INFINITY, f64::NEG_INFINITY)
+                }
+            } else {
+                let (a, b) = ((lo - o[axis]) * inv[axis], (hi - o[axis]) * inv[axis]);
+                (a.min(b), a.max(b))
+            }
+        };
         // parry2d's hierarchy, best-first; the box and piece tests are inlined
         // here with the ray's inverse direction precomputed, which is several
         // times faster than the generic shape queries.
@@ -76,13 +88,13 @@ impl World {
             max_range_m,
             |node: &BvhNode, best: f64| {
                 let (lo, hi) = (node.mins(), node.maxs());
-                let (tx0, tx1) = ((lo.x - o[0]) * inv[0], (hi.x - o[0]) * inv[0]);
-                let (ty0, ty1) = ((lo.y - o[1]) * inv[1], (hi.y - o[1]) * inv[1]);
-                let t_in = tx0.min(tx1).max(ty0.min(ty1)).max(0.0);
-                let t_out = tx0.max(tx1).min(ty0.max(ty1));
-                // NaN (a zero direction component on a box edge) fails both
-                // comparisons and keeps the box, which is the safe side.
-                if t_in > t_out || t_in >= best { f64::MAX } else { t_in }
+                let (x_in, x_out) = slab(0, lo.x, hi.x);
+                let (y_in, y_out) = slab(1, lo.y, hi.y);
+                let t_in = x_in.max(y_in).max(0.0);
+                let t_out = x_out.min(y_out);
+                // Inclusive, with a hair of slack: a ray grazing a box's
+                // corner costs one more leaf test, never a missed hit.
+                if t_in > t_out + 1e-12 * (1.0 + t_out.abs()) || t_in >= best { f64::MAX } else { t_in }
             },
             |leaf: u32, best: f64| {
                 let p = &g.ray_pieces[leaf as usize];
@@ -106,12 +118,7 @@ impl World {
                     n = [-n[0], -n[1]];
                     cos = -cos;
                 }
-                RayHit {
-                    distance_m: t,
-                    incidence_rad: (-cos).min(1.0).acos(),
-                    normal: n,
-                    material: Some(p.material),
-                }
+                RayHit { distance_m: t, incidence_rad: (-cos).min(1.0).acos(), normal: n, material: Some(p.material) }
             }
             _ => RayHit::miss(max_range_m),
         }
@@ -123,12 +130,7 @@ impl World {
     ///
     /// Errors on mismatched lengths, a non-finite origin or angle, or a maximum
     /// range that is not positive and finite.
-    pub fn cast_batch(
-        &self,
-        origins_m: &[[f64; 2]],
-        angles_rad: &[f64],
-        max_range_m: f64,
-    ) -> Result<Vec<RayHit>> {
+    pub fn cast_batch(&self, origins_m: &[[f64; 2]], angles_rad: &[f64], max_range_m: f64) -> Result<Vec<RayHit>> {
         validate_rays(origins_m, angles_rad, max_range_m)?;
         #[cfg(feature = "parallel")]
         if origins_m.len() >= PARALLEL_MIN_RAYS {
@@ -155,21 +157,12 @@ impl World {
     }
 
     fn cast_sequential(&self, origins_m: &[[f64; 2]], angles_rad: &[f64], max_range_m: f64) -> Vec<RayHit> {
-        origins_m
-            .iter()
-            .zip(angles_rad)
-            .map(|(&o, &a)| self.cast(o, a, max_range_m))
-            .collect()
+        origins_m.iter().zip(angles_rad).map(|(&o, &a)| self.cast(o, a, max_range_m)).collect()
     }
 }
 
 fn validate_rays(origins_m: &[[f64; 2]], angles_rad: &[f64], max_range_m: f64) -> Result<()> {
-    check_param(
-        "max_range_m",
-        max_range_m,
-        max_range_m > 0.0,
-        "a positive, finite distance",
-    )?;
+    check_param("max_range_m", max_range_m, max_range_m > 0.0, "a positive, finite distance")?;
     if origins_m.len() != angles_rad.len() {
         return Err(SimError::LengthMismatch {
             what: "ray origins and angles",
@@ -185,11 +178,7 @@ fn validate_rays(origins_m: &[[f64; 2]], angles_rad: &[f64], max_range_m: f64) -
         }
     }
     if let Some((index, &value)) = angles_rad.iter().enumerate().find(|(_, a)| !a.is_finite()) {
-        return Err(SimError::InvalidValue {
-            what: "ray angle",
-            index,
-            value,
-        });
+        return Err(SimError::InvalidValue { what: "ray angle", index, value });
     }
     Ok(())
 }
@@ -243,19 +232,33 @@ mod tests {
     }
 
     #[test]
+    fn axis_aligned_rays_along_piece_boundaries() {
+        // A wall face on x = 3 cut into 2 m pieces at y = ..., -2, 0, 2, ...:
+        // rays exactly along y = 0 and y = 2 (piece ends) must hit it.
+        let w = World::new(vec![
+            Polygon::rectangle([3.0, -10.0], [4.0, 10.0], Material::Wall).unwrap(),
+            Polygon::rectangle([-3.0, -1.0], [-2.0, 0.0], Material::Wall).unwrap(),
+        ]);
+        for y in [-2.0, 0.0, 2.0, 10.0, -10.0] {
+            let h = w.cast([0.0, y], 0.0, 30.0);
+            assert!((h.distance_m - 3.0).abs() < 1e-12, "y = {y}: {h:?}");
+        }
+        let h = w.cast([0.0, -0.5], PI, 30.0);
+        assert!((h.distance_m - 2.0).abs() < 1e-12, "{h:?}");
+        let h = w.cast([3.5, -20.0], FRAC_PI_2, 30.0);
+        assert!((h.distance_m - 10.0).abs() < 1e-12, "{h:?}");
+    }
+
+    #[test]
     fn batch_validates_and_matches_single_casts() {
         let w = room();
         assert!(w.cast_batch(&[[0.5, 0.5]], &[0.0, 1.0], 5.0).is_err());
-        assert!(matches!(
-            w.cast_batch(&[[0.5, f64::NAN]], &[0.0], 5.0),
-            Err(SimError::InvalidValue { index: 0, .. })
-        ));
+        assert!(matches!(w.cast_batch(&[[0.5, f64::NAN]], &[0.0], 5.0), Err(SimError::InvalidValue { index: 0, .. })));
         assert!(w.cast_batch(&[[0.5, 0.5]], &[f64::INFINITY], 5.0).is_err());
         assert!(w.cast_batch(&[[0.5, 0.5]], &[0.0], 0.0).is_err());
         let n = 10_000;
-        let origins: Vec<[f64; 2]> = (0..n)
-            .map(|i| [0.2 + 3.6 * (i as f64 * 0.618).fract(), 0.1 + 1.8 * (i as f64 * 0.414).fract()])
-            .collect();
+        let origins: Vec<[f64; 2]> =
+            (0..n).map(|i| [0.2 + 3.6 * (i as f64 * 0.618).fract(), 0.1 + 1.8 * (i as f64 * 0.414).fract()]).collect();
         let angles: Vec<f64> = (0..n).map(|i| i as f64 * 0.01).collect();
         let par = w.cast_batch(&origins, &angles, 6.0).unwrap();
         let seq = w.cast_batch_sequential(&origins, &angles, 6.0).unwrap();

@@ -6,11 +6,11 @@ use covmap_core::{Pose, SonarModel};
 use rand::{Rng, RngExt};
 use rand_distr::StandardNormal;
 
-use crate::error::{check_param, Result, SimError};
+use crate::error::{Result, SimError, check_param};
 use crate::material::Material;
 use crate::raycast::RayHit;
 use crate::scan::Scan;
-use crate::simulate::{check_pose, RangeSensor};
+use crate::simulate::{RangeSensor, check_pose};
 use crate::world::World;
 
 /// A ring of sonars and how they err.
@@ -119,10 +119,7 @@ impl SonarRing {
     /// -22.5, -7.5, 7.5, 22.5, 37.5 and 90 degrees.
     pub fn front_eight() -> Self {
         Self::with_bearings(
-            [-90.0, -37.5, -22.5, -7.5, 7.5, 22.5, 37.5, 90.0]
-                .iter()
-                .map(|d: &f64| d.to_radians())
-                .collect(),
+            [-90.0, -37.5, -22.5, -7.5, 7.5, 22.5, 37.5, 90.0].iter().map(|d: &f64| d.to_radians()).collect(),
         )
     }
 
@@ -151,11 +148,7 @@ impl SonarRing {
         let mut echo = f64::INFINITY;
         let mut specular: Option<(f64, RayHit)> = None;
         for k in 0..n {
-            let offset = if n == 1 {
-                0.0
-            } else {
-                self.opening_angle_rad * (k as f64 / (n - 1) as f64 - 0.5)
-            };
+            let offset = if n == 1 { 0.0 } else { self.opening_angle_rad * (k as f64 / (n - 1) as f64 - 0.5) };
             let angle = axis_rad + offset;
             let hit = world.cast(origin, angle, max);
             let Some(material) = hit.material else {
@@ -169,9 +162,7 @@ impl SonarRing {
         }
         let mut range = if echo.is_finite() {
             echo
-        } else if let (Some((angle, hit)), true) =
-            (specular, u_multipath < self.multipath_probability)
-        {
+        } else if let (Some((angle, hit)), true) = (specular, u_multipath < self.multipath_probability) {
             self.multipath(world, origin, angle, &hit)
         } else {
             max
@@ -228,17 +219,8 @@ impl RangeSensor for SonarRing {
                 expected: "at least one sensor",
             });
         }
-        if let Some((index, &value)) = self
-            .bearings_rad
-            .iter()
-            .enumerate()
-            .find(|(_, b)| !b.is_finite())
-        {
-            return Err(SimError::InvalidValue {
-                what: "sonar bearing",
-                index,
-                value,
-            });
+        if let Some((index, &value)) = self.bearings_rad.iter().enumerate().find(|(_, b)| !b.is_finite()) {
+            return Err(SimError::InvalidValue { what: "sonar bearing", index, value });
         }
         let a = self.opening_angle_rad;
         check_param("opening_angle_rad", a, a > 0.0 && a < PI, "an angle in (0, pi) radians")?;
@@ -254,10 +236,9 @@ impl RangeSensor for SonarRing {
         )?;
         check_param("noise_std_m", self.noise_std_m, self.noise_std_m >= 0.0, "a non-negative standard deviation")?;
         check_param("noise_std_per_m", self.noise_std_per_m, self.noise_std_per_m >= 0.0, "a non-negative growth")?;
-        for (name, p) in [
-            ("outlier_probability", self.outlier_probability),
-            ("multipath_probability", self.multipath_probability),
-        ] {
+        for (name, p) in
+            [("outlier_probability", self.outlier_probability), ("multipath_probability", self.multipath_probability)]
+        {
             check_param(name, p, (0.0..=1.0).contains(&p), "a probability in [0, 1]")?;
         }
         for (name, c) in [
@@ -281,11 +262,7 @@ impl RangeSensor for SonarRing {
                 self.reading(world, origin, pose.theta_rad + b, draws)
             })
             .collect();
-        Ok(Scan {
-            pose: *pose,
-            ranges_m,
-            bearings_rad: self.bearings_rad.clone(),
-        })
+        Ok(Scan { pose: *pose, ranges_m, bearings_rad: self.bearings_rad.clone() })
     }
 }
 
@@ -406,9 +383,7 @@ mod tests {
         let w = wall();
         let pose = Pose::new(0.0, 2.0, -PI / 2.0);
         let mut rng = sim_rng(42);
-        let v: Vec<f64> = (0..20_000)
-            .map(|_| s.scan(&w, &pose, &mut rng).unwrap().ranges_m[0])
-            .collect();
+        let v: Vec<f64> = (0..20_000).map(|_| s.scan(&w, &pose, &mut rng).unwrap().ranges_m[0]).collect();
         let (m, sd) = mean_std(&v);
         // Standard error of the mean: 0.03 / sqrt(20000) = 2.1e-4; allow 5 of them.
         assert!((m - 2.0).abs() < 1.1e-3, "mean {m}");
@@ -416,9 +391,7 @@ mod tests {
         assert!((sd - 0.03).abs() < 0.03 * 0.02, "sd {sd}");
         // The spread grows with range: at 4 m, 0.05.
         let far = Pose::new(0.0, 4.0, -PI / 2.0);
-        let v: Vec<f64> = (0..20_000)
-            .map(|_| s.scan(&w, &far, &mut rng).unwrap().ranges_m[0])
-            .collect();
+        let v: Vec<f64> = (0..20_000).map(|_| s.scan(&w, &far, &mut rng).unwrap().ranges_m[0]).collect();
         let (m, sd) = mean_std(&v);
         assert!((m - 4.0).abs() < 2e-3 && (sd - 0.05).abs() < 0.05 * 0.02, "{m} {sd}");
     }
@@ -431,9 +404,7 @@ mod tests {
         let w = wall();
         let pose = Pose::new(0.0, 3.0, -PI / 2.0);
         let mut rng = sim_rng(5);
-        let v: Vec<f64> = (0..10_000)
-            .map(|_| s.scan(&w, &pose, &mut rng).unwrap().ranges_m[0])
-            .collect();
+        let v: Vec<f64> = (0..10_000).map(|_| s.scan(&w, &pose, &mut rng).unwrap().ranges_m[0]).collect();
         let short = v.iter().filter(|&&r| r < 3.0 - 1e-9).count() as f64 / v.len() as f64;
         // Binomial sd: sqrt(0.2 * 0.8 / 10000) = 0.004; allow 5 of them.
         assert!((short - 0.2).abs() < 0.02, "{short}");
@@ -456,7 +427,10 @@ mod tests {
         assert_eq!(SonarRing::front_eight().bearings_rad.len(), 8);
         let mut bad = s.clone();
         bad.outlier_probability = 1.5;
-        assert!(matches!(bad.scan(&w, &pose, &mut sim_rng(1)), Err(SimError::InvalidParameter { name: "outlier_probability", .. })));
+        assert!(matches!(
+            bad.scan(&w, &pose, &mut sim_rng(1)),
+            Err(SimError::InvalidParameter { name: "outlier_probability", .. })
+        ));
         let mut bad = s.clone();
         bad.min_range_m = 6.0;
         assert!(bad.validate().is_err());

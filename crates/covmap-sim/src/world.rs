@@ -12,11 +12,13 @@ use crate::polygon::Polygon;
 
 /// A set of obstacle polygons; overlapping polygons are their union.
 ///
-/// Everything outside the polygons is free space. The world keeps, beside the
-/// polygons, every ring edge in one parry2d [`Polyline`] with a bounding-volume
-/// hierarchy (for ray casts and distance queries) and a hierarchy over the
-/// polygons' boxes (for point-inside queries). parry types stay inside the
-/// crate: the API speaks `[f64; 2]` in metres.
+/// Everything outside the polygons is free space. Beside the polygons the
+/// world keeps three parry2d structures, built once: every ring edge in one
+/// [`Polyline`] (distance queries and the robot's shape casts), a bounding-volume
+/// hierarchy over the polygons' boxes (point-inside queries), and one over the
+/// edges cut into pieces of at most 2 m (ray casts: long walls would otherwise
+/// give boxes that most rays have to open). parry types stay inside the crate:
+/// the API speaks `[f64; 2]` in metres.
 ///
 /// Build one from polygons ([`World::new`], [`World::from_vertex_lists`]), from
 /// files (see [`crate::load`]) or by name ([`World::builtin`]).
@@ -80,24 +82,14 @@ pub(crate) fn vector(p: [f64; 2]) -> Vector {
 impl World {
     /// A world of already validated polygons (an empty world is all free space).
     pub fn new(polygons: Vec<Polygon>) -> Self {
-        let bounds_m = polygons.iter().fold(
-            [f64::INFINITY, f64::INFINITY, f64::NEG_INFINITY, f64::NEG_INFINITY],
-            |b, p| {
+        let bounds_m =
+            polygons.iter().fold([f64::INFINITY, f64::INFINITY, f64::NEG_INFINITY, f64::NEG_INFINITY], |b, p| {
                 let q = p.bounds_m();
                 [b[0].min(q[0]), b[1].min(q[1]), b[2].max(q[2]), b[3].max(q[3])]
-            },
-        );
+            });
         let geometry = (!polygons.is_empty()).then(|| build_geometry(&polygons));
-        let bounds_m = if polygons.is_empty() {
-            [0.0; 4]
-        } else {
-            bounds_m
-        };
-        Self {
-            polygons,
-            bounds_m,
-            geometry,
-        }
+        let bounds_m = if polygons.is_empty() { [0.0; 4] } else { bounds_m };
+        Self { polygons, bounds_m, geometry }
     }
 
     /// A world of polygons given as vertex lists, all of one material. An
@@ -108,9 +100,7 @@ impl World {
             .enumerate()
             .map(|(index, v)| {
                 Polygon::new(v, material).map_err(|e| match e {
-                    SimError::InvalidPolygon { reason, .. } => {
-                        SimError::InvalidPolygon { index, reason }
-                    }
+                    SimError::InvalidPolygon { reason, .. } => SimError::InvalidPolygon { index, reason },
                     other => other,
                 })
             })
@@ -136,9 +126,7 @@ impl World {
     }
     /// Number of boundary segments (ring edges) the ray caster tests.
     pub fn segment_count(&self) -> usize {
-        self.geometry
-            .as_ref()
-            .map_or(0, |g| g.segment_material.len())
+        self.geometry.as_ref().map_or(0, |g| g.segment_material.len())
     }
     /// The sum of the polygons' areas, square metres (overlaps counted twice;
     /// the exact union inside a region is [`World::coverage`] times the cell area).
@@ -157,9 +145,7 @@ impl World {
         };
         let q = vector(p_m);
         let aabb = Aabb::new(q, q);
-        g.polygon_bvh
-            .intersect_aabb(&aabb)
-            .any(|i| self.polygons[i as usize].contains(p_m))
+        g.polygon_bvh.intersect_aabb(&aabb).any(|i| self.polygons[i as usize].contains(p_m))
     }
 
     /// Distance from the point to the nearest obstacle boundary, metres
@@ -173,11 +159,7 @@ impl World {
 
     /// Distance from the point to the nearest obstacle, metres: 0 inside one.
     pub fn distance_to_obstacle_m(&self, p_m: [f64; 2]) -> f64 {
-        if self.contains_point(p_m) {
-            0.0
-        } else {
-            self.distance_to_boundary_m(p_m)
-        }
+        if self.contains_point(p_m) { 0.0 } else { self.distance_to_boundary_m(p_m) }
     }
 }
 
@@ -207,21 +189,14 @@ fn build_geometry(polygons: &[Polygon]) -> Geometry {
                 if t == pieces { b } else { a + (b - a) * f }
             };
             let (p, q) = (at(k), at(k + 1));
-            ray_pieces.push(RayPiece {
-                a: [p.x, p.y],
-                e: [q.x - p.x, q.y - p.y],
-                material: segment_material[s],
-            });
+            ray_pieces.push(RayPiece { a: [p.x, p.y], e: [q.x - p.x, q.y - p.y], material: segment_material[s] });
         }
     }
     let piece_boxes: Vec<Aabb> = ray_pieces
         .iter()
         .map(|p| {
             let q = [p.a[0] + p.e[0], p.a[1] + p.e[1]];
-            Aabb::new(
-                Vector::new(p.a[0].min(q[0]), p.a[1].min(q[1])),
-                Vector::new(p.a[0].max(q[0]), p.a[1].max(q[1])),
-            )
+            Aabb::new(Vector::new(p.a[0].min(q[0]), p.a[1].min(q[1])), Vector::new(p.a[0].max(q[0]), p.a[1].max(q[1])))
         })
         .collect();
     let boxes: Vec<Aabb> = polygons

@@ -103,8 +103,7 @@ mod tests {
 
     #[test]
     fn rejects_bad_parameters() {
-        let mut m = SonarModel::default();
-        m.opening_angle_rad = std::f64::consts::PI;
+        let m = SonarModel { opening_angle_rad: std::f64::consts::PI, ..SonarModel::default() };
         assert!(matches!(m.validate(), Err(CovmapError::InvalidParameter { name: "opening_angle_rad", .. })));
         let mut m = SonarModel::default();
         m.range.xi_min = 0.0;

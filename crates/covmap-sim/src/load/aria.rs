@@ -11,7 +11,7 @@
 use std::path::Path;
 
 use super::{parse_error, read_text};
-use crate::error::{check_param, Result, SimError};
+use crate::error::{Result, SimError, check_param};
 use crate::material::Material;
 use crate::polygon::Polygon;
 use crate::world::World;
@@ -61,7 +61,8 @@ impl World {
                     continue;
                 }
                 let numbers: Vec<&str> = line.split_whitespace().collect();
-                let parsed: Option<Vec<f64>> = numbers.iter().map(|t| t.parse::<f64>().ok().filter(|v| v.is_finite())).collect();
+                let parsed: Option<Vec<f64>> =
+                    numbers.iter().map(|t| t.parse::<f64>().ok().filter(|v| v.is_finite())).collect();
                 let mm = match parsed {
                     Some(v) if v.len() == 4 => v,
                     _ => {
@@ -88,7 +89,11 @@ impl World {
                 break;
             } else if let Some(rest) = line.strip_prefix("NumLines:") {
                 let n = rest.trim().parse::<usize>().map_err(|_| {
-                    parse_error(path, format!("line {no}"), format!("NumLines must be a count, found {:?}", rest.trim()))
+                    parse_error(
+                        path,
+                        format!("line {no}"),
+                        format!("NumLines must be a count, found {:?}", rest.trim()),
+                    )
                 })?;
                 declared = Some((n, no));
             }

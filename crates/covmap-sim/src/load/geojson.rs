@@ -19,7 +19,7 @@
 
 use std::path::Path;
 
-use serde_json::{json, Value};
+use serde_json::{Value, json};
 
 use super::{parse_error, read_text, write_atomic};
 use crate::error::{Result, SimError};
@@ -51,11 +51,7 @@ impl World {
     pub fn from_geojson_str(text: &str, name: impl AsRef<Path>) -> Result<World> {
         let path = name.as_ref();
         let root: Value = serde_json::from_str(text).map_err(|e| {
-            parse_error(
-                path,
-                format!("line {}, column {}", e.line(), e.column()),
-                format!("not valid JSON: {e}"),
-            )
+            parse_error(path, format!("line {}, column {}", e.line(), e.column()), format!("not valid JSON: {e}"))
         })?;
         let mut polygons = Vec::new();
         match type_of(&root) {
@@ -69,9 +65,7 @@ impl World {
                 }
             }
             Some("Feature") => feature(&root, "feature 0", path, &mut polygons)?,
-            Some("Polygon") | Some("MultiPolygon") => {
-                geometry(&root, Material::Wall, "", path, &mut polygons)?
-            }
+            Some("Polygon") | Some("MultiPolygon") => geometry(&root, Material::Wall, "", path, &mut polygons)?,
             other => {
                 return Err(parse_error(
                     path,
@@ -155,9 +149,9 @@ fn geometry(g: &Value, material: Material, prefix: &str, path: &Path, out: &mut 
             out.push(polygon(coords, material, &place, path)?);
         }
         Some("MultiPolygon") => {
-            let polys = coords
-                .and_then(Value::as_array)
-                .ok_or_else(|| parse_error(path, prefix.trim_end_matches(", "), "MultiPolygon coordinates must be an array"))?;
+            let polys = coords.and_then(Value::as_array).ok_or_else(|| {
+                parse_error(path, prefix.trim_end_matches(", "), "MultiPolygon coordinates must be an array")
+            })?;
             for (k, p) in polys.iter().enumerate() {
                 out.push(polygon(Some(p), material, &format!("{prefix}polygon {k}"), path)?);
             }
@@ -191,7 +185,11 @@ fn polygon(coords: Option<&Value>, material: Material, place: &str, path: &Path)
                 Some([x, y])
             });
             let xy = xy.ok_or_else(|| {
-                parse_error(path, format!("{place}, ring {r}, position {i}"), format!("expected [x, y] in metres, found {p}"))
+                parse_error(
+                    path,
+                    format!("{place}, ring {r}, position {i}"),
+                    format!("expected [x, y] in metres, found {p}"),
+                )
             })?;
             pts.push(xy);
         }

@@ -26,7 +26,7 @@ use std::io::Cursor;
 use std::path::Path;
 
 use super::{parse_error, read_bytes, read_text};
-use crate::error::{check_param, Result};
+use crate::error::{Result, check_param};
 use crate::material::Material;
 use crate::polygon::Polygon;
 use crate::world::World;
@@ -50,18 +50,14 @@ impl ImageOptions {
     /// At `resolution_m` per pixel, origin at zero, no yaw, dark = occupied,
     /// threshold 0.65 (map_server's defaults).
     pub fn new(resolution_m: f64) -> Self {
-        Self {
-            resolution_m,
-            origin_m: [0.0, 0.0],
-            yaw_rad: 0.0,
-            negate: false,
-            occupied_thresh: 0.65,
-        }
+        Self { resolution_m, origin_m: [0.0, 0.0], yaw_rad: 0.0, negate: false, occupied_thresh: 0.65 }
     }
 
     fn validate(&self) -> Result<()> {
         check_param("resolution_m", self.resolution_m, self.resolution_m > 0.0, "a positive pixel size")?;
-        for (name, v) in [("origin_m[0]", self.origin_m[0]), ("origin_m[1]", self.origin_m[1]), ("yaw_rad", self.yaw_rad)] {
+        for (name, v) in
+            [("origin_m[0]", self.origin_m[0]), ("origin_m[1]", self.origin_m[1]), ("yaw_rad", self.yaw_rad)]
+        {
             check_param(name, v, true, "a finite number")?;
         }
         check_param(
@@ -151,13 +147,16 @@ fn parse_ros_yaml(text: &str, path: &Path) -> Result<(String, ImageOptions)> {
             "image" => image = Some(value.trim_matches(|c| c == '"' || c == '\'').to_string()),
             "resolution" => resolution = Some(number(value)?),
             "origin" => {
-                let inner = value
-                    .strip_prefix('[')
-                    .and_then(|v| v.strip_suffix(']'))
-                    .ok_or_else(|| parse_error(path, &place, format!("origin must be `[x, y, yaw]`, found {value:?}")))?;
+                let inner = value.strip_prefix('[').and_then(|v| v.strip_suffix(']')).ok_or_else(|| {
+                    parse_error(path, &place, format!("origin must be `[x, y, yaw]`, found {value:?}"))
+                })?;
                 let parts = inner.split(',').map(|t| number(t.trim())).collect::<Result<Vec<f64>>>()?;
                 if parts.len() != 3 {
-                    return Err(parse_error(path, &place, format!("origin must have 3 numbers, found {}", parts.len())));
+                    return Err(parse_error(
+                        path,
+                        &place,
+                        format!("origin must have 3 numbers, found {}", parts.len()),
+                    ));
                 }
                 origin = Some([parts[0], parts[1], parts[2]]);
             }
@@ -172,10 +171,8 @@ fn parse_ros_yaml(text: &str, path: &Path) -> Result<(String, ImageOptions)> {
             "free_thresh" => {
                 number(value)?;
             }
-            "mode" => {
-                if value != "trinary" {
-                    return Err(parse_error(path, &place, format!("only `mode: trinary` is supported, found {value:?}")));
-                }
+            "mode" if value != "trinary" => {
+                return Err(parse_error(path, &place, format!("only `mode: trinary` is supported, found {value:?}")));
             }
             _ => {}
         }
@@ -195,9 +192,7 @@ fn decode_png(bytes: &[u8], path: &Path) -> Result<Grey> {
     let mut decoder = png::Decoder::new(Cursor::new(bytes));
     decoder.set_transformations(png::Transformations::normalize_to_color8());
     let mut reader = decoder.read_info().map_err(err)?;
-    let size = reader
-        .output_buffer_size()
-        .ok_or_else(|| parse_error(path, "PNG header", "image too large"))?;
+    let size = reader.output_buffer_size().ok_or_else(|| parse_error(path, "PNG header", "image too large"))?;
     let mut buf = vec![0u8; size];
     let info = reader.next_frame(&mut buf).map_err(err)?;
     let (width, height) = (info.width as usize, info.height as usize);
@@ -254,18 +249,18 @@ fn decode_pgm(bytes: &[u8], path: &Path) -> Result<Grey> {
             pos += 1;
         }
         let token = std::str::from_utf8(&bytes[start..pos]).unwrap_or("");
-        header[k] = token.parse::<usize>().ok().filter(|&v| v > 0).ok_or_else(|| {
-            parse_error(path, format!("header line {line}"), format!("expected a positive {name}"))
-        })?;
+        header[k] =
+            token.parse::<usize>().ok().filter(|&v| v > 0).ok_or_else(|| {
+                parse_error(path, format!("header line {line}"), format!("expected a positive {name}"))
+            })?;
     }
     let [width, height, maxval] = header;
     if maxval > 65535 {
         return Err(parse_error(path, format!("header line {line}"), format!("maxval {maxval} exceeds 65535")));
     }
-    let count = width
-        .checked_mul(height)
-        .filter(|&n| n <= 1 << 30)
-        .ok_or_else(|| parse_error(path, format!("header line {line}"), format!("{width} x {height} pixels is too large")))?;
+    let count = width.checked_mul(height).filter(|&n| n <= 1 << 30).ok_or_else(|| {
+        parse_error(path, format!("header line {line}"), format!("{width} x {height} pixels is too large"))
+    })?;
     let pixel = |i: usize| format!("pixel ({}, {})", i % width, i / width);
     let scale = 1.0 / maxval as f64;
     let mut values = Vec::with_capacity(count);
@@ -282,7 +277,13 @@ fn decode_pgm(bytes: &[u8], path: &Path) -> Result<Grey> {
             let v = match (wide, bytes.get(at), bytes.get(at + 1)) {
                 (false, Some(&b), _) => b as usize,
                 (true, Some(&hi), Some(&lo)) => ((hi as usize) << 8) | lo as usize,
-                _ => return Err(parse_error(path, pixel(i), format!("the data ends early ({width} x {height} pixels declared)"))),
+                _ => {
+                    return Err(parse_error(
+                        path,
+                        pixel(i),
+                        format!("the data ends early ({width} x {height} pixels declared)"),
+                    ));
+                }
             };
             if v > maxval {
                 return Err(parse_error(path, pixel(i), format!("value {v} exceeds maxval {maxval}")));
@@ -290,19 +291,16 @@ fn decode_pgm(bytes: &[u8], path: &Path) -> Result<Grey> {
             values.push(v as f64 * scale);
         }
     } else {
-        let text = std::str::from_utf8(&bytes[pos..]).map_err(|_| parse_error(path, "pixel data", "P2 data must be ASCII"))?;
-        let mut tokens = text
-            .lines()
-            .flat_map(|l| l.split('#').next().unwrap_or("").split_ascii_whitespace());
+        let text =
+            std::str::from_utf8(&bytes[pos..]).map_err(|_| parse_error(path, "pixel data", "P2 data must be ASCII"))?;
+        let mut tokens = text.lines().flat_map(|l| l.split('#').next().unwrap_or("").split_ascii_whitespace());
         for i in 0..count {
             let token = tokens.next().ok_or_else(|| {
                 parse_error(path, pixel(i), format!("the data ends early ({width} x {height} pixels declared)"))
             })?;
-            let v = token
-                .parse::<usize>()
-                .ok()
-                .filter(|&v| v <= maxval)
-                .ok_or_else(|| parse_error(path, pixel(i), format!("expected a value from 0 to {maxval}, found {token:?}")))?;
+            let v = token.parse::<usize>().ok().filter(|&v| v <= maxval).ok_or_else(|| {
+                parse_error(path, pixel(i), format!("expected a value from 0 to {maxval}, found {token:?}"))
+            })?;
             values.push(v as f64 * scale);
         }
     }
@@ -372,13 +370,17 @@ fn world_from_grey(grey: &Grey, o: &ImageOptions, path: &Path) -> Result<World> 
             let (x0, x1) = (c0 as f64 * r, c1 as f64 * r);
             let (y0, y1) = ((h - 1 - bottom) as f64 * r, (h - top) as f64 * r);
             let vertices = if o.yaw_rad == 0.0 {
-                vec![[o.origin_m[0] + x0, o.origin_m[1] + y0], [o.origin_m[0] + x1, o.origin_m[1] + y0], [o.origin_m[0] + x1, o.origin_m[1] + y1], [o.origin_m[0] + x0, o.origin_m[1] + y1]]
+                vec![
+                    [o.origin_m[0] + x0, o.origin_m[1] + y0],
+                    [o.origin_m[0] + x1, o.origin_m[1] + y0],
+                    [o.origin_m[0] + x1, o.origin_m[1] + y1],
+                    [o.origin_m[0] + x0, o.origin_m[1] + y1],
+                ]
             } else {
                 vec![place(x0, y0), place(x1, y0), place(x1, y1), place(x0, y1)]
             };
-            Polygon::new(vertices, Material::Wall).map_err(|e| {
-                parse_error(path, format!("pixel ({c0}, {top})"), e.to_string())
-            })
+            Polygon::new(vertices, Material::Wall)
+                .map_err(|e| parse_error(path, format!("pixel ({c0}, {top})"), e.to_string()))
         })
         .collect::<Result<Vec<_>>>()?;
     Ok(World::new(polygons))
