@@ -351,7 +351,7 @@ impl<'a> GainEvaluator<'a> {
         }
         let (none_reach, _) = self.range.reach(self.range.max_range_m);
         let possible: Vec<Hypothesis> = hypotheses.iter().filter(|h| h.p > 0.0).copied().collect();
-        let visitor = FastBeam {
+        let beam = Beam {
             map: self.map,
             cache,
             table: &self.table,
@@ -364,25 +364,23 @@ impl<'a> GainEvaluator<'a> {
             no_echo: dist.no_echo,
             none_lookup: self.table.reading(self.range.max_range_m, false),
             none_reach,
-            total: 0.0,
-            jobs: Vec::with_capacity(BATCH + 64),
         };
         let reach = hypotheses.last().map_or(none_reach, |h| h.reach.max(none_reach));
         // Fix the bin count at compile time for the common sizes, so that the
         // per-cell gain is straight vector code.
         match self.map.bins() {
-            8 => self.run::<8>(visitor, origin, angle, reach),
-            16 => self.run::<16>(visitor, origin, angle, reach),
-            32 => self.run::<32>(visitor, origin, angle, reach),
-            _ => self.run::<0>(visitor, origin, angle, reach),
+            8 => self.run::<8>(&beam, origin, angle, reach),
+            16 => self.run::<16>(&beam, origin, angle, reach),
+            32 => self.run::<32>(&beam, origin, angle, reach),
+            _ => self.run::<0>(&beam, origin, angle, reach),
         }
     }
 
-    fn run<const N: usize>(&self, beam: FastBeam<'_, 0>, origin: [f64; 2], angle: f64, reach: f64) -> f64 {
-        let mut beam = beam.with_bins::<N>();
-        visit(self.map.grid(), origin, angle, reach, self.footprint, &mut beam);
-        beam.flush();
-        beam.total
+    fn run<const N: usize>(&self, beam: &Beam<'_>, origin: [f64; 2], angle: f64, reach: f64) -> f64 {
+        let mut sweep = FastBeam::<N> { beam, total: 0.0, jobs: Vec::with_capacity(BATCH + 64) };
+        visit(self.map.grid(), origin, angle, reach, self.footprint, &mut sweep);
+        sweep.flush();
+        sweep.total
     }
 }
 
@@ -398,9 +396,8 @@ struct Hypothesis {
     p: f64,
 }
 
-/// The fast evaluator's work for one cell of a beam's widest footprint, with
-/// `N` bins per histogram (0: any number).
-struct FastBeam<'a, const N: usize> {
+/// What every cell of one beam's widest footprint needs to know.
+struct Beam<'a> {
     map: &'a CoverageMap,
     cache: &'a LogCache,
     table: &'a KernelTable,
@@ -415,6 +412,12 @@ struct FastBeam<'a, const N: usize> {
     no_echo: f64,
     none_lookup: ReadingLookup,
     none_reach: f64,
+}
+
+/// The fast evaluator's work for one beam, with `N` bins per histogram (0: any
+/// number).
+struct FastBeam<'a, const N: usize> {
+    beam: &'a Beam<'a>,
     total: f64,
     /// Gains waiting to be computed: `(cell, kernel offset, weight)`.
     /// Computing them in batches lets the processor overlap the
@@ -424,43 +427,6 @@ struct FastBeam<'a, const N: usize> {
 
 /// Gains computed per batch.
 const BATCH: usize = 64;
-
-impl<'a> FastBeam<'a, 0> {
-    fn with_bins<const N: usize>(self) -> FastBeam<'a, N> {
-        let FastBeam {
-            map,
-            cache,
-            table,
-            hypotheses,
-            sparse,
-            suffix,
-            inv_step_m,
-            band_m,
-            half_cell_m,
-            no_echo,
-            none_lookup,
-            none_reach,
-            total,
-            jobs,
-        } = self;
-        FastBeam {
-            map,
-            cache,
-            table,
-            hypotheses,
-            sparse,
-            suffix,
-            inv_step_m,
-            band_m,
-            half_cell_m,
-            no_echo,
-            none_lookup,
-            none_reach,
-            total,
-            jobs,
-        }
-    }
-}
 
 impl<const N: usize> FastBeam<'_, N> {
     /// The first index in `0..=n` where the monotone predicate `pred` holds,
@@ -496,15 +462,15 @@ impl<const N: usize> FastBeam<'_, N> {
     /// `I(h_i | k)` for the kernel at `offset`, with one logarithm.
     #[inline(always)]
     fn gain(&self, i: usize, offset: usize) -> f64 {
-        let bins = if N == 0 { self.map.bins() } else { N };
-        let h = &self.map.histograms()[i * bins..(i + 1) * bins];
-        let log_h = &self.cache.log_h[i * bins..(i + 1) * bins];
+        let bins = if N == 0 { self.beam.map.bins() } else { N };
+        let h = &self.beam.map.histograms()[i * bins..(i + 1) * bins];
+        let log_h = &self.beam.cache.log_h[i * bins..(i + 1) * bins];
         let (z, a) = if N == 0 {
-            sums_any(h, log_h, self.table.at_f64(offset), self.table.log_at(offset))
+            sums_any(h, log_h, self.beam.table.at_f64(offset), self.beam.table.log_at(offset))
         } else {
-            sums_fixed::<N>(h, log_h, self.table.at_f64(offset), self.table.log_at(offset))
+            sums_fixed::<N>(h, log_h, self.beam.table.at_f64(offset), self.beam.table.log_at(offset))
         };
-        self.cache.entropy[i] - (z.ln() - a / z)
+        self.beam.cache.entropy[i] - (z.ln() - a / z)
     }
 }
 
@@ -550,7 +516,7 @@ impl<const N: usize> CellVisitor for FastBeam<'_, N> {
         // Every echo that leaves the cell in free space gives it the same
         // kernel as no echo does: region 0 at distance min(d_l, d) = d_l.
         let mut free_weight = 0.0;
-        if let Some(sparse) = self.sparse {
+        if let Some(sparse) = self.beam.sparse {
             // Few echoes have any probability: test each.
             for h in sparse {
                 if enter <= h.reach {
@@ -564,23 +530,25 @@ impl<const N: usize> CellVisitor for FastBeam<'_, N> {
         } else {
             // Echoes whose footprint holds the cell: `j >= reach_from`; echoes
             // that leave it in free space: `j >= free_from`, a suffix sum.
-            let hyps = self.hypotheses;
+            let hyps = self.beam.hypotheses;
             let n = hyps.len();
-            let reach_from = Self::first(n, (enter - self.band_m) * self.inv_step_m, |j| enter <= hyps[j].reach);
-            let free_from = Self::first(n, (d_l + self.half_cell_m) * self.inv_step_m, |j| hyps[j].lookup.is_free(d_l))
-                .max(reach_from);
+            let reach_from =
+                Self::first(n, (enter - self.beam.band_m) * self.beam.inv_step_m, |j| enter <= hyps[j].reach);
+            let free_from =
+                Self::first(n, (d_l + self.beam.half_cell_m) * self.beam.inv_step_m, |j| hyps[j].lookup.is_free(d_l))
+                    .max(reach_from);
             for h in &hyps[reach_from..free_from] {
                 if h.p > 0.0 {
                     self.jobs.push((i, h.lookup.offset(d_l), h.p));
                 }
             }
-            free_weight = self.suffix[free_from];
+            free_weight = self.beam.suffix[free_from];
         }
-        if enter <= self.none_reach {
-            free_weight += self.no_echo;
+        if enter <= self.beam.none_reach {
+            free_weight += self.beam.no_echo;
         }
         if free_weight > 0.0 {
-            self.jobs.push((i, self.none_lookup.offset(d_l), free_weight));
+            self.jobs.push((i, self.beam.none_lookup.offset(d_l), free_weight));
         }
         if self.jobs.len() >= BATCH {
             self.flush();

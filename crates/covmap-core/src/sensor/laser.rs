@@ -2,7 +2,7 @@
 
 use serde::{Deserialize, Serialize};
 
-use super::{Footprint, KernelTable, RangeModel, SensorModel};
+use super::{Footprint, RangeModel, SensorModel};
 use crate::error::Result;
 
 /// The laser inverse model: a [`RangeModel`] along a ray.
@@ -54,8 +54,7 @@ impl LaserModel {
         bins: usize,
     ) -> Result<Option<Vec<f32>>> {
         self.validate()?;
-        let table = KernelTable::new(&self.range, resolution_m, bins)?;
-        Ok(table.kernel_at(cell_distance_m, measured_distance_m))
+        self.range.kernel(cell_distance_m, measured_distance_m, resolution_m, bins)
     }
 }
 

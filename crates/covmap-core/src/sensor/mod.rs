@@ -106,6 +106,22 @@ impl RangeModel {
         if range_m >= self.max_range_m { (self.max_range_m, false) } else { (range_m + self.band_m, true) }
     }
 
+    /// The kernel the map multiplies in for a cell at `cell_distance_m` and a
+    /// reading of `measured_distance_m`, on a grid of `resolution_m` with `bins`
+    /// bins, or `None` where the cell is not updated. It comes from the same
+    /// precomputed table the update uses (built anew on every call: for
+    /// looking at kernels, not for loops).
+    pub fn kernel(
+        &self,
+        cell_distance_m: f64,
+        measured_distance_m: f64,
+        resolution_m: f64,
+        bins: usize,
+    ) -> Result<Option<Vec<f32>>> {
+        let table = KernelTable::new(self, resolution_m, bins)?;
+        Ok(table.kernel_at(cell_distance_m, measured_distance_m))
+    }
+
     /// The exact (unquantised) kernel for a cell at `cell_distance_m` and a
     /// reading of `measured_distance_m`, on a grid of `resolution_m` with `bins`
     /// bins: the histogram the update multiplies in, normalised to sum 1, or

@@ -2,7 +2,7 @@
 
 use serde::{Deserialize, Serialize};
 
-use super::{Footprint, KernelTable, RangeModel, SensorModel};
+use super::{Footprint, RangeModel, SensorModel};
 use crate::error::{CovmapError, Result};
 
 /// The sonar inverse model: a [`RangeModel`] spread over a cone.
@@ -70,8 +70,7 @@ impl SonarModel {
         bins: usize,
     ) -> Result<Option<Vec<f32>>> {
         self.validate()?;
-        let table = KernelTable::new(&self.range, resolution_m, bins)?;
-        Ok(table.kernel_at(cell_distance_m, measured_distance_m))
+        self.range.kernel(cell_distance_m, measured_distance_m, resolution_m, bins)
     }
 }
 
