@@ -4,7 +4,13 @@ Every cell of a :class:`CoverageMap` holds a histogram over how much of the
 cell is covered by obstacles, updated by Bayes' rule with the inverse sensor
 model of a sonar cone (:class:`SonarModel`) or a laser beam
 (:class:`LaserModel`). :class:`OccupancyGrid` is the classic baseline fed by
-the same beams.
+the same beams. :func:`expected_information_gain` and :class:`Planner` choose
+where to look next (paper eq. 11-14).
+
+The simulator: a :class:`World` of obstacle polygons with its exact
+ground-truth coverage and ray casts, simulated sensors (:class:`SonarRing`,
+:class:`Laser`) whose scans feed ``CoverageMap.integrate`` directly, and a
+disc :class:`Robot`. :mod:`covmap.plot` draws them with matplotlib.
 
 >>> import numpy as np, covmap
 >>> grid = covmap.Grid(origin=(0.0, 0.0), resolution=0.05, shape=(40, 40))
@@ -21,52 +27,88 @@ the same beams.
 
 from __future__ import annotations
 
+from covmap import plot
 from covmap._errors import (
     ArrayDtypeError,
     ArrayShapeError,
     CellOutOfBoundsError,
     CovmapError,
+    FileFormatError,
+    FileIOError,
     InvalidBearingError,
     InvalidGridError,
     InvalidHistogramError,
     InvalidParameterError,
+    InvalidPolygonError,
     InvalidPoseError,
     InvalidRangeError,
+    InvalidValueError,
     LengthMismatchError,
     PoseOutsideMapError,
+    UnknownWorldError,
 )
 from covmap._native import (
     DEFAULT_BINS,
     MAX_BINS,
     MIN_BINS,
+    STAGNATION_MEASUREMENTS,
+    STAGNATION_NATS,
+    Candidates,
     CoverageMap,
+    ExplorationStatus,
     Grid,
+    Laser,
     LaserModel,
     OccupancyGrid,
+    Plan,
+    Planner,
+    Robot,
     SonarModel,
+    SonarRing,
+    World,
     __version__,
+    expected_information_gain,
+    run_fig3,
 )
 
 __all__ = [
     "DEFAULT_BINS",
     "MAX_BINS",
     "MIN_BINS",
+    "STAGNATION_MEASUREMENTS",
+    "STAGNATION_NATS",
     "ArrayDtypeError",
     "ArrayShapeError",
+    "Candidates",
     "CellOutOfBoundsError",
     "CoverageMap",
     "CovmapError",
+    "ExplorationStatus",
+    "FileFormatError",
+    "FileIOError",
     "Grid",
     "InvalidBearingError",
     "InvalidGridError",
     "InvalidHistogramError",
     "InvalidParameterError",
+    "InvalidPolygonError",
     "InvalidPoseError",
     "InvalidRangeError",
+    "InvalidValueError",
+    "Laser",
     "LaserModel",
     "LengthMismatchError",
     "OccupancyGrid",
+    "Plan",
+    "Planner",
     "PoseOutsideMapError",
+    "Robot",
     "SonarModel",
+    "SonarRing",
+    "UnknownWorldError",
+    "World",
     "__version__",
+    "expected_information_gain",
+    "plot",
+    "run_fig3",
 ]

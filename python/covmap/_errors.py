@@ -2,8 +2,9 @@
 
 Every error covmap raises for bad input is a :class:`CovmapError`; those caused
 by a bad value are also a :class:`ValueError` (a cell index out of range is an
-:class:`IndexError`, an array of the wrong dtype a :class:`TypeError`), so code
-that catches the builtin keeps working. The native module raises these classes.
+:class:`IndexError`, an array of the wrong dtype a :class:`TypeError`, a file
+that cannot be read an :class:`OSError`), so code that catches the builtin
+keeps working. The native module raises these classes.
 """
 
 from __future__ import annotations
@@ -13,14 +14,19 @@ __all__ = [
     "ArrayShapeError",
     "CellOutOfBoundsError",
     "CovmapError",
+    "FileFormatError",
+    "FileIOError",
     "InvalidBearingError",
     "InvalidGridError",
     "InvalidHistogramError",
     "InvalidParameterError",
+    "InvalidPolygonError",
     "InvalidPoseError",
     "InvalidRangeError",
+    "InvalidValueError",
     "LengthMismatchError",
     "PoseOutsideMapError",
+    "UnknownWorldError",
 ]
 
 
@@ -70,3 +76,33 @@ class ArrayShapeError(CovmapError, ValueError):
 
 class ArrayDtypeError(CovmapError, TypeError):
     """An array argument has the wrong element type (covmap never converts silently)."""
+
+
+class InvalidPolygonError(CovmapError, ValueError):
+    """A polygon is not a usable obstacle (too few vertices, a non-finite
+    coordinate, no area, edges that cross); the message names its index."""
+
+
+class InvalidValueError(CovmapError, ValueError):
+    """One element of an input array is unusable (a NaN ray origin, an infinite angle)."""
+
+
+class UnknownWorldError(CovmapError, ValueError):
+    """No built-in world has the requested name; the message lists those that do."""
+
+
+class FileFormatError(CovmapError, ValueError):
+    """A world file is malformed or degenerate.
+
+    ``filename`` names the file, ``place`` where in it (a line, a feature, a
+    pixel) and ``reason`` what is wrong there; the message says all three.
+    """
+
+    filename: str | None = None
+    place: str | None = None
+    reason: str | None = None
+
+
+class FileIOError(CovmapError, OSError):
+    """A file could not be read or written (``errno``, ``strerror`` and
+    ``filename`` as for any :class:`OSError`)."""

@@ -11,8 +11,6 @@ fraction.
 from __future__ import annotations
 
 import math
-import os
-import tempfile
 from dataclasses import dataclass
 from pathlib import Path
 from typing import TYPE_CHECKING
@@ -20,6 +18,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from covmap._native import CoverageMap, Grid, LaserModel, OccupancyGrid
+from covmap.plot import save_figure
 
 if TYPE_CHECKING:
     from collections.abc import Sequence
@@ -185,14 +184,7 @@ def plot(runs: Sequence[Run], path: Path) -> None:
         hist_ax.legend(fontsize=8)
     fig.suptitle("Fig. 1: a cell partly covered by an obstacle (laser)")
     fig.tight_layout()
-    path.parent.mkdir(parents=True, exist_ok=True)
-    fd, tmp = tempfile.mkstemp(dir=path.parent, prefix=f".{path.name}.", suffix=".tmp")
     try:
-        with os.fdopen(fd, "wb") as f:
-            fig.savefig(f, format="png", dpi=100, metadata={"Software": None})
-        os.replace(tmp, path)
-    except BaseException:
-        os.unlink(tmp)
-        raise
+        save_figure(fig, path)
     finally:
         plt.close(fig)

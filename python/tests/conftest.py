@@ -1,9 +1,12 @@
-"""Shared fixtures: a small grid, the default models, random scans."""
+"""Shared fixtures: a small grid, the default models, random scans, the
+real worlds of the shared data folder."""
 
 from __future__ import annotations
 
+import os
 from collections.abc import Callable, Iterator
-from typing import Any
+from pathlib import Path
+from typing import Any, NoReturn
 
 import numpy as np
 import pytest
@@ -58,3 +61,30 @@ def scanned_map(grid: covmap.Grid, model: Any) -> covmap.CoverageMap:
     for pose, ranges, bearings in random_scans(grid, 30, seed=7):
         cmap.integrate(pose, ranges, bearings, model)
     return cmap
+
+
+SHARED_WORLDS = Path(__file__).resolve().parents[2].parent / "shared" / "data" / "worlds"
+"""The real worlds, in the shared folder beside the repository (never copied into it)."""
+
+
+def _missing(message: str) -> NoReturn:
+    if os.environ.get("CI") == "true":
+        pytest.fail(message + " (CI=true: the real-data tests must run)")
+    pytest.skip(message + ": real-data test skipped (put the shared folder beside the repository)")
+
+
+@pytest.fixture
+def shared_world() -> Callable[[str], Path]:
+    """``shared_world(name)``: the path of a real world file. Outside CI a
+    missing folder or file skips the test with a message; under ``CI=true``
+    it fails."""
+
+    def find(name: str) -> Path:
+        if not SHARED_WORLDS.is_dir():
+            _missing(f"the shared data folder {SHARED_WORLDS} is absent")
+        path = SHARED_WORLDS / name
+        if not path.is_file():
+            _missing(f"{path} is absent")
+        return path
+
+    return find

@@ -121,9 +121,17 @@ def test_wrong_argument_types_are_type_errors(grid: covmap.Grid, model: Any) -> 
 
 def test_every_error_class_derives_from_covmap_error() -> None:
     classes = [getattr(covmap, name) for name in covmap.__all__ if name.endswith("Error")]
-    assert len(classes) == 12
+    assert len(classes) == 17
     for cls in classes:
         assert issubclass(cls, covmap.CovmapError)
-        assert cls is covmap.CovmapError or issubclass(cls, (ValueError, IndexError, TypeError))
+        assert cls is covmap.CovmapError or issubclass(cls, (ValueError, IndexError, TypeError, OSError))
     assert issubclass(covmap.CellOutOfBoundsError, IndexError)
     assert issubclass(covmap.ArrayDtypeError, TypeError)
+    assert issubclass(covmap.FileIOError, OSError)
+    for cls in (
+        covmap.FileFormatError,
+        covmap.InvalidPolygonError,
+        covmap.InvalidValueError,
+        covmap.UnknownWorldError,
+    ):
+        assert issubclass(cls, ValueError)

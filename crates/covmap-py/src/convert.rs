@@ -1,12 +1,15 @@
-//! Python arguments to core values: readings, histogram arrays, counts, cells.
+//! Python arguments to core values and back: readings, poses, points,
+//! histogram arrays, counts, cells, option names; per-cell arrays.
 //!
 //! Arrays are copied out of Python before any work starts. The copy of a scan
 //! costs nothing next to its update, and it lets the update run with the GIL
 //! released without another thread being able to write into its input.
 
+use covmap::gain::{GainMethod, StopCoverage};
 use covmap::{Cell, CovmapError, Grid, Pose, histogram};
-use numpy::{Element, PyArrayDyn, PyArrayMethods, PyUntypedArray, PyUntypedArrayMethods};
-use pyo3::exceptions::{PyTypeError, PyValueError};
+use numpy::ndarray::Array2;
+use numpy::{Element, IntoPyArray, PyArray2, PyArrayDyn, PyArrayMethods, PyUntypedArray, PyUntypedArrayMethods};
+use pyo3::exceptions::{PyRuntimeError, PyTypeError, PyValueError};
 use pyo3::prelude::*;
 
 use crate::errors::{Exception, to_py};
@@ -102,5 +105,110 @@ pub(crate) fn cell(py: Python<'_>, grid: &Grid, row: i64, col: i64) -> PyResult<
             py,
             format!("cell (row {row}, col {col}) lies outside a grid of {} x {} cells", grid.rows(), grid.cols()),
         )),
+    }
+}
+
+/// Rows of `K` numbers: a float64 numpy array of shape `(N, K)`, or a sequence
+/// of `N` sequences of `K` numbers. `what` describes one row for messages
+/// (`"(x, y)"`).
+pub(crate) fn rows<const K: usize>(obj: &Bound<'_, PyAny>, name: &str, what: &str) -> PyResult<Vec<[f64; K]>> {
+    let py = obj.py();
+    let expected = format!("float64 with shape (N, {K}), one {what} a row");
+    if let Ok(array) = obj.cast::<PyUntypedArray>() {
+        let (values, shape) = numpy_values::<f64>(array, name, 2, &expected)?;
+        if shape[1] != K {
+            return Err(Exception::ArrayShape.err(py, format!("{name} must have shape (N, {K}), got {shape:?}")));
+        }
+        return Ok(values.chunks_exact(K).map(|c| std::array::from_fn(|k| c[k])).collect());
+    }
+    let Ok(nested) = obj.extract::<Vec<Vec<f64>>>() else {
+        return Err(Exception::ArrayDtype.err(
+            py,
+            format!("{name} must be a {expected} numpy array or a sequence of {what}, got {}", obj.get_type()),
+        ));
+    };
+    nested
+        .into_iter()
+        .enumerate()
+        .map(|(i, row)| {
+            <[f64; K]>::try_from(row.as_slice()).map_err(|_| {
+                Exception::ArrayShape.err(py, format!("{name}[{i}] has {} numbers, expected {K}: {what}", row.len()))
+            })
+        })
+        .collect()
+}
+
+/// Poses: a float64 array of shape `(N, 3)` (or a sequence of `(x, y, theta)`).
+pub(crate) fn poses(obj: &Bound<'_, PyAny>, name: &str) -> PyResult<Vec<Pose>> {
+    Ok(rows::<3>(obj, name, "(x, y, theta)")?.into_iter().map(Pose::from).collect())
+}
+
+/// A point: any sequence of two numbers `(x, y)`, metres; with `heading_ok`,
+/// also a pose `(x, y, theta)` whose heading is ignored.
+pub(crate) fn point(obj: &Bound<'_, PyAny>, name: &str, heading_ok: bool) -> PyResult<[f64; 2]> {
+    let py = obj.py();
+    let fail = |e: PyErr| {
+        let what = if heading_ok { "(x, y) or a pose (x, y, theta)" } else { "(x, y)" };
+        let message = format!("{name} must be a sequence of two numbers {what}: {e}");
+        if e.is_instance_of::<PyValueError>(py) {
+            Exception::ArrayShape.err(py, message)
+        } else {
+            PyTypeError::new_err(message)
+        }
+    };
+    match obj.extract::<Vec<f64>>() {
+        Ok(v) if v.len() == 2 || (heading_ok && v.len() == 3) => Ok([v[0], v[1]]),
+        Ok(v) => Err(fail(PyValueError::new_err(format!("got {} numbers", v.len())))),
+        Err(e) => Err(fail(e)),
+    }
+}
+
+/// A per-cell array of `grid` as a `(rows, cols)` numpy array.
+pub(crate) fn cell_array<'py, T: Element>(
+    py: Python<'py>,
+    grid: &Grid,
+    values: Vec<T>,
+) -> PyResult<Bound<'py, PyArray2<T>>> {
+    let array = Array2::from_shape_vec(grid.shape(), values).map_err(|e| PyRuntimeError::new_err(e.to_string()))?;
+    Ok(array.into_pyarray(py))
+}
+
+/// Rows of `K` numbers as an `(N, K)` float64 numpy array.
+pub(crate) fn rows_array<'py, const K: usize>(py: Python<'py>, rows: &[[f64; K]]) -> Bound<'py, PyArray2<f64>> {
+    Array2::from_shape_fn((rows.len(), K), |(i, k)| rows[i][k]).into_pyarray(py)
+}
+
+/// Poses as an `(N, 3)` float64 numpy array of `(x, y, theta)`.
+pub(crate) fn poses_array<'py>(py: Python<'py>, poses: &[Pose]) -> Bound<'py, PyArray2<f64>> {
+    let rows: Vec<[f64; 3]> = poses.iter().map(|p| [p.x_m, p.y_m, p.theta_rad]).collect();
+    rows_array(py, &rows)
+}
+
+/// The gain evaluator by name: `"fast"` or `"exact"`.
+pub(crate) fn gain_method(py: Python<'_>, name: &str) -> PyResult<GainMethod> {
+    match name {
+        "fast" => Ok(GainMethod::Fast),
+        "exact" => Ok(GainMethod::Exact),
+        _ => Err(Exception::InvalidParameter.err(py, format!("method must be \"fast\" or \"exact\", got {name:?}"))),
+    }
+}
+
+/// Which coverage stops a predicted beam, by name: `"ml"` (also
+/// `"maximum_likelihood"`) or `"mean"`.
+pub(crate) fn stop_coverage(py: Python<'_>, name: &str) -> PyResult<StopCoverage> {
+    match name {
+        "ml" | "maximum_likelihood" => Ok(StopCoverage::MaximumLikelihood),
+        "mean" => Ok(StopCoverage::Mean),
+        _ => {
+            Err(Exception::InvalidParameter.err(py, format!("stop_coverage must be \"ml\" or \"mean\", got {name:?}")))
+        }
+    }
+}
+
+/// The Python name of a `StopCoverage`.
+pub(crate) fn stop_coverage_name(stop: StopCoverage) -> &'static str {
+    match stop {
+        StopCoverage::MaximumLikelihood => "ml",
+        StopCoverage::Mean => "mean",
     }
 }

@@ -2,29 +2,18 @@
 
 use covmap::CoverageMap;
 use covmap::histogram::DEFAULT_BINS;
-use numpy::ndarray::{Array2, Array3};
+use numpy::ndarray::Array3;
 use numpy::{IntoPyArray, PyArray1, PyArray2, PyArray3};
 use pyo3::prelude::*;
 use pyo3::types::PyType;
 
-use crate::convert;
+use crate::convert::{self, cell_array};
 use crate::errors::OrRaise;
 use crate::grid::PyGrid;
 use crate::scan::Scan;
 
 // The signature spells the default out so that Python shows it; keep it the core's.
 const _: () = assert!(DEFAULT_BINS == 16);
-
-/// A per-cell array of `grid` as a `(rows, cols)` numpy array.
-pub(crate) fn cell_array<'py>(
-    py: Python<'py>,
-    grid: &covmap::Grid,
-    values: Vec<f32>,
-) -> PyResult<Bound<'py, PyArray2<f32>>> {
-    let array = Array2::from_shape_vec(grid.shape(), values)
-        .map_err(|e| pyo3::exceptions::PyRuntimeError::new_err(e.to_string()))?;
-    Ok(array.into_pyarray(py))
-}
 
 /// What `__reduce__` returns: a constructor and its arguments.
 type Reduce<'py> = (Bound<'py, PyAny>, (PyGrid, Bound<'py, PyArray3<f32>>));
@@ -36,7 +25,7 @@ type Reduce<'py> = (Bound<'py, PyAny>, (PyGrid, Bound<'py, PyArray3<f32>>));
 /// coverage ``b / (bins - 1)``. Per-cell arrays are indexed ``[row, col]`` as
 /// in ``Grid``.
 #[pyclass(name = "CoverageMap", module = "covmap._native")]
-pub(crate) struct PyCoverageMap(CoverageMap);
+pub(crate) struct PyCoverageMap(pub(crate) CoverageMap);
 
 #[pymethods]
 impl PyCoverageMap {
@@ -129,6 +118,32 @@ impl PyCoverageMap {
         let scan = Scan::extract(pose, ranges, bearings, model)?;
         let map = &mut self.0;
         py.detach(|| map.integrate(&scan.pose, &scan.ranges, &scan.bearings, &scan.model)).or_raise(py)
+    }
+
+    /// Keep (``True``) or stop keeping (``False``) each cell's entropy after
+    /// its last measurements, for ``stagnated()`` and ``Planner.status``. A
+    /// scan that updates a cell counts as one measurement of it. Off by
+    /// default; turning it on (again) starts an empty history.
+    fn track_history(&mut self, on: bool) {
+        self.0.track_history(on);
+    }
+    /// Whether the entropy history is kept.
+    #[getter]
+    fn tracks_history(&self) -> bool {
+        self.0.tracks_history()
+    }
+    /// How many scans updated each cell since the history was turned on:
+    /// uint32, ``(rows, cols)`` (all zero while it is off).
+    fn measurements<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray2<u32>>> {
+        let values = (0..self.0.grid().len()).map(|i| self.0.measurements(i)).collect();
+        cell_array(py, self.0.grid(), values)
+    }
+    /// Whether each cell's entropy changed by less than 0.001 nats over its
+    /// last five measurements: bool, ``(rows, cols)`` (all ``False`` while the
+    /// history is off or shorter).
+    fn stagnated<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray2<bool>>> {
+        let values = (0..self.0.grid().len()).map(|i| self.0.stagnated(i)).collect();
+        cell_array(py, self.0.grid(), values)
     }
 
     fn __repr__(&self) -> String {

@@ -1,10 +1,12 @@
-//! Core errors as Python exceptions.
+//! Core and simulator errors as Python exceptions.
 //!
 //! The classes live in Python, in `covmap/_errors.py`: each bad-value error
 //! derives from both `covmap.CovmapError` and a builtin (`ValueError`,
-//! `IndexError`, `TypeError`), and `create_exception!` takes a single base.
+//! `IndexError`, `TypeError`, `OSError`), and `create_exception!` takes a
+//! single base.
 
 use covmap::CovmapError;
+use covmap::sim::SimError;
 use pyo3::prelude::*;
 use pyo3::sync::PyOnceLock;
 use pyo3::types::PyType;
@@ -27,9 +29,17 @@ pub(crate) enum Exception {
     ArrayShape,
     /// An array argument has the wrong element type.
     ArrayDtype,
+    InvalidPolygon,
+    /// A file could not be read or written (an `OSError`).
+    FileIO,
+    /// A file's content is malformed.
+    FileFormat,
+    UnknownWorld,
+    /// One element of an input array is unusable (a NaN origin, say).
+    InvalidValue,
 }
 
-const CLASSES: usize = 12;
+const CLASSES: usize = 17;
 
 impl Exception {
     fn class_name(self) -> &'static str {
@@ -46,6 +56,11 @@ impl Exception {
             Self::InvalidHistogram => "InvalidHistogramError",
             Self::ArrayShape => "ArrayShapeError",
             Self::ArrayDtype => "ArrayDtypeError",
+            Self::InvalidPolygon => "InvalidPolygonError",
+            Self::FileIO => "FileIOError",
+            Self::FileFormat => "FileFormatError",
+            Self::UnknownWorld => "UnknownWorldError",
+            Self::InvalidValue => "InvalidValueError",
         }
     }
 
@@ -66,13 +81,34 @@ impl Exception {
         }
     }
 
+    /// The Python class.
+    fn class<'py>(self, py: Python<'py>) -> PyResult<&'py Bound<'py, PyType>> {
+        static TYPES: [PyOnceLock<Py<PyType>>; CLASSES] = [const { PyOnceLock::new() }; CLASSES];
+        TYPES[self as usize].import(py, "covmap._errors", self.class_name())
+    }
+
     /// An exception of this class carrying `message`.
     pub(crate) fn err(self, py: Python<'_>, message: impl Into<String>) -> PyErr {
-        static TYPES: [PyOnceLock<Py<PyType>>; CLASSES] = [const { PyOnceLock::new() }; CLASSES];
-        match TYPES[self as usize].import(py, "covmap._errors", self.class_name()) {
+        match self.class(py) {
             Ok(ty) => PyErr::from_type(ty.clone(), message.into()),
             Err(import_failed) => import_failed,
         }
+    }
+
+    /// An exception of this class built from `args` (as `cls(*args)`), with
+    /// the attributes `attrs` set on it.
+    fn err_with<'py, A>(self, py: Python<'py>, args: A, attrs: &[(&str, String)]) -> PyErr
+    where
+        A: pyo3::call::PyCallArgs<'py>,
+    {
+        let build = || -> PyResult<PyErr> {
+            let value = self.class(py)?.call1(args)?;
+            for (name, v) in attrs {
+                value.setattr(*name, v)?;
+            }
+            Ok(PyErr::from_value(value))
+        };
+        build().unwrap_or_else(|failed| failed)
     }
 }
 
@@ -90,5 +126,47 @@ pub(crate) trait OrRaise<T> {
 impl<T> OrRaise<T> for covmap::Result<T> {
     fn or_raise(self, py: Python<'_>) -> PyResult<T> {
         self.map_err(|e| to_py(py, e))
+    }
+}
+
+/// A simulator error as the matching Python exception.
+///
+/// A malformed file raises `FileFormatError` with `filename`, `place` and
+/// `reason` attributes; a file that cannot be read or written raises
+/// `FileIOError`, an `OSError` with `errno`, `strerror` and `filename`.
+pub(crate) fn sim_to_py(py: Python<'_>, err: SimError) -> PyErr {
+    let message = err.to_string();
+    match err {
+        SimError::InvalidPolygon { .. } => Exception::InvalidPolygon.err(py, message),
+        SimError::Io { path, source } => {
+            let filename = path.display().to_string();
+            match source.raw_os_error() {
+                Some(errno) => {
+                    // The OS's message without Rust's " (os error N)" suffix.
+                    let full = source.to_string();
+                    let strerror = full.split(" (os error").next().unwrap_or(&full).to_string();
+                    Exception::FileIO.err_with(py, (errno, strerror, filename), &[])
+                }
+                None => Exception::FileIO.err_with(py, (message,), &[("filename", filename)]),
+            }
+        }
+        SimError::Parse { path, place, reason } => Exception::FileFormat.err_with(
+            py,
+            (message,),
+            &[("filename", path.display().to_string()), ("place", place), ("reason", reason)],
+        ),
+        SimError::UnknownWorld { .. } => Exception::UnknownWorld.err(py, message),
+        SimError::InvalidParameter { .. } => Exception::InvalidParameter.err(py, message),
+        SimError::InvalidValue { .. } => Exception::InvalidValue.err(py, message),
+        SimError::LengthMismatch { .. } => Exception::LengthMismatch.err(py, message),
+        SimError::Core(core) => to_py(py, core),
+        // The simulator's enum is non-exhaustive: a new variant is still a CovmapError.
+        _ => Exception::Base.err(py, message),
+    }
+}
+
+impl<T> OrRaise<T> for covmap::sim::Result<T> {
+    fn or_raise(self, py: Python<'_>) -> PyResult<T> {
+        self.map_err(|e| sim_to_py(py, e))
     }
 }

@@ -7,10 +7,16 @@
 mod convert;
 mod coverage_map;
 mod errors;
+mod experiments;
+mod gain;
 mod grid;
 mod occupancy;
+mod planner;
+mod robot;
 mod scan;
 mod sensor;
+mod sim_sensor;
+mod world;
 
 use pyo3::prelude::*;
 
@@ -27,5 +33,17 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<sensor::PyLaserModel>()?;
     m.add_class::<coverage_map::PyCoverageMap>()?;
     m.add_class::<occupancy::PyOccupancyGrid>()?;
+    m.add("STAGNATION_MEASUREMENTS", covmap::STAGNATION_MEASUREMENTS)?;
+    m.add("STAGNATION_NATS", f64::from(covmap::STAGNATION_NATS))?;
+    m.add_function(wrap_pyfunction!(gain::expected_information_gain, m)?)?;
+    m.add_class::<planner::PyPlanner>()?;
+    m.add_class::<planner::PyPlan>()?;
+    m.add_class::<planner::PyCandidates>()?;
+    m.add_class::<planner::PyExplorationStatus>()?;
+    m.add_class::<world::PyWorld>()?;
+    m.add_class::<sim_sensor::PySonarRing>()?;
+    m.add_class::<sim_sensor::PyLaser>()?;
+    m.add_class::<robot::PyRobot>()?;
+    m.add_function(wrap_pyfunction!(experiments::run_fig3, m)?)?;
     Ok(())
 }

@@ -4,7 +4,7 @@ use covmap::OccupancyGrid;
 use numpy::PyArray2;
 use pyo3::prelude::*;
 
-use crate::coverage_map::cell_array;
+use crate::convert::cell_array;
 use crate::errors::OrRaise;
 use crate::grid::PyGrid;
 use crate::scan::Scan;

@@ -71,7 +71,7 @@ fn to_dict<'py>(py: Python<'py>, fields: &[(&'static str, f64)]) -> PyResult<Bou
 /// validated, and an invalid one raises ``InvalidParameterError``.
 #[pyclass(frozen, eq, name = "SonarModel", module = "covmap._native")]
 #[derive(Clone, PartialEq)]
-pub(crate) struct PySonarModel(SonarModel);
+pub(crate) struct PySonarModel(pub(crate) SonarModel);
 
 impl PySonarModel {
     fn fields(&self) -> [(&'static str, f64); 8] {

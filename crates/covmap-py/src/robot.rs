@@ -1,0 +1,84 @@
+//! `covmap.Robot`: a disc robot's collision checks.
+
+use covmap::sim::Robot;
+use numpy::PyArray1;
+use pyo3::prelude::*;
+
+use crate::convert;
+use crate::errors::OrRaise;
+use crate::world::PyWorld;
+
+/// A disc-shaped robot of radius ``radius_m`` (metres; the default matches
+/// ``Planner``'s).
+///
+/// Points are ``(x, y)`` in metres; where a pose ``(x, y, theta)`` is given
+/// instead, its heading is ignored (a disc looks the same either way).
+#[pyclass(frozen, eq, name = "Robot", module = "covmap._native")]
+#[derive(Clone, Copy, PartialEq)]
+pub(crate) struct PyRobot(Robot);
+
+#[pymethods]
+impl PyRobot {
+    #[new]
+    #[pyo3(signature = (*, radius_m=0.25))]
+    fn new(py: Python<'_>, radius_m: f64) -> PyResult<Self> {
+        Robot::new(radius_m).map(Self).or_raise(py)
+    }
+
+    /// The disc's radius, metres.
+    #[getter]
+    fn radius_m(&self) -> f64 {
+        self.0.radius_m()
+    }
+
+    /// Whether the disc at ``pose`` overlaps or touches an obstacle of
+    /// ``world``. A pose with a non-finite position collides.
+    fn collides(&self, world: &Bound<'_, PyWorld>, pose: &Bound<'_, PyAny>) -> PyResult<bool> {
+        let [x, y] = convert::point(pose, "pose", true)?;
+        Ok(self.0.collides(&world.get().0, &covmap::Pose::new(x, y, 0.0)))
+    }
+
+    /// Whether driving straight from ``start`` to ``goal`` touches an
+    /// obstacle (either end in contact counts).
+    fn move_collides(
+        &self,
+        world: &Bound<'_, PyWorld>,
+        start: &Bound<'_, PyAny>,
+        goal: &Bound<'_, PyAny>,
+    ) -> PyResult<bool> {
+        let (a, b) = (convert::point(start, "start", true)?, convert::point(goal, "goal", true)?);
+        Ok(self.0.move_collides(&world.get().0, a, b))
+    }
+
+    /// How far the disc can drive straight from ``start`` towards ``goal``
+    /// before it touches an obstacle, metres: the whole length when the way is
+    /// free, 0 when it starts in contact.
+    fn free_travel(
+        &self,
+        world: &Bound<'_, PyWorld>,
+        start: &Bound<'_, PyAny>,
+        goal: &Bound<'_, PyAny>,
+    ) -> PyResult<f64> {
+        let (a, b) = (convert::point(start, "start", true)?, convert::point(goal, "goal", true)?);
+        Ok(self.0.free_travel_m(&world.get().0, a, b))
+    }
+
+    /// The gap between the disc at each of ``points`` (float64 ``(N, 2)``)
+    /// and the nearest obstacle, metres: float64 ``(N,)``, negative where they
+    /// overlap. Runs with the GIL released.
+    fn clearance<'py>(
+        &self,
+        py: Python<'py>,
+        world: &Bound<'py, PyWorld>,
+        points: &Bound<'py, PyAny>,
+    ) -> PyResult<Bound<'py, PyArray1<f64>>> {
+        let points = convert::rows::<2>(points, "points", "point (x, y)")?;
+        let (robot, world) = (self.0, &world.get().0);
+        let gaps: Vec<f64> = py.detach(|| points.iter().map(|&p| robot.clearance_m(world, p)).collect());
+        Ok(PyArray1::from_vec(py, gaps))
+    }
+
+    fn __repr__(&self) -> String {
+        format!("Robot(radius_m={:?})", self.0.radius_m())
+    }
+}

@@ -1,0 +1,365 @@
+//! `covmap.SonarRing` and `covmap.Laser`: simulated range sensors.
+
+use covmap::sim::{Laser, RangeSensor, SonarRing, World, sim_rng, simulate};
+use numpy::ndarray::Array2;
+use numpy::{IntoPyArray, PyArray1, PyArray2};
+use pyo3::exceptions::PyTypeError;
+use pyo3::prelude::*;
+
+use crate::convert;
+use crate::errors::{Exception, OrRaise};
+use crate::sensor::PySonarModel;
+use crate::world::PyWorld;
+
+/// A pair of float64 arrays `(ranges, bearings)`.
+type Readings<'py> = (Bound<'py, PyArray1<f64>>, Bound<'py, PyArray1<f64>>);
+
+/// One scan of `sensor` in `world` from `pose`, drawn from a generator seeded
+/// with `seed`, as `(ranges, bearings)`; the GIL is released meanwhile.
+fn scan_one<'py, S: RangeSensor + Sync>(
+    py: Python<'py>,
+    sensor: &S,
+    world: &Bound<'py, PyWorld>,
+    pose: &Bound<'py, PyAny>,
+    seed: u64,
+) -> PyResult<Readings<'py>> {
+    let pose = convert::pose(pose)?;
+    let world: &World = &world.get().0;
+    let scan = py.detach(|| sensor.scan(world, &pose, &mut sim_rng(seed))).or_raise(py)?;
+    Ok((PyArray1::from_vec(py, scan.ranges_m), PyArray1::from_vec(py, scan.bearings_rad)))
+}
+
+/// One scan from each of `poses`, scan `i` from stream `i` of `seed`, as a
+/// `(len(poses), len(bearings))` array of ranges; in parallel, GIL released.
+fn scan_many<'py, S: RangeSensor + Sync>(
+    py: Python<'py>,
+    sensor: &S,
+    world: &Bound<'py, PyWorld>,
+    poses: &Bound<'py, PyAny>,
+    seed: u64,
+) -> PyResult<Bound<'py, PyArray2<f64>>> {
+    let poses = convert::poses(poses, "poses")?;
+    let world: &World = &world.get().0;
+    let scans = py.detach(|| simulate(sensor, world, &poses, seed)).or_raise(py)?;
+    let beams = sensor.bearings_rad().len();
+    let ranges = Array2::from_shape_fn((scans.len(), beams), |(i, j)| scans[i].ranges_m[j]);
+    Ok(ranges.into_pyarray(py))
+}
+
+/// A count from a Python int: negative is an invalid parameter.
+fn count(py: Python<'_>, name: &'static str, value: i64) -> PyResult<usize> {
+    usize::try_from(value).map_err(|_| {
+        Exception::InvalidParameter.err(py, format!("invalid parameter `{name}` = {value}: expected a positive count"))
+    })
+}
+
+/// A ring of simulated ultrasound sensors, all at the robot's centre.
+///
+/// Sensor ``i`` looks along ``theta + bearings_rad[i]``. A reading casts
+/// ``rays_per_cone`` rays across the cone; a ray echoes when it meets a
+/// surface at an incidence no larger than the material's critical angle
+/// (walls ``critical_angle_wall_rad``, glass ``critical_angle_glass_rad``);
+/// the nearest echo is the reading. A cone with only specular misses returns a
+/// longer multipath reading with ``multipath_probability``, else no echo.
+/// Echoes get Gaussian noise of standard deviation ``noise_std_m +
+/// noise_std_per_m * range`` and are at least ``min_range_m``; with
+/// ``outlier_probability`` a reading is replaced by a short outlier. No echo
+/// reads exactly ``max_range_m``, as ``CoverageMap.integrate`` expects.
+///
+/// Arguments left out (or ``None``) take the defaults: 24 sensors 15 degrees
+/// apart, the first straight ahead, with the cone and range of the default
+/// ``SonarModel``. Distances in metres, angles in radians; an invalid value
+/// raises ``InvalidParameterError`` (or ``InvalidValueError`` for a bearing).
+#[pyclass(frozen, eq, name = "SonarRing", module = "covmap._native")]
+#[derive(Clone, PartialEq)]
+pub(crate) struct PySonarRing(SonarRing);
+
+impl PySonarRing {
+    fn checked(py: Python<'_>, ring: SonarRing) -> PyResult<Self> {
+        ring.validate().or_raise(py)?;
+        Ok(Self(ring))
+    }
+}
+
+#[pymethods]
+impl PySonarRing {
+    #[new]
+    #[pyo3(signature = (
+        *, bearings_rad=None, opening_angle_rad=None, max_range_m=None, min_range_m=None,
+        rays_per_cone=None, noise_std_m=None, noise_std_per_m=None, outlier_probability=None,
+        multipath_probability=None, critical_angle_wall_rad=None, critical_angle_glass_rad=None
+    ))]
+    #[allow(clippy::too_many_arguments, reason = "one keyword per sensor parameter")]
+    fn new(
+        py: Python<'_>,
+        bearings_rad: Option<&Bound<'_, PyAny>>,
+        opening_angle_rad: Option<f64>,
+        max_range_m: Option<f64>,
+        min_range_m: Option<f64>,
+        rays_per_cone: Option<i64>,
+        noise_std_m: Option<f64>,
+        noise_std_per_m: Option<f64>,
+        outlier_probability: Option<f64>,
+        multipath_probability: Option<f64>,
+        critical_angle_wall_rad: Option<f64>,
+        critical_angle_glass_rad: Option<f64>,
+    ) -> PyResult<Self> {
+        let d = SonarRing::default();
+        let ring = SonarRing {
+            bearings_rad: match bearings_rad {
+                Some(b) => convert::readings(b, "bearings_rad")?,
+                None => d.bearings_rad,
+            },
+            opening_angle_rad: opening_angle_rad.unwrap_or(d.opening_angle_rad),
+            max_range_m: max_range_m.unwrap_or(d.max_range_m),
+            min_range_m: min_range_m.unwrap_or(d.min_range_m),
+            rays_per_cone: match rays_per_cone {
+                Some(n) => count(py, "rays_per_cone", n)?,
+                None => d.rays_per_cone,
+            },
+            noise_std_m: noise_std_m.unwrap_or(d.noise_std_m),
+            noise_std_per_m: noise_std_per_m.unwrap_or(d.noise_std_per_m),
+            outlier_probability: outlier_probability.unwrap_or(d.outlier_probability),
+            multipath_probability: multipath_probability.unwrap_or(d.multipath_probability),
+            critical_angle_wall_rad: critical_angle_wall_rad.unwrap_or(d.critical_angle_wall_rad),
+            critical_angle_glass_rad: critical_angle_glass_rad.unwrap_or(d.critical_angle_glass_rad),
+        };
+        Self::checked(py, ring)
+    }
+
+    /// ``count`` sensors evenly spaced around the robot, the first straight
+    /// ahead, with the default error model.
+    #[staticmethod]
+    fn ring(py: Python<'_>, count: i64) -> PyResult<Self> {
+        let n = self::count(py, "count", count)?;
+        Self::checked(py, SonarRing::ring(n))
+    }
+    /// The eight-sonar front array of the ``sonar-8ring`` data set: -90,
+    /// -37.5, -22.5, -7.5, 7.5, 22.5, 37.5 and 90 degrees.
+    #[staticmethod]
+    fn front_eight() -> Self {
+        Self(SonarRing::front_eight())
+    }
+    /// The same ring with the opening angle and maximum range of ``model``, so
+    /// that the simulated cone is the one the map assumes.
+    fn with_model(&self, model: &Bound<'_, PySonarModel>) -> Self {
+        Self(self.0.clone().with_model(&model.get().0))
+    }
+
+    /// Mounting bearing of each sensor relative to the heading, radians:
+    /// float64 ``(n,)``.
+    #[getter]
+    fn bearings_rad<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
+        PyArray1::from_slice(py, &self.0.bearings_rad)
+    }
+    /// The same as ``bearings_rad``, under the name ``CoverageMap.integrate`` uses.
+    #[getter]
+    fn bearings<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
+        self.bearings_rad(py)
+    }
+    /// Full opening angle of each cone, radians.
+    #[getter]
+    fn opening_angle_rad(&self) -> f64 {
+        self.0.opening_angle_rad
+    }
+    /// Readings at or beyond this are "no echo", metres.
+    #[getter]
+    fn max_range_m(&self) -> f64 {
+        self.0.max_range_m
+    }
+    /// The shortest reading the sensor produces, metres.
+    #[getter]
+    fn min_range_m(&self) -> f64 {
+        self.0.min_range_m
+    }
+    /// Rays cast across each cone.
+    #[getter]
+    fn rays_per_cone(&self) -> usize {
+        self.0.rays_per_cone
+    }
+    /// Standard deviation of the range noise at zero range, metres.
+    #[getter]
+    fn noise_std_m(&self) -> f64 {
+        self.0.noise_std_m
+    }
+    /// Growth of that standard deviation per metre of range.
+    #[getter]
+    fn noise_std_per_m(&self) -> f64 {
+        self.0.noise_std_per_m
+    }
+    /// Probability that a reading is replaced by a short outlier.
+    #[getter]
+    fn outlier_probability(&self) -> f64 {
+        self.0.outlier_probability
+    }
+    /// Probability that a specular miss returns a longer multipath reading.
+    #[getter]
+    fn multipath_probability(&self) -> f64 {
+        self.0.multipath_probability
+    }
+    /// Largest angle of incidence at which a wall still echoes, radians.
+    #[getter]
+    fn critical_angle_wall_rad(&self) -> f64 {
+        self.0.critical_angle_wall_rad
+    }
+    /// Largest angle of incidence at which glass still echoes, radians.
+    #[getter]
+    fn critical_angle_glass_rad(&self) -> f64 {
+        self.0.critical_angle_glass_rad
+    }
+
+    /// One scan of ``world`` from ``pose = (x, y, theta)``, every random draw
+    /// from a generator seeded with ``seed``: ``(ranges, bearings)``, float64
+    /// ``(n,)`` each, ready for ``CoverageMap.integrate(pose, ranges,
+    /// bearings, SonarModel())``. The same seed gives the same readings.
+    #[pyo3(signature = (world, pose, *, seed=0))]
+    fn simulate<'py>(
+        &self,
+        py: Python<'py>,
+        world: &Bound<'py, PyWorld>,
+        pose: &Bound<'py, PyAny>,
+        seed: u64,
+    ) -> PyResult<Readings<'py>> {
+        scan_one(py, &self.0, world, pose, seed)
+    }
+    /// One scan from each pose of ``poses`` (float64 ``(N, 3)``): the ranges
+    /// as float64 ``(N, n)``. Scan ``i`` draws from its own stream ``i`` of
+    /// ``seed`` (scan 0 equals ``simulate(world, poses[0], seed=seed)``), so
+    /// the result depends on the seed alone; scans run in parallel.
+    #[pyo3(signature = (world, poses, *, seed=0))]
+    fn simulate_path<'py>(
+        &self,
+        py: Python<'py>,
+        world: &Bound<'py, PyWorld>,
+        poses: &Bound<'py, PyAny>,
+        seed: u64,
+    ) -> PyResult<Bound<'py, PyArray2<f64>>> {
+        scan_many(py, &self.0, world, poses, seed)
+    }
+
+    fn __repr__(&self) -> String {
+        format!(
+            "SonarRing({} sensors, opening_angle_rad={:?}, max_range_m={:?})",
+            self.0.bearings_rad.len(),
+            self.0.opening_angle_rad,
+            self.0.max_range_m
+        )
+    }
+}
+
+/// A simulated laser scanner: thin beams, small Gaussian noise.
+///
+/// ``beams`` beams spread evenly over ``fov_rad`` centred on the heading, the
+/// first at ``-fov_rad / 2`` and the last at ``+fov_rad / 2`` (default 361
+/// beams over pi: half a degree apart), or beams at ``bearings_rad``. A hit at
+/// distance ``d`` reads ``d + noise_std_m * z``; a beam that meets nothing
+/// before ``max_range_m`` (default 30 m, the default ``LaserModel``'s) reads
+/// exactly ``max_range_m``. Every surface, glass included, reflects it.
+#[pyclass(frozen, eq, name = "Laser", module = "covmap._native")]
+#[derive(Clone, PartialEq)]
+pub(crate) struct PyLaser(Laser);
+
+impl PyLaser {
+    fn checked(py: Python<'_>, laser: Laser) -> PyResult<Self> {
+        laser.validate().or_raise(py)?;
+        Ok(Self(laser))
+    }
+}
+
+#[pymethods]
+impl PyLaser {
+    #[new]
+    #[pyo3(signature = (beams=None, fov_rad=None, *, bearings_rad=None, max_range_m=None, noise_std_m=None))]
+    fn new(
+        py: Python<'_>,
+        beams: Option<i64>,
+        fov_rad: Option<f64>,
+        bearings_rad: Option<&Bound<'_, PyAny>>,
+        max_range_m: Option<f64>,
+        noise_std_m: Option<f64>,
+    ) -> PyResult<Self> {
+        let mut laser = match bearings_rad {
+            Some(_) if beams.is_some() || fov_rad.is_some() => {
+                return Err(PyTypeError::new_err("give either beams and fov_rad or bearings_rad, not both"));
+            }
+            Some(b) => Laser::with_bearings(convert::readings(b, "bearings_rad")?),
+            None => {
+                let beams = count(py, "beams", beams.unwrap_or(361))?;
+                Laser::new(beams, fov_rad.unwrap_or(std::f64::consts::PI)).or_raise(py)?
+            }
+        };
+        laser.max_range_m = max_range_m.unwrap_or(laser.max_range_m);
+        laser.noise_std_m = noise_std_m.unwrap_or(laser.noise_std_m);
+        Self::checked(py, laser)
+    }
+
+    /// 180 beams one degree apart from -90 degrees (to +89), the layout of
+    /// the 180-beam CARMEN logs.
+    #[staticmethod]
+    fn sick_180() -> Self {
+        Self(Laser::sick_180())
+    }
+    /// 361 beams half a degree apart from -90 to +90 degrees.
+    #[staticmethod]
+    fn sick_361() -> Self {
+        Self(Laser::sick_361())
+    }
+
+    /// Bearing of each beam relative to the heading, radians: float64 ``(n,)``.
+    #[getter]
+    fn bearings_rad<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
+        PyArray1::from_slice(py, &self.0.bearings_rad)
+    }
+    /// The same as ``bearings_rad``, under the name ``CoverageMap.integrate`` uses.
+    #[getter]
+    fn bearings<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
+        self.bearings_rad(py)
+    }
+    /// Readings at or beyond this are "no echo", metres.
+    #[getter]
+    fn max_range_m(&self) -> f64 {
+        self.0.max_range_m
+    }
+    /// Standard deviation of the range noise, metres.
+    #[getter]
+    fn noise_std_m(&self) -> f64 {
+        self.0.noise_std_m
+    }
+
+    /// One scan of ``world`` from ``pose = (x, y, theta)``, every random draw
+    /// from a generator seeded with ``seed``: ``(ranges, bearings)``, float64
+    /// ``(n,)`` each, ready for ``CoverageMap.integrate(pose, ranges,
+    /// bearings, LaserModel())``. The same seed gives the same readings.
+    #[pyo3(signature = (world, pose, *, seed=0))]
+    fn simulate<'py>(
+        &self,
+        py: Python<'py>,
+        world: &Bound<'py, PyWorld>,
+        pose: &Bound<'py, PyAny>,
+        seed: u64,
+    ) -> PyResult<Readings<'py>> {
+        scan_one(py, &self.0, world, pose, seed)
+    }
+    /// One scan from each pose of ``poses`` (float64 ``(N, 3)``): the ranges
+    /// as float64 ``(N, n)``; scan ``i`` draws from stream ``i`` of ``seed``
+    /// (see ``SonarRing.simulate_path``).
+    #[pyo3(signature = (world, poses, *, seed=0))]
+    fn simulate_path<'py>(
+        &self,
+        py: Python<'py>,
+        world: &Bound<'py, PyWorld>,
+        poses: &Bound<'py, PyAny>,
+        seed: u64,
+    ) -> PyResult<Bound<'py, PyArray2<f64>>> {
+        scan_many(py, &self.0, world, poses, seed)
+    }
+
+    fn __repr__(&self) -> String {
+        format!(
+            "Laser({} beams, max_range_m={:?}, noise_std_m={:?})",
+            self.0.bearings_rad.len(),
+            self.0.max_range_m,
+            self.0.noise_std_m
+        )
+    }
+}

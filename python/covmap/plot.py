@@ -1,0 +1,181 @@
+"""Drawing worlds, maps and trajectories with matplotlib.
+
+matplotlib is imported inside the functions, so ``import covmap`` does not pay
+for it. Every function draws into ``ax`` (a new figure's axes when ``None``)
+and returns the axes; coordinates are world metres, x to the right and y up.
+
+>>> import matplotlib
+>>> matplotlib.use("Agg")
+>>> import matplotlib.pyplot as plt
+>>> import covmap
+>>> world = covmap.World.builtin("partial")
+>>> grid = covmap.Grid(origin=(1.5, -1.5), resolution=0.05, shape=(60, 30))
+>>> ax = covmap.plot.plot_map(world.coverage(grid), grid, title="ground truth")
+>>> ax = covmap.plot.plot_world(world, ax=ax)
+>>> [float(x) for x in ax.get_xlim()]  # the map's extent: the grid's bounds
+[1.5, 3.0]
+>>> plt.close(ax.figure)
+"""
+
+from __future__ import annotations
+
+import os
+import secrets
+from pathlib import Path
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
+
+from covmap._errors import ArrayShapeError
+
+if TYPE_CHECKING:
+    import numpy.typing as npt
+    from matplotlib.axes import Axes
+    from matplotlib.figure import Figure
+
+    from covmap._native import Grid, World
+
+__all__ = ["plot_map", "plot_trajectory", "plot_world", "save_figure"]
+
+MATERIAL_COLORS = {"wall": "dimgray", "glass": "lightskyblue"}
+"""Fill colour of each material in :func:`plot_world`."""
+
+
+def _axes(ax: Axes | None) -> Axes:
+    if ax is not None:
+        return ax
+    import matplotlib.pyplot as plt
+
+    _, new = plt.subplots()
+    return new
+
+
+def plot_world(
+    world: World,
+    ax: Axes | None = None,
+    *,
+    colors: dict[str, str] | None = None,
+    edgecolor: str = "black",
+    linewidth: float = 0.5,
+    alpha: float = 1.0,
+) -> Axes:
+    """Draw the obstacles of ``world``, filled by material (``colors`` maps
+    ``"wall"`` and ``"glass"`` to colours; holes are left open), with equal
+    axis scales."""
+    from matplotlib.patches import PathPatch
+    from matplotlib.path import Path as MplPath
+
+    ax = _axes(ax)
+    fills = {**MATERIAL_COLORS, **(colors or {})}
+    for exterior, holes, material in zip(world.polygons, world.holes, world.materials):
+        vertices: list[npt.NDArray[np.float64]] = []
+        codes: list[npt.NDArray[np.uint8]] = []
+        for ring in (exterior, *holes):
+            closed = np.vstack([ring, ring[:1]])
+            ring_codes = np.full(len(closed), MplPath.LINETO, dtype=np.uint8)
+            ring_codes[0] = MplPath.MOVETO
+            ring_codes[-1] = MplPath.CLOSEPOLY
+            vertices.append(closed)
+            codes.append(ring_codes)
+        path = MplPath(np.vstack(vertices), np.concatenate(codes))
+        ax.add_patch(
+            PathPatch(
+                path,
+                facecolor=fills[material],
+                edgecolor=edgecolor,
+                linewidth=linewidth,
+                alpha=alpha,
+            )
+        )
+    ax.set_aspect("equal")
+    ax.autoscale_view()
+    ax.set_xlabel("x [m]")
+    ax.set_ylabel("y [m]")
+    return ax
+
+
+def plot_map(
+    values: npt.ArrayLike,
+    grid: Grid,
+    ax: Axes | None = None,
+    *,
+    cmap: Any = "Greys",
+    title: str | None = None,
+    vmin: float | None = 0.0,
+    vmax: float | None = 1.0,
+    colorbar: bool = False,
+) -> Axes:
+    """Draw a per-cell array of ``grid`` (shape ``(rows, cols)``, e.g.
+    ``CoverageMap.ml()`` or ``World.coverage(grid)``) as an image over the
+    grid's extent: rows run along y, row 0 at the bottom. ``vmin``/``vmax``
+    default to the coverage range ``[0, 1]`` (``None``: the data's range);
+    masked values show in the colormap's "bad" colour."""
+    data: np.ma.MaskedArray[Any, Any] = np.ma.asarray(values)
+    if data.shape != grid.shape:
+        raise ArrayShapeError(f"values of shape {data.shape} do not fit a grid of shape {grid.shape}")
+    ax = _axes(ax)
+    x0, y0, x1, y1 = grid.bounds
+    image = ax.imshow(
+        data,
+        origin="lower",
+        extent=(x0, x1, y0, y1),
+        cmap=cmap,
+        vmin=vmin,
+        vmax=vmax,
+        interpolation="nearest",
+    )
+    if colorbar:
+        ax.figure.colorbar(image, ax=ax, fraction=0.046, pad=0.04)
+    if title is not None:
+        ax.set_title(title)
+    ax.set_xlabel("x [m]")
+    ax.set_ylabel("y [m]")
+    return ax
+
+
+def plot_trajectory(
+    poses_or_xy: npt.ArrayLike,
+    ax: Axes | None = None,
+    *,
+    color: str = "tab:red",
+    label: str | None = None,
+    headings: bool = False,
+    linewidth: float = 1.0,
+) -> Axes:
+    """Draw a path through ``poses_or_xy`` (shape ``(N, 2)`` of ``(x, y)`` or
+    ``(N, 3)`` of ``(x, y, theta)``), its start as a circle and its end as a
+    square; with ``headings`` (poses only), an arrow along each heading."""
+    points = np.asarray(poses_or_xy, dtype=np.float64)
+    if points.ndim != 2 or points.shape[1] not in (2, 3):
+        raise ArrayShapeError(f"poses_or_xy must have shape (N, 2) or (N, 3), got {points.shape}")
+    ax = _axes(ax)
+    if len(points) == 0:
+        return ax
+    x, y = points[:, 0], points[:, 1]
+    ax.plot(x, y, color=color, linewidth=linewidth, label=label)
+    ax.plot(x[:1], y[:1], marker="o", color=color, linestyle="none")
+    ax.plot(x[-1:], y[-1:], marker="s", color=color, linestyle="none")
+    if headings and points.shape[1] == 3:
+        theta = points[:, 2]
+        ax.quiver(x, y, np.cos(theta), np.sin(theta), color=color, angles="xy", width=0.003)
+    return ax
+
+
+def save_figure(fig: Figure, path: str | os.PathLike[str], *, dpi: int = 100) -> Path:
+    """Write ``fig`` to ``path`` as PNG atomically (a temporary file in the
+    same directory, then a rename, so a reader never sees a partial file),
+    creating the directory; the PNG carries no software or date stamp, so the
+    same figure gives the same bytes. Returns the path."""
+    path = Path(path)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    tmp = path.with_name(f".{path.name}.{os.getpid()}.{secrets.token_hex(4)}.tmp")
+    # os.open rather than mkstemp: the file gets the umask's permissions (mkstemp's are 0600).
+    fd = os.open(tmp, os.O_WRONLY | os.O_CREAT | os.O_EXCL, 0o666)
+    try:
+        with os.fdopen(fd, "wb") as f:
+            fig.savefig(f, format="png", dpi=dpi, metadata={"Software": None})
+        os.replace(tmp, path)
+    except BaseException:
+        tmp.unlink(missing_ok=True)
+        raise
+    return path
