@@ -214,15 +214,32 @@ impl CoverageMap {
         self.history.is_some()
     }
 
-    /// Measurements of cell `index` since the history was turned on.
-    pub fn measurements(&self, index: usize) -> u32 {
-        self.history.as_ref().map_or(0, |h| h.count[index])
+    /// Measurements of `cell` since the history was turned on (0 while it is
+    /// off).
+    pub fn measurements(&self, cell: Cell) -> Result<u32> {
+        let i = self.grid.index(cell)?;
+        Ok(self.history.as_ref().map_or(0, |h| h.count[i]))
     }
 
-    /// Whether cell `index`'s entropy changed by less than
-    /// [`STAGNATION_NATS`] over its last [`STAGNATION_MEASUREMENTS`]
-    /// measurements (false while the history is off or too short).
-    pub fn stagnated(&self, index: usize) -> bool {
+    /// Measurements of every cell since the history was turned on, row-major.
+    pub fn measurement_counts(&self) -> Vec<u32> {
+        self.history.as_ref().map_or_else(|| vec![0; self.grid.len()], |h| h.count.clone())
+    }
+
+    /// Whether `cell`'s entropy changed by less than [`STAGNATION_NATS`] over
+    /// its last [`STAGNATION_MEASUREMENTS`] measurements (false while the
+    /// history is off or too short).
+    pub fn stagnated(&self, cell: Cell) -> Result<bool> {
+        Ok(self.stagnated_at(self.grid.index(cell)?))
+    }
+
+    /// [`CoverageMap::stagnated`] for every cell, row-major.
+    pub fn stagnation(&self) -> Vec<bool> {
+        (0..self.grid.len()).map(|i| self.stagnated_at(i)).collect()
+    }
+
+    /// [`CoverageMap::stagnated`] by row-major index (below `grid.len()`).
+    pub(crate) fn stagnated_at(&self, index: usize) -> bool {
         let Some(h) = &self.history else { return false };
         let n = h.count[index] as usize;
         if n <= STAGNATION_MEASUREMENTS {
@@ -397,20 +414,26 @@ mod tests {
         map.track_history(true);
         let laser = LaserModel::default();
         let pose = Pose::new(0.01, 0.1, 0.0);
-        let cell = g.index(g.world_to_cell(0.5, 0.1).unwrap()).unwrap();
+        let cell = g.world_to_cell(0.5, 0.1).unwrap();
         for k in 0..5 {
             map.integrate(&pose, &[1.0], &[0.0], &laser).unwrap();
-            assert_eq!(map.measurements(cell), k + 1);
-            assert!(!map.stagnated(cell), "not after {} measurements", k + 1);
+            assert_eq!(map.measurements(cell).unwrap(), k + 1);
+            assert!(!map.stagnated(cell).unwrap(), "not after {} measurements", k + 1);
         }
         // Many readings per scan: the cell's entropy has settled.
         for _ in 0..40 {
             map.integrate(&pose, &vec![1.0; 50], &[0.0; 50], &laser).unwrap();
         }
-        assert!(map.stagnated(cell));
-        let untouched = g.index(g.world_to_cell(1.9, 0.1).unwrap()).unwrap();
-        assert_eq!(map.measurements(untouched), 0);
-        assert!(!map.stagnated(untouched));
+        assert!(map.stagnated(cell).unwrap());
+        let all = map.stagnation();
+        for (i, &stagnated) in all.iter().enumerate() {
+            assert_eq!(stagnated, map.stagnated(g.cell(i)).unwrap());
+        }
+        assert!(all.iter().any(|&s| !s), "cells the beam never reached have no history");
+        let untouched = g.world_to_cell(1.9, 0.1).unwrap();
+        assert_eq!(map.measurements(untouched).unwrap(), 0);
+        assert!(!map.stagnated(untouched).unwrap());
+        assert!(map.stagnated(Cell { row: 4, col: 0 }).is_err());
     }
 
     #[test]

@@ -111,6 +111,11 @@ impl PlannerConfig {
         if !(self.epsilon > 0.0 && self.epsilon.is_finite()) {
             return bad("epsilon", self.epsilon, "a positive, finite entropy");
         }
+        if let Some(step) = self.gain.range_step_m
+            && !(step > 0.0 && step.is_finite())
+        {
+            return bad("gain.range_step_m", step, "a positive, finite step (at most the grid resolution)");
+        }
         Ok(())
     }
 }
@@ -420,7 +425,7 @@ impl Planner {
             status.reachable_cells += 1;
             if f64::from(h) < self.config.epsilon {
                 status.certain_cells += 1;
-            } else if map.stagnated(i) {
+            } else if map.stagnated_at(i) {
                 status.stagnated_cells += 1;
             }
         }

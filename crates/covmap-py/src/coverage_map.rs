@@ -135,14 +135,14 @@ impl PyCoverageMap {
     /// How many scans updated each cell since the history was turned on:
     /// uint32, ``(rows, cols)`` (all zero while it is off).
     fn measurements<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray2<u32>>> {
-        let values = (0..self.0.grid().len()).map(|i| self.0.measurements(i)).collect();
+        let values = self.0.measurement_counts();
         cell_array(py, self.0.grid(), values)
     }
     /// Whether each cell's entropy changed by less than 0.001 nats over its
     /// last five measurements: bool, ``(rows, cols)`` (all ``False`` while the
     /// history is off or shorter).
     fn stagnated<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray2<bool>>> {
-        let values = (0..self.0.grid().len()).map(|i| self.0.stagnated(i)).collect();
+        let values = self.0.stagnation();
         cell_array(py, self.0.grid(), values)
     }
 
