@@ -65,10 +65,10 @@ impl World {
         let d = [c, s];
         let inv = [1.0 / c, 1.0 / s];
         let o = origin_m;
-        // The ray's parameter interval inside the slab `[lo, hi]` of one axis;
-        // along an axis the ray does not move (an exactly zero component) the
-        // slab is everything or nothing, which keeps rays that run exactly
-        // along a box's side inside the box (no 0 * inf = NaN).
+        // A ray parallel to an axis takes the careful slab test (the origin may
+        // lie on a box's face, where 0 * inf would be NaN); every other ray the
+        // branch-free one. The choice is fixed per ray, so it predicts well.
+        let axis_aligned = c == 0.0 || s == 0.0;
         let slab = |axis: usize, lo: f64, hi: f64| -> (f64, f64) {
             if d[axis] == 0.0 {
                 if lo <= o[axis] && o[axis] <= hi {
@@ -81,38 +81,47 @@ impl World {
                 (a.min(b), a.max(b))
             }
         };
-        // parry2d's hierarchy, best-first; the box and piece tests are inlined
-        // here with the ray's inverse direction precomputed, which is several
-        // times faster than the generic shape queries.
-        let best = g.ray_bvh.find_best(
-            max_range_m,
-            |node: &BvhNode, best: f64| {
-                let (lo, hi) = (node.mins(), node.maxs());
-                let (x_in, x_out) = slab(0, lo.x, hi.x);
-                let (y_in, y_out) = slab(1, lo.y, hi.y);
-                let t_in = x_in.max(y_in).max(0.0);
-                let t_out = x_out.min(y_out);
-                // Inclusive, with a hair of slack: a ray grazing a box's
-                // corner costs one more leaf test, never a missed hit.
-                if t_in > t_out + 1e-12 * (1.0 + t_out.abs()) || t_in >= best { f64::MAX } else { t_in }
-            },
-            |leaf: u32, best: f64| {
-                let p = &g.ray_pieces[leaf as usize];
-                let denom = d[0] * p.e[1] - d[1] * p.e[0];
-                if denom == 0.0 {
-                    return None; // parallel: grazing, the neighbours decide
-                }
-                let w = [p.a[0] - o[0], p.a[1] - o[1]];
-                let t = (w[0] * p.e[1] - w[1] * p.e[0]) / denom;
-                let u = (w[0] * d[1] - w[1] * d[0]) / denom;
-                (t >= 0.0 && t < best && (0.0..=1.0).contains(&u)).then_some(t)
-            },
-        );
+        let leaf_cost = |leaf: u32, best: f64| {
+            let p = &g.ray_pieces[leaf as usize];
+            let denom = d[0] * p.e[1] - d[1] * p.e[0];
+            if denom == 0.0 {
+                return None; // parallel: grazing, the neighbours decide
+            }
+            let w = [p.a[0] - o[0], p.a[1] - o[1]];
+            let inv_denom = 1.0 / denom;
+            let t = (w[0] * p.e[1] - w[1] * p.e[0]) * inv_denom;
+            let u = (w[0] * d[1] - w[1] * d[0]) * inv_denom;
+            (t >= 0.0 && t < best && (0.0..=1.0).contains(&u)).then_some(t)
+        };
+        let best = if axis_aligned {
+            g.ray_bvh.find_best(
+                max_range_m,
+                |node: &BvhNode, best: f64| {
+                    let (lo, hi) = (node.mins(), node.maxs());
+                    let (x_in, x_out) = slab(0, lo.x, hi.x);
+                    let (y_in, y_out) = slab(1, lo.y, hi.y);
+                    let (t_in, t_out) = (x_in.max(y_in).max(0.0), x_out.min(y_out));
+                    if t_in > t_out + 1e-12 * (1.0 + t_out.abs()) || t_in >= best { f64::MAX } else { t_in }
+                },
+                leaf_cost,
+            )
+        } else {
+            g.ray_bvh.find_best(
+                max_range_m,
+                |node: &BvhNode, best: f64| {
+                    let (lo, hi) = (node.mins(), node.maxs());
+                    let (ax, bx) = ((lo.x - o[0]) * inv[0], (hi.x - o[0]) * inv[0]);
+                    let (ay, by) = ((lo.y - o[1]) * inv[1], (hi.y - o[1]) * inv[1]);
+                    let (t_in, t_out) = (lower(ax, bx, ay, by), upper(ax, bx, ay, by));
+                    if t_in > t_out + 1e-12 * (1.0 + t_out.abs()) || t_in >= best { f64::MAX } else { t_in }
+                },
+                leaf_cost,
+            )
+        };
         match best {
             Some((leaf, t)) if t < max_range_m => {
                 let p = &g.ray_pieces[leaf as usize];
-                let len = p.e[0].hypot(p.e[1]);
-                let mut n = [-p.e[1] / len, p.e[0] / len];
+                let mut n = p.n;
                 let mut cos = n[0] * d[0] + n[1] * d[1];
                 if cos > 0.0 {
                     n = [-n[0], -n[1]];
@@ -159,6 +168,24 @@ impl World {
     fn cast_sequential(&self, origins_m: &[[f64; 2]], angles_rad: &[f64], max_range_m: f64) -> Vec<RayHit> {
         origins_m.iter().zip(angles_rad).map(|(&o, &a)| self.cast(o, a, max_range_m)).collect()
     }
+}
+
+/// `max(min(a, b), min(c, d), 0)` for values that are never NaN, written as
+/// plain comparisons (`f64::min` and `max` pay for NaN handling).
+#[inline(always)]
+fn lower(a: f64, b: f64, c: f64, d: f64) -> f64 {
+    let x = if a < b { a } else { b };
+    let y = if c < d { c } else { d };
+    let m = if x > y { x } else { y };
+    if m > 0.0 { m } else { 0.0 }
+}
+
+/// `min(max(a, b), max(c, d))` for values that are never NaN.
+#[inline(always)]
+fn upper(a: f64, b: f64, c: f64, d: f64) -> f64 {
+    let x = if a > b { a } else { b };
+    let y = if c > d { c } else { d };
+    if x < y { x } else { y }
 }
 
 fn validate_rays(origins_m: &[[f64; 2]], angles_rad: &[f64], max_range_m: f64) -> Result<()> {

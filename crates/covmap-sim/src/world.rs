@@ -71,6 +71,8 @@ pub(crate) struct RayPiece {
     pub(crate) a: [f64; 2],
     /// End minus start.
     pub(crate) e: [f64; 2],
+    /// Unit normal (left of `e`).
+    pub(crate) n: [f64; 2],
     /// The surface's material.
     pub(crate) material: Material,
 }
@@ -189,7 +191,10 @@ fn build_geometry(polygons: &[Polygon]) -> Geometry {
                 if t == pieces { b } else { a + (b - a) * f }
             };
             let (p, q) = (at(k), at(k + 1));
-            ray_pieces.push(RayPiece { a: [p.x, p.y], e: [q.x - p.x, q.y - p.y], material: segment_material[s] });
+            let e = [q.x - p.x, q.y - p.y];
+            let len = e[0].hypot(e[1]);
+            let n = [-e[1] / len, e[0] / len];
+            ray_pieces.push(RayPiece { a: [p.x, p.y], e, n, material: segment_material[s] });
         }
     }
     let piece_boxes: Vec<Aabb> = ray_pieces
