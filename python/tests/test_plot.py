@@ -15,8 +15,7 @@ import pytest  # noqa: E402
 
 import covmap  # noqa: E402
 from covmap.plot import plot_map, plot_trajectory, plot_world, save_figure  # noqa: E402
-
-PNG_SIGNATURE = b"\x89PNG\r\n\x1a\n"
+from cli_helpers import PNG_SIGNATURE  # noqa: E402
 
 
 @pytest.fixture(autouse=True)

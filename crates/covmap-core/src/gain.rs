@@ -568,11 +568,6 @@ impl CoverageMap {
     }
 }
 
-/// The entropy the uniform prior of `bins` bins has, nats.
-pub fn prior_entropy(bins: usize) -> f64 {
-    (bins as f64).ln()
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -89,3 +89,15 @@ pub type Result<T, E = SimError> = std::result::Result<T, E>;
 pub(crate) fn check_param(name: &'static str, value: f64, ok: bool, expected: &'static str) -> Result<()> {
     if ok && value.is_finite() { Ok(()) } else { Err(SimError::InvalidParameter { name, value, expected }) }
 }
+
+/// Errors unless a sensor has at least one bearing and every bearing is finite;
+/// `what` names one bearing in the error ("sonar bearing").
+pub(crate) fn check_bearings(bearings_rad: &[f64], what: &'static str) -> Result<()> {
+    if bearings_rad.is_empty() {
+        return Err(SimError::InvalidParameter { name: "bearings_rad", value: 0.0, expected: "at least one bearing" });
+    }
+    if let Some((index, &value)) = bearings_rad.iter().enumerate().find(|(_, b)| !b.is_finite()) {
+        return Err(SimError::InvalidValue { what, index, value });
+    }
+    Ok(())
+}

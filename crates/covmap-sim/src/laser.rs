@@ -6,7 +6,7 @@ use covmap_core::{LaserModel, Pose};
 use rand::{Rng, RngExt};
 use rand_distr::StandardNormal;
 
-use crate::error::{Result, SimError, check_param};
+use crate::error::{Result, check_bearings, check_param};
 use crate::scan::Scan;
 use crate::simulate::{RangeSensor, check_pose};
 use crate::world::World;
@@ -77,12 +77,7 @@ impl RangeSensor for Laser {
     }
 
     fn validate(&self) -> Result<()> {
-        if self.bearings_rad.is_empty() {
-            return Err(SimError::InvalidParameter { name: "bearings_rad", value: 0.0, expected: "at least one beam" });
-        }
-        if let Some((index, &value)) = self.bearings_rad.iter().enumerate().find(|(_, b)| !b.is_finite()) {
-            return Err(SimError::InvalidValue { what: "laser bearing", index, value });
-        }
+        check_bearings(&self.bearings_rad, "laser bearing")?;
         check_param("max_range_m", self.max_range_m, self.max_range_m > 0.0, "a positive distance")?;
         check_param("noise_std_m", self.noise_std_m, self.noise_std_m >= 0.0, "a non-negative standard deviation")
     }

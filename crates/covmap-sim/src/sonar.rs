@@ -6,7 +6,7 @@ use covmap_core::{Pose, SonarModel};
 use rand::{Rng, RngExt};
 use rand_distr::StandardNormal;
 
-use crate::error::{Result, SimError, check_param};
+use crate::error::{Result, check_bearings, check_param};
 use crate::material::Material;
 use crate::raycast::RayHit;
 use crate::scan::Scan;
@@ -212,16 +212,7 @@ impl RangeSensor for SonarRing {
     }
 
     fn validate(&self) -> Result<()> {
-        if self.bearings_rad.is_empty() {
-            return Err(SimError::InvalidParameter {
-                name: "bearings_rad",
-                value: 0.0,
-                expected: "at least one sensor",
-            });
-        }
-        if let Some((index, &value)) = self.bearings_rad.iter().enumerate().find(|(_, b)| !b.is_finite()) {
-            return Err(SimError::InvalidValue { what: "sonar bearing", index, value });
-        }
+        check_bearings(&self.bearings_rad, "sonar bearing")?;
         let a = self.opening_angle_rad;
         check_param("opening_angle_rad", a, a > 0.0 && a < PI, "an angle in (0, pi) radians")?;
         let max = self.max_range_m;
@@ -269,6 +260,7 @@ impl RangeSensor for SonarRing {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::error::SimError;
     use crate::polygon::Polygon;
     use crate::rng::sim_rng;
 

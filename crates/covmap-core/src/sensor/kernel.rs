@@ -114,15 +114,7 @@ impl KernelTable {
         }
     }
 
-    /// Offset of the kernel for a cell at `d_l` and a reading `d` (clamped to
-    /// the maximum range), `echo` false for a no-echo reading. The caller has
-    /// already limited `d_l` to the reading's reach.
-    #[inline]
-    pub(crate) fn offset(&self, d_l: f64, d: f64, echo: bool) -> usize {
-        self.reading(d, echo).offset(d_l)
-    }
-
-    /// The kernel at a table offset from [`KernelTable::offset`].
+    /// The kernel at a table offset from [`ReadingLookup::offset`].
     #[inline(always)]
     pub(crate) fn at(&self, offset: usize) -> &[f32] {
         &self.values[offset..offset + self.bins]
@@ -148,11 +140,11 @@ impl KernelTable {
             return None;
         }
         let d = measured_distance_m.min(self.model.max_range_m);
-        Some(self.at(self.offset(cell_distance_m, d, echo)).to_vec())
+        Some(self.at(self.reading(d, echo).offset(cell_distance_m)).to_vec())
     }
 }
 
-/// [`KernelTable::offset`] with everything that depends only on the reading
+/// The kernel lookup for one reading, with everything that depends only on it
 /// computed once per beam.
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct ReadingLookup {
