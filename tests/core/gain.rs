@@ -39,7 +39,7 @@ fn model(kind: u8, range_m: f64, opening_rad: f64) -> Box<dyn SensorModel> {
 
 proptest! {
     #![proptest_config(ProptestConfig {
-        cases: 24,
+        cases: 512,
         rng_seed: proptest::test_runner::RngSeed::Fixed(0x6a1e),
         ..ProptestConfig::default()
     })]
@@ -47,9 +47,9 @@ proptest! {
     /// `fast` equals `exact` within 1e-6 relative on random maps, poses and sensors.
     #[test]
     fn fast_equals_exact(
-        bins in prop::sample::select(vec![4usize, 16, 20]),
+        bins in prop::sample::select(vec![4usize, 8, 16, 20]),
         weights in prop::collection::vec(0.0f32..1.0, 97..300),
-        sharpness in prop::collection::vec(1u8..12, 1..9),
+        sharpness in prop::collection::vec(1u8..16, 1..9),
         kind in 0u8..2,
         range_m in 0.5f64..2.5,
         opening_rad in 0.05f64..1.0,

@@ -31,6 +31,7 @@ mod footprint;
 pub mod gain;
 mod grid;
 pub mod histogram;
+mod numeric;
 mod occupancy;
 pub mod planner;
 mod scan;

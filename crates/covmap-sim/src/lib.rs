@@ -37,6 +37,7 @@ pub mod load;
 mod material;
 mod picture;
 mod polygon;
+mod ray_tree;
 mod raycast;
 mod rng;
 mod robot;

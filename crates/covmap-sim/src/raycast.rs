@@ -1,9 +1,8 @@
 //! Ray casting against the world's surfaces.
 
-use parry2d_f64::partitioning::BvhNode;
-
 use crate::error::{Result, SimError, check_param};
 use crate::material::Material;
+use crate::ray_tree::{Ray, RayStack, RayTree};
 use crate::world::World;
 
 /// Batches at least this long are split over rayon's threads.
@@ -58,69 +57,27 @@ impl World {
     /// assert!(!world.cast([0.0, 0.0], std::f64::consts::PI, 10.0).is_hit());
     /// ```
     pub fn cast(&self, origin_m: [f64; 2], angle_rad: f64, max_range_m: f64) -> RayHit {
+        self.cast_with(origin_m, angle_rad, max_range_m, |tree, ray| tree.first_hit(ray, max_range_m))
+    }
+
+    /// [`World::cast`] finding the first hit with `first_hit`, which lets a
+    /// batch lend every ray the same stack.
+    #[inline(always)]
+    fn cast_with(
+        &self,
+        origin_m: [f64; 2],
+        angle_rad: f64,
+        max_range_m: f64,
+        first_hit: impl FnOnce(&RayTree, &Ray) -> Option<(u32, f64)>,
+    ) -> RayHit {
         let Some(g) = self.geometry() else {
             return RayHit::miss(max_range_m);
         };
         let (s, c) = angle_rad.sin_cos();
         let d = [c, s];
-        let inv = [1.0 / c, 1.0 / s];
-        let o = origin_m;
-        // A ray parallel to an axis takes the careful slab test (the origin may
-        // lie on a box's face, where 0 * inf would be NaN); every other ray the
-        // branch-free one. The choice is fixed per ray, so it predicts well.
-        let axis_aligned = c == 0.0 || s == 0.0;
-        let slab = |axis: usize, lo: f64, hi: f64| -> (f64, f64) {
-            if d[axis] == 0.0 {
-                if lo <= o[axis] && o[axis] <= hi {
-                    (f64::NEG_INFINITY, f64::INFINITY)
-                } else {
-                    (f64::INFINITY, f64::NEG_INFINITY)
-                }
-            } else {
-                let (a, b) = ((lo - o[axis]) * inv[axis], (hi - o[axis]) * inv[axis]);
-                (a.min(b), a.max(b))
-            }
-        };
-        let leaf_cost = |leaf: u32, best: f64| {
-            let p = &g.ray_pieces[leaf as usize];
-            let denom = d[0] * p.e[1] - d[1] * p.e[0];
-            if denom == 0.0 {
-                return None; // parallel: grazing, the neighbours decide
-            }
-            let w = [p.a[0] - o[0], p.a[1] - o[1]];
-            let inv_denom = 1.0 / denom;
-            let t = (w[0] * p.e[1] - w[1] * p.e[0]) * inv_denom;
-            let u = (w[0] * d[1] - w[1] * d[0]) * inv_denom;
-            (t >= 0.0 && t < best && (0.0..=1.0).contains(&u)).then_some(t)
-        };
-        let best = if axis_aligned {
-            g.ray_bvh.find_best(
-                max_range_m,
-                |node: &BvhNode, best: f64| {
-                    let (lo, hi) = (node.mins(), node.maxs());
-                    let (x_in, x_out) = slab(0, lo.x, hi.x);
-                    let (y_in, y_out) = slab(1, lo.y, hi.y);
-                    let (t_in, t_out) = (x_in.max(y_in).max(0.0), x_out.min(y_out));
-                    if t_in > t_out + 1e-12 * (1.0 + t_out.abs()) || t_in >= best { f64::MAX } else { t_in }
-                },
-                leaf_cost,
-            )
-        } else {
-            g.ray_bvh.find_best(
-                max_range_m,
-                |node: &BvhNode, best: f64| {
-                    let (lo, hi) = (node.mins(), node.maxs());
-                    let (ax, bx) = ((lo.x - o[0]) * inv[0], (hi.x - o[0]) * inv[0]);
-                    let (ay, by) = ((lo.y - o[1]) * inv[1], (hi.y - o[1]) * inv[1]);
-                    let (t_in, t_out) = (lower(ax, bx, ay, by), upper(ax, bx, ay, by));
-                    if t_in > t_out + 1e-12 * (1.0 + t_out.abs()) || t_in >= best { f64::MAX } else { t_in }
-                },
-                leaf_cost,
-            )
-        };
-        match best {
-            Some((leaf, t)) if t < max_range_m => {
-                let p = &g.ray_pieces[leaf as usize];
+        match first_hit(&g.rays, &Ray::new(origin_m, d)) {
+            Some((piece, t)) if t < max_range_m => {
+                let p = g.rays.face(piece);
                 let mut n = p.n;
                 let mut cos = n[0] * d[0] + n[1] * d[1];
                 if cos > 0.0 {
@@ -148,7 +105,7 @@ impl World {
                 .par_iter()
                 .zip(angles_rad.par_iter())
                 .with_min_len(1024)
-                .map(|(&o, &a)| self.cast(o, a, max_range_m))
+                .map_init(RayStack::default, |stack, (&o, &a)| self.cast_batched(o, a, max_range_m, stack))
                 .collect());
         }
         Ok(self.cast_sequential(origins_m, angles_rad, max_range_m))
@@ -166,26 +123,14 @@ impl World {
     }
 
     fn cast_sequential(&self, origins_m: &[[f64; 2]], angles_rad: &[f64], max_range_m: f64) -> Vec<RayHit> {
-        origins_m.iter().zip(angles_rad).map(|(&o, &a)| self.cast(o, a, max_range_m)).collect()
+        let mut stack = RayStack::default();
+        origins_m.iter().zip(angles_rad).map(|(&o, &a)| self.cast_batched(o, a, max_range_m, &mut stack)).collect()
     }
-}
 
-/// `max(min(a, b), min(c, d), 0)` for values that are never NaN, written as
-/// plain comparisons (`f64::min` and `max` pay for NaN handling).
-#[inline(always)]
-fn lower(a: f64, b: f64, c: f64, d: f64) -> f64 {
-    let x = if a < b { a } else { b };
-    let y = if c < d { c } else { d };
-    let m = if x > y { x } else { y };
-    if m > 0.0 { m } else { 0.0 }
-}
-
-/// `min(max(a, b), max(c, d))` for values that are never NaN.
-#[inline(always)]
-fn upper(a: f64, b: f64, c: f64, d: f64) -> f64 {
-    let x = if a > b { a } else { b };
-    let y = if c > d { c } else { d };
-    if x < y { x } else { y }
+    /// One ray of a batch, on the batch's stack.
+    fn cast_batched(&self, origin_m: [f64; 2], angle_rad: f64, max_range_m: f64, stack: &mut RayStack) -> RayHit {
+        self.cast_with(origin_m, angle_rad, max_range_m, |tree, ray| tree.first_hit_with(ray, max_range_m, stack))
+    }
 }
 
 fn validate_rays(origins_m: &[[f64; 2]], angles_rad: &[f64], max_range_m: f64) -> Result<()> {
@@ -296,6 +241,60 @@ mod tests {
             assert_eq!(a.normal, w.cast(origins[i], angles[i], 6.0).normal);
             // Inside a closed room (the diamond aside) every ray hits something.
             assert!(a.is_hit() && a.distance_m < 4.5);
+        }
+    }
+
+    /// The first crossing of the ray with any polygon edge, written
+    /// independently of the ray caster (no pieces, no hierarchy).
+    fn brute_force_distance(w: &World, o: [f64; 2], angle: f64, max: f64) -> Option<f64> {
+        let d = [angle.cos(), angle.sin()];
+        let mut best: Option<f64> = None;
+        for p in w.polygons() {
+            for ring in p.rings() {
+                for (i, &a) in ring.iter().enumerate() {
+                    let b = ring[(i + 1) % ring.len()];
+                    let e = [b[0] - a[0], b[1] - a[1]];
+                    let denom = d[0] * e[1] - d[1] * e[0];
+                    if denom == 0.0 {
+                        continue;
+                    }
+                    let w = [a[0] - o[0], a[1] - o[1]];
+                    let t = (w[0] * e[1] - w[1] * e[0]) / denom;
+                    let u = (w[0] * d[1] - w[1] * d[0]) / denom;
+                    if t >= 0.0 && t < max && (0.0..=1.0).contains(&u) && best.is_none_or(|b| t < b) {
+                        best = Some(t);
+                    }
+                }
+            }
+        }
+        best
+    }
+
+    #[test]
+    fn casts_match_brute_force_over_polygon_edges() {
+        use rand::RngExt;
+        let w = World::builtin("office").unwrap();
+        let [x0, y0, x1, y1] = w.bounds_m();
+        let mut rng = crate::rng::sim_rng(3);
+        let n = 10_000;
+        let origins: Vec<[f64; 2]> =
+            (0..n).map(|_| [x0 + (x1 - x0) * rng.random::<f64>(), y0 + (y1 - y0) * rng.random::<f64>()]).collect();
+        let angles: Vec<f64> = (0..n).map(|_| rng.random::<f64>() * std::f64::consts::TAU).collect();
+        for max in [5.0, 30.0] {
+            let batch = w.cast_batch(&origins, &angles, max).unwrap();
+            let mut hits = 0;
+            for (i, hit) in batch.iter().enumerate() {
+                let one = w.cast(origins[i], angles[i], max);
+                assert_eq!((hit.distance_m, hit.normal, hit.material), (one.distance_m, one.normal, one.material));
+                match brute_force_distance(&w, origins[i], angles[i], max) {
+                    Some(t) => {
+                        assert!(hit.is_hit() && (hit.distance_m - t).abs() <= 1e-9, "ray {i}: {hit:?}, expected {t}");
+                        hits += 1;
+                    }
+                    None => assert!(!hit.is_hit(), "ray {i}: {hit:?}, expected a miss"),
+                }
+            }
+            assert!(hits > n / 2, "only {hits} hits up to {max} m");
         }
     }
 }

@@ -9,6 +9,7 @@ use parry2d_f64::shape::Polyline;
 use crate::error::{Result, SimError};
 use crate::material::Material;
 use crate::polygon::Polygon;
+use crate::ray_tree::RayTree;
 
 /// A set of obstacle polygons; overlapping polygons are their union.
 ///
@@ -17,8 +18,9 @@ use crate::polygon::Polygon;
 /// [`Polyline`] (distance queries and the robot's shape casts), a bounding-volume
 /// hierarchy over the polygons' boxes (point-inside queries), and one over the
 /// edges cut into pieces of at most 2 m (ray casts: long walls would otherwise
-/// give boxes that most rays have to open). parry types stay inside the crate:
-/// the API speaks `[f64; 2]` in metres.
+/// give boxes that most rays have to open), which the ray caster descends as a
+/// copy with four children a node. parry types stay inside the crate: the API
+/// speaks `[f64; 2]` in metres.
 ///
 /// Build one from polygons ([`World::new`], [`World::from_vertex_lists`]), from
 /// files (see [`crate::load`]) or by name ([`World::builtin`]).
@@ -53,28 +55,8 @@ pub(crate) struct Geometry {
     pub(crate) segment_material: Vec<Material>,
     /// Leaf `i` is the box of polygon `i`.
     pub(crate) polygon_bvh: Bvh,
-    /// The ray caster's pieces: the edges cut into pieces no longer than
-    /// [`RAY_PIECE_M`], so that long walls do not give the hierarchy boxes
-    /// that every ray must open.
-    pub(crate) ray_pieces: Vec<RayPiece>,
-    /// Leaf `i` is the box of `ray_pieces[i]`.
-    pub(crate) ray_bvh: Bvh,
-}
-
-/// The longest piece of an edge the ray caster tests as one leaf, metres.
-pub(crate) const RAY_PIECE_M: f64 = 2.0;
-
-/// A straight piece of an obstacle's boundary, as the ray caster stores it.
-#[derive(Clone, Copy, Debug)]
-pub(crate) struct RayPiece {
-    /// Start point.
-    pub(crate) a: [f64; 2],
-    /// End minus start.
-    pub(crate) e: [f64; 2],
-    /// Unit normal (left of `e`).
-    pub(crate) n: [f64; 2],
-    /// The surface's material.
-    pub(crate) material: Material,
+    /// The ray caster's boundary pieces and parry's hierarchy over them.
+    pub(crate) rays: RayTree,
 }
 
 pub(crate) fn vector(p: [f64; 2]) -> Vector {
@@ -180,30 +162,11 @@ fn build_geometry(polygons: &[Polygon]) -> Geometry {
             }
         }
     }
-    let mut ray_pieces = Vec::new();
-    for (s, [i, j]) in indices.iter().enumerate() {
+    let edges = indices.iter().zip(&segment_material).map(|([i, j], &m)| {
         let (a, b) = (vertices[*i as usize], vertices[*j as usize]);
-        let pieces = ((b - a).length() / RAY_PIECE_M).ceil().max(1.0) as usize;
-        for k in 0..pieces {
-            // Cut points computed from both ends, so the pieces meet exactly.
-            let at = |t: usize| {
-                let f = t as f64 / pieces as f64;
-                if t == pieces { b } else { a + (b - a) * f }
-            };
-            let (p, q) = (at(k), at(k + 1));
-            let e = [q.x - p.x, q.y - p.y];
-            let len = e[0].hypot(e[1]);
-            let n = [-e[1] / len, e[0] / len];
-            ray_pieces.push(RayPiece { a: [p.x, p.y], e, n, material: segment_material[s] });
-        }
-    }
-    let piece_boxes: Vec<Aabb> = ray_pieces
-        .iter()
-        .map(|p| {
-            let q = [p.a[0] + p.e[0], p.a[1] + p.e[1]];
-            Aabb::new(Vector::new(p.a[0].min(q[0]), p.a[1].min(q[1])), Vector::new(p.a[0].max(q[0]), p.a[1].max(q[1])))
-        })
-        .collect();
+        ([a.x, a.y], [b.x, b.y], m)
+    });
+    let rays = RayTree::new(edges);
     let boxes: Vec<Aabb> = polygons
         .iter()
         .map(|p| {
@@ -215,8 +178,7 @@ fn build_geometry(polygons: &[Polygon]) -> Geometry {
         boundary: Polyline::new(vertices, Some(indices)),
         segment_material,
         polygon_bvh: Bvh::from_leaves(BvhBuildStrategy::Binned, &boxes),
-        ray_pieces,
-        ray_bvh: Bvh::from_leaves(BvhBuildStrategy::Binned, &piece_boxes),
+        rays,
     }
 }
 

@@ -3,6 +3,7 @@
 use super::{RangeModel, kernel_values};
 use crate::error::{CovmapError, Result};
 use crate::histogram::MAX_BINS;
+use crate::numeric::x_ln_x;
 
 /// Slices the end band (one cell deep) is cut into: `mu` is resolved to 1/32.
 pub const BAND_SLICES: usize = 32;
@@ -31,10 +32,10 @@ pub struct KernelTable {
     inv_slice: f64,
     /// `[region][s][bin]`, each kernel normalised to sum 1.
     values: Vec<f32>,
-    /// Every value in `f64`, and its logarithm, for the entropies of updated
+    /// Every value `k` in `f64`, and `k ln k`, for the entropies of updated
     /// histograms ([`crate::gain`]).
     values_f64: Vec<f64>,
-    log_values: Vec<f64>,
+    k_ln_k: Vec<f64>,
 }
 
 impl KernelTable {
@@ -68,7 +69,7 @@ impl KernelTable {
             }
         }
         let values_f64: Vec<f64> = values.iter().map(|&v| f64::from(v)).collect();
-        let log_values = values_f64.iter().map(|v| v.ln()).collect();
+        let k_ln_k = values_f64.iter().map(|&v| x_ln_x(v)).collect();
         Ok(Self {
             model: *model,
             resolution_m,
@@ -77,7 +78,7 @@ impl KernelTable {
             inv_slice: 1.0 / slice,
             values,
             values_f64,
-            log_values,
+            k_ln_k,
         })
     }
 
@@ -120,16 +121,15 @@ impl KernelTable {
         &self.values[offset..offset + self.bins]
     }
 
-    /// The kernel at a table offset, in `f64`.
-    #[inline(always)]
-    pub(crate) fn at_f64(&self, offset: usize) -> &[f64] {
-        &self.values_f64[offset..offset + self.bins]
+    /// Every kernel in `f64`, one after the other (a kernel's offset is
+    /// [`ReadingLookup::offset`]).
+    pub(crate) fn values_f64(&self) -> &[f64] {
+        &self.values_f64
     }
 
-    /// The logarithms of the kernel at a table offset.
-    #[inline(always)]
-    pub(crate) fn log_at(&self, offset: usize) -> &[f64] {
-        &self.log_values[offset..offset + self.bins]
+    /// `k ln k` of every bin of every kernel, laid out as [`Self::values_f64`].
+    pub(crate) fn k_ln_k(&self) -> &[f64] {
+        &self.k_ln_k
     }
 
     /// The kernel the update multiplies in for a cell at `cell_distance_m` and a
