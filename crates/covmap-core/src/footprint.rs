@@ -63,6 +63,9 @@ fn centre_range(a: f64, b: f64, r: f64, n: usize) -> Option<(usize, usize)> {
     (lo <= hi).then_some((lo as usize, hi as usize))
 }
 
+/// Cells of a cone's row whose distances are computed together.
+const ROW_BLOCK: usize = 8;
+
 /// Cells whose centres lie in the sector of radius `reach` and half-angle
 /// `half` (< pi/2) around `axis`: the disk cut by the two boundary half-planes.
 #[inline(always)]
@@ -124,12 +127,27 @@ fn visit_cone(grid: &Grid, [sx, sy]: [f64; 2], axis: f64, half: f64, reach: f64,
         let base = row * cols;
         let py2 = py * py;
         let mut px = ox + (col_lo as f64 + 0.5) * r - sx;
-        for col in col_lo..=col_hi {
-            let d = (px * px + py2).sqrt();
-            if d <= reach {
-                f.cell(base + col, d, d);
+        // The distances of a block of cells first (vector square roots), then
+        // the visits.
+        let mut col = col_lo;
+        while col <= col_hi {
+            let n = (col_hi + 1 - col).min(ROW_BLOCK);
+            let mut d = [0.0f64; ROW_BLOCK];
+            for x in d.iter_mut() {
+                *x = px;
+                px += r;
             }
-            px += r;
+            for x in d.iter_mut() {
+                *x = (*x * *x + py2).sqrt();
+            }
+            for (k, &d) in d[..n].iter().enumerate() {
+                if d <= reach {
+                    f.cell(base + col + k, d, d);
+                }
+            }
+            // Only the row's last block is short, so `px` runs past the
+            // row's end only when the row is done.
+            col += n;
         }
     }
 }
