@@ -584,6 +584,8 @@ fn weighted_gains<const N: usize>(rows: &Rows<'_, N>, wide: bool, jobs: &[Job]) 
         // (`wide_arithmetic`).
         return unsafe { weighted_gains_avx2_fma::<N>(rows, jobs) };
     }
+    #[cfg(not(target_arch = "x86_64"))]
+    let _ = wide;
     weighted_gains_with::<N, false>(rows, jobs)
 }
 
