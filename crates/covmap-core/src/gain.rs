@@ -434,6 +434,7 @@ impl<'a> GainEvaluator<'a> {
             buckets: &buckets,
             inv_bucket_m: 1.0 / bucket_m,
             last_bucket: (count - 1) as f64,
+            few: possible.len() <= FEW_ECHOES,
             no_echo: dist.no_echo,
             none_lookup: self.table.reading(self.range.max_range_m, false),
             none_reach,
@@ -464,6 +465,10 @@ impl<'a> GainEvaluator<'a> {
     }
 }
 
+/// Up to this many echoes of non-zero probability, a cell tests each of them
+/// rather than looking up its bucket.
+const FEW_ECHOES: usize = 8;
+
 /// One hypothetical echo of a beam.
 #[derive(Clone, Copy)]
 struct Hypothesis {
@@ -488,6 +493,9 @@ struct Beam<'a> {
     inv_bucket_m: f64,
     /// The index of the last bucket.
     last_bucket: f64,
+    /// Whether there are so few echoes that testing each beats looking up the
+    /// bucket.
+    few: bool,
     no_echo: f64,
     none_lookup: ReadingLookup,
     none_reach: f64,
@@ -670,9 +678,13 @@ impl<const N: usize> CellVisitor for FastBeam<'_, N> {
     #[inline(always)]
     fn cell(&mut self, i: usize, d_l: f64, enter: f64) {
         let beam = self.beam;
-        // Clamped in floating point, so that the conversion is a plain truncation.
-        let bucket = (enter * beam.inv_bucket_m).min(beam.last_bucket) as i32 as usize;
-        let (lo, hi) = beam.buckets[bucket];
+        let (lo, hi) = if beam.few {
+            (0, beam.possible.len())
+        } else {
+            // Clamped in floating point, so that the conversion is a plain truncation.
+            let bucket = (enter * beam.inv_bucket_m).min(beam.last_bucket) as i32 as usize;
+            beam.buckets[bucket]
+        };
         // Every echo that leaves the cell in free space gives it the same
         // kernel as no echo does: region 0 at distance min(d_l, d) = d_l.
         let mut free_weight = beam.suffix[hi];
