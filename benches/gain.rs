@@ -6,7 +6,8 @@
 //! Throughput of the fast evaluator is in (beam, cell) pairs: the cells of each
 //! beam's widest footprint. The exact evaluator costs seconds per candidate, so
 //! it is timed on 4 candidates spread over the map (every 250th): compare the
-//! two evaluators' times on those.
+//! two evaluators' times on those. `cone_walk_only` walks the same footprints
+//! and computes nothing.
 //!
 //! Run: `cargo bench --bench gain`
 
@@ -48,6 +49,9 @@ fn gain(c: &mut Criterion) {
             b.iter(|| pool.install(|| eval.evaluate(&poses, &bearings, GainMethod::Fast).expect("valid")))
         });
     }
+    // The cones alone, each cell visited and nothing computed: the part of
+    // the per-pair cost that walking the footprints takes.
+    group.bench_function("cone_walk_only", |b| b.iter(|| eval.pairs(&poses, &bearings).expect("valid")));
     group.finish();
 
     let few: Vec<Pose> = poses.iter().step_by(250).copied().collect();

@@ -98,20 +98,14 @@ pub struct GainOptions {
 
 /// Entropy of a histogram in nats, in `f64`.
 pub fn entropy(h: &[f32]) -> f64 {
-    -h.iter().map(|&p| f64::from(p)).filter(|&p| p > 0.0).map(|p| p * p.ln()).sum::<f64>()
+    -h.iter().map(|&p| x_ln_x(f64::from(p))).sum::<f64>()
 }
 
 /// `I(h | k) = H(h) - H(h')`, `h'` the normalised product of `h` and kernel
 /// `k`, straight from the definitions (eq. 11-12).
 pub fn information_gain(h: &[f32], k: &[f32]) -> f64 {
     let z: f64 = h.iter().zip(k).map(|(&a, &b)| f64::from(a) * f64::from(b)).sum();
-    let posterior_entropy = -h
-        .iter()
-        .zip(k)
-        .map(|(&a, &b)| f64::from(a) * f64::from(b) / z)
-        .filter(|&p| p > 0.0)
-        .map(|p| p * p.ln())
-        .sum::<f64>();
+    let posterior_entropy = -h.iter().zip(k).map(|(&a, &b)| x_ln_x(f64::from(a) * f64::from(b) / z)).sum::<f64>();
     entropy(h) - posterior_entropy
 }
 
@@ -387,44 +381,29 @@ impl<'a> GainEvaluator<'a> {
     fn fast_beam(&self, origin: [f64; 2], angle: f64) -> f64 {
         let Some(cache) = self.cache.get() else { return f64::NAN };
         let dist = self.distribution(origin, angle);
-        let n = dist.probabilities.len();
-        let mut hypotheses = Vec::with_capacity(n);
-        for j in 0..n {
-            let d = j as f64 * dist.step_m;
-            let (reach, echo) = self.range.reach(d);
-            hypotheses.push(Hypothesis { lookup: self.table.reading(d, echo), reach, p: dist.probabilities[j] });
-        }
         let (none_reach, _) = self.range.reach(self.range.max_range_m);
-        let reach = hypotheses.last().map_or(none_reach, |h| h.reach.max(none_reach));
-        // Only echoes of non-zero probability matter; reach and freeness grow
-        // with the echo's distance, so for every distance bucket of the
-        // footprint they split into three runs: echoes that cannot reach its
-        // cells, echoes to test one by one, and echoes that leave all of its
-        // cells in free space (a suffix sum).
-        let possible: Vec<Hypothesis> = hypotheses.into_iter().filter(|h| h.p > 0.0).collect();
+        let n = dist.probabilities.len();
+        // The widest footprint: the farthest echo's, or no echo's.
+        let reach = n.checked_sub(1).map_or(none_reach, |j| self.range.reach(j as f64 * dist.step_m).0.max(none_reach));
+        // Only echoes of non-zero probability matter.
+        let possible: Vec<Hypothesis> = (0..n)
+            .filter(|&j| dist.probabilities[j] > 0.0)
+            .map(|j| {
+                let d = j as f64 * dist.step_m;
+                let (reach, echo) = self.range.reach(d);
+                Hypothesis { lookup: self.table.reading(d, echo), reach, p: dist.probabilities[j] }
+            })
+            .collect();
         let mut suffix = vec![0.0; possible.len() + 1];
         for j in (0..possible.len()).rev() {
             suffix[j] = suffix[j + 1] + possible[j].p;
         }
         let bucket_m = dist.step_m;
-        // A cell's centre distance lies within half a cell diagonal of where
-        // the footprint reaches it (they are equal for a cone).
-        let margin = self.map.grid().resolution_m() + 1e-6 * bucket_m;
-        let count = (reach / bucket_m) as usize + 2;
-        let (mut lo, mut hi) = (0, 0);
-        let mut buckets = Vec::with_capacity(count);
-        for b in 0..count {
-            let enter_lo = b as f64 * bucket_m - 1e-6 * bucket_m;
-            let d_l_hi = (b + 1) as f64 * bucket_m + margin;
-            while lo < possible.len() && possible[lo].reach < enter_lo {
-                lo += 1;
-            }
-            hi = hi.max(lo);
-            while hi < possible.len() && !possible[hi].lookup.is_free(d_l_hi) {
-                hi += 1;
-            }
-            buckets.push((lo, hi));
-        }
+        let buckets = if possible.len() <= FEW_ECHOES {
+            Vec::new()
+        } else {
+            echo_buckets(&possible, bucket_m, reach, self.map.grid().resolution_m())
+        };
         let beam = Beam {
             map: self.map,
             cache,
@@ -433,8 +412,7 @@ impl<'a> GainEvaluator<'a> {
             suffix: &suffix,
             buckets: &buckets,
             inv_bucket_m: 1.0 / bucket_m,
-            last_bucket: (count - 1) as f64,
-            few: possible.len() <= FEW_ECHOES,
+            last_bucket: buckets.len().saturating_sub(1) as f64,
             no_echo: dist.no_echo,
             none_lookup: self.table.reading(self.range.max_range_m, false),
             none_reach,
@@ -469,6 +447,33 @@ impl<'a> GainEvaluator<'a> {
 /// rather than looking up its bucket.
 const FEW_ECHOES: usize = 8;
 
+/// For each distance bucket of `bucket_m` along a beam's footprint (out to
+/// `reach`), the run `possible[lo..hi]` of echoes a cell reached in it must
+/// test; see [`Beam::buckets`]. Reach and freeness grow with the echo's
+/// distance, so the echoes before the run cannot reach the bucket's cells and
+/// those after it leave them all in free space.
+fn echo_buckets(possible: &[Hypothesis], bucket_m: f64, reach: f64, resolution_m: f64) -> Vec<(usize, usize)> {
+    // A cell's centre distance lies within half a cell diagonal of where the
+    // footprint reaches it (they are equal for a cone).
+    let margin = resolution_m + 1e-6 * bucket_m;
+    let count = (reach / bucket_m) as usize + 2;
+    let (mut lo, mut hi) = (0, 0);
+    let mut buckets = Vec::with_capacity(count);
+    for b in 0..count {
+        let enter_lo = b as f64 * bucket_m - 1e-6 * bucket_m;
+        let d_l_hi = (b + 1) as f64 * bucket_m + margin;
+        while lo < possible.len() && possible[lo].reach < enter_lo {
+            lo += 1;
+        }
+        hi = hi.max(lo);
+        while hi < possible.len() && !possible[hi].lookup.is_free(d_l_hi) {
+            hi += 1;
+        }
+        buckets.push((lo, hi));
+    }
+    buckets
+}
+
 /// One hypothetical echo of a beam.
 #[derive(Clone, Copy)]
 struct Hypothesis {
@@ -488,14 +493,12 @@ struct Beam<'a> {
     suffix: &'a [f64],
     /// For cells reached at `enter` in bucket `b = enter / bucket`: the
     /// echoes `possible[..lo]` do not reach them, `possible[hi..]` leave them
-    /// in free space, and `possible[lo..hi]` need a test.
+    /// in free space, and `possible[lo..hi]` need a test. Empty when there
+    /// are so few echoes that testing each beats the lookup.
     buckets: &'a [(usize, usize)],
     inv_bucket_m: f64,
     /// The index of the last bucket.
     last_bucket: f64,
-    /// Whether there are so few echoes that testing each beats looking up the
-    /// bucket.
-    few: bool,
     no_echo: f64,
     none_lookup: ReadingLookup,
     none_reach: f64,
@@ -678,7 +681,7 @@ impl<const N: usize> CellVisitor for FastBeam<'_, N> {
     #[inline(always)]
     fn cell(&mut self, i: usize, d_l: f64, enter: f64) {
         let beam = self.beam;
-        let (lo, hi) = if beam.few {
+        let (lo, hi) = if beam.buckets.is_empty() {
             (0, beam.possible.len())
         } else {
             // Clamped in floating point, so that the conversion is a plain truncation.

@@ -61,6 +61,21 @@ fn to_dict<'py>(py: Python<'py>, fields: &[(&'static str, f64)]) -> PyResult<Bou
     Ok(d)
 }
 
+/// `model.kernel(...)` as a float32 array, `bins` checked first.
+fn kernel_array<'py, M: SensorModel + Sync>(
+    py: Python<'py>,
+    model: &M,
+    cell_distance: f64,
+    measured_distance: f64,
+    resolution: f64,
+    bins: i64,
+) -> PyResult<Option<Bound<'py, PyArray1<f32>>>> {
+    let bins = convert::bins(py, bins)?;
+    // Tabulating the kernels takes a millisecond or so: let other threads run.
+    let k = py.detach(|| model.kernel(cell_distance, measured_distance, resolution, bins)).or_raise(py)?;
+    Ok(k.map(|k| PyArray1::from_vec(py, k)))
+}
+
 /// The sonar inverse model: a range model spread over a cone.
 ///
 /// Every cell whose centre lies within half the opening angle of the beam axis
@@ -163,11 +178,7 @@ impl PySonarModel {
         resolution: f64,
         bins: i64,
     ) -> PyResult<Option<Bound<'py, PyArray1<f32>>>> {
-        let bins = convert::bins(py, bins)?;
-        let model = self.0;
-        // Tabulating the kernels takes a millisecond or so: let other threads run.
-        let k = py.detach(|| model.kernel(cell_distance, measured_distance, resolution, bins)).or_raise(py)?;
-        Ok(k.map(|k| PyArray1::from_vec(py, k)))
+        kernel_array(py, &self.0, cell_distance, measured_distance, resolution, bins)
     }
 
     /// The parameters as a dict of keyword arguments.
@@ -281,11 +292,7 @@ impl PyLaserModel {
         resolution: f64,
         bins: i64,
     ) -> PyResult<Option<Bound<'py, PyArray1<f32>>>> {
-        let bins = convert::bins(py, bins)?;
-        let model = self.0;
-        // Tabulating the kernels takes a millisecond or so: let other threads run.
-        let k = py.detach(|| model.kernel(cell_distance, measured_distance, resolution, bins)).or_raise(py)?;
-        Ok(k.map(|k| PyArray1::from_vec(py, k)))
+        kernel_array(py, &self.0, cell_distance, measured_distance, resolution, bins)
     }
 
     /// The parameters as a dict of keyword arguments.

@@ -12,7 +12,7 @@ use crate::error::Result;
 ///
 /// # Example
 /// ```
-/// use covmap_core::LaserModel;
+/// use covmap_core::{LaserModel, SensorModel};
 /// let laser = LaserModel::default();
 /// // The cell where the beam ends 0.3 cells past its centre is 20 % covered.
 /// let k = laser.kernel(2.0, 2.0 + 0.3 * 0.05, 0.05, 16).unwrap().unwrap();
@@ -41,20 +41,6 @@ impl Default for LaserModel {
                 xi_per_m: 0.005,
             },
         }
-    }
-}
-
-impl LaserModel {
-    /// The kernel the map multiplies in; see [`super::SonarModel::kernel`].
-    pub fn kernel(
-        &self,
-        cell_distance_m: f64,
-        measured_distance_m: f64,
-        resolution_m: f64,
-        bins: usize,
-    ) -> Result<Option<Vec<f32>>> {
-        self.validate()?;
-        self.range.kernel(cell_distance_m, measured_distance_m, resolution_m, bins)
     }
 }
 

@@ -189,4 +189,19 @@ pub trait SensorModel {
     fn footprint(&self) -> Footprint;
     /// Errors unless every parameter lies in its valid range.
     fn validate(&self) -> Result<()>;
+
+    /// The kernel the map multiplies in for a cell at `cell_distance_m` and a
+    /// reading of `measured_distance_m`, on a grid of `resolution_m` with
+    /// `bins` bins, or `None` where the cell is not updated; see
+    /// [`RangeModel::kernel`]. Errors if the model is invalid.
+    fn kernel(
+        &self,
+        cell_distance_m: f64,
+        measured_distance_m: f64,
+        resolution_m: f64,
+        bins: usize,
+    ) -> Result<Option<Vec<f32>>> {
+        self.validate()?;
+        self.range_model().kernel(cell_distance_m, measured_distance_m, resolution_m, bins)
+    }
 }

@@ -14,7 +14,7 @@ use crate::error::{CovmapError, Result};
 ///
 /// # Example
 /// ```
-/// use covmap_core::SonarModel;
+/// use covmap_core::{SensorModel, SonarModel};
 /// let sonar = SonarModel::default();
 /// assert_eq!(sonar.range.band_m, 0.20);
 /// // A cell 1 m out, reading 2 m: the beam passed through, the kernel favours empty.
@@ -54,23 +54,6 @@ impl Default for SonarModel {
             },
             opening_angle_rad: 15f64.to_radians(),
         }
-    }
-}
-
-impl SonarModel {
-    /// The kernel the map multiplies in for a cell at `cell_distance_m` and a
-    /// reading of `measured_distance_m`, on a grid of `resolution_m` with `bins`
-    /// bins, or `None` where the cell is not updated. It comes from the same
-    /// precomputed table the update uses.
-    pub fn kernel(
-        &self,
-        cell_distance_m: f64,
-        measured_distance_m: f64,
-        resolution_m: f64,
-        bins: usize,
-    ) -> Result<Option<Vec<f32>>> {
-        self.validate()?;
-        self.range.kernel(cell_distance_m, measured_distance_m, resolution_m, bins)
     }
 }
 
