@@ -1,5 +1,6 @@
 //! The coverage map: one histogram over coverage values per cell.
 
+use crate::aligned::Aligned;
 use crate::error::{CovmapError, Result};
 use crate::footprint::{CellVisitor, visit};
 use crate::grid::{Cell, Grid};
@@ -36,7 +37,9 @@ pub struct CoverageMap {
     grid: Grid,
     bins: usize,
     floor: f32,
-    data: Vec<f32>,
+    /// The histograms, cell-major, starting on a cache line so that a 16-bin
+    /// histogram is exactly one line.
+    data: Aligned<f32>,
     /// The last sensor model's kernels, rebuilt when the model changes.
     table: Option<Box<KernelTable>>,
     /// Per-cell entropy history, when tracked.
@@ -75,7 +78,7 @@ impl CoverageMap {
             grid,
             bins,
             floor: histogram::bin_floor(bins),
-            data: vec![p; grid.len() * bins],
+            data: Aligned::filled(p, grid.len() * bins),
             table: None,
             history: None,
         })
@@ -111,7 +114,7 @@ impl CoverageMap {
                 histogram::update(h, &uniform, floor);
             }
         }
-        Ok(Self { grid, bins, floor, data, table: None, history: None })
+        Ok(Self { grid, bins, floor, data: Aligned::from_slice(&data), table: None, history: None })
     }
 
     /// The kernel table of the last model integrated, if any.
@@ -445,5 +448,17 @@ mod tests {
         assert!(CoverageMap::from_histograms(g, 4, d).is_err());
         let m = CoverageMap::from_histograms(g, 4, vec![0.25; 16]).unwrap();
         assert_eq!(m.entropy()[0], 4f32.ln());
+    }
+
+    /// A 16-bin histogram is one cache line, not two halves of neighbours.
+    #[test]
+    fn histograms_start_on_a_cache_line() {
+        let g = Grid::new([0.0, 0.0], 0.1, 7, 9).unwrap();
+        let fresh = CoverageMap::new(g);
+        let loaded = CoverageMap::from_histograms(g, 16, fresh.histograms().to_vec()).unwrap();
+        for map in [&fresh, &loaded, &loaded.clone()] {
+            assert_eq!(map.histograms().as_ptr() as usize % 64, 0);
+            assert_eq!(map.histograms().len(), 63 * 16);
+        }
     }
 }

@@ -18,6 +18,19 @@ pub(crate) trait CellVisitor {
     /// footprint of every reach `>= enter_m` (the centre distance for a cone,
     /// where the ray enters the cell for a ray).
     fn cell(&mut self, index: usize, d_l: f64, enter_m: f64);
+
+    /// Visit the cells `first .. first + n` of one row of a cone, at
+    /// distances `d[..n]` (which are also where the cone reaches them), those
+    /// within `reach_m` only (`d[n..]` lie past the row's end: finite, but no
+    /// cells'). A visitor may take the block at once.
+    #[inline(always)]
+    fn row_block(&mut self, first: usize, d: &[f64; ROW_BLOCK], n: usize, reach_m: f64) {
+        for (k, &d) in d[..n].iter().enumerate() {
+            if d <= reach_m {
+                self.cell(first + k, d, d);
+            }
+        }
+    }
 }
 
 impl<F: FnMut(usize, f64)> CellVisitor for F {
@@ -64,7 +77,7 @@ fn centre_range(a: f64, b: f64, r: f64, n: usize) -> Option<(usize, usize)> {
 }
 
 /// Cells of a cone's row whose distances are computed together.
-const ROW_BLOCK: usize = 8;
+pub(crate) const ROW_BLOCK: usize = 8;
 
 /// Cells whose centres lie in the sector of radius `reach` and half-angle
 /// `half` (< pi/2) around `axis`: the disk cut by the two boundary half-planes.
@@ -140,11 +153,7 @@ fn visit_cone(grid: &Grid, [sx, sy]: [f64; 2], axis: f64, half: f64, reach: f64,
             for x in d.iter_mut() {
                 *x = (*x * *x + py2).sqrt();
             }
-            for (k, &d) in d[..n].iter().enumerate() {
-                if d <= reach {
-                    f.cell(base + col + k, d, d);
-                }
-            }
+            f.row_block(base + col, &d, n, reach);
             // Only the row's last block is short, so `px` runs past the
             // row's end only when the row is done.
             col += n;

@@ -40,7 +40,13 @@
 //!   `H(h k / Z) = ln Z - A / Z`, `Z = sum h k`, `A = sum k (h ln h) + h (k ln k)`;
 //! - the gains are computed in batches, the logarithms of a batch together as
 //!   vector code, with AVX2 and FMA where the processor has them (detected at
-//!   run time; the two paths agree to rounding).
+//!   run time; the two paths agree to rounding); the cache lines a queued gain
+//!   will read are requested when it is queued, so that they have arrived
+//!   when the batch is computed;
+//! - a cone is walked in blocks of a row's neighbouring cells, and a block
+//!   that lies wholly in front of the nearest echo it could meet (most of
+//!   them) queues its free-space gains at once, without testing echoes cell
+//!   by cell.
 //!
 //! Candidates are evaluated in parallel (feature `parallel`), in groups of
 //! neighbours whose beams are taken in the order of their direction, so that
@@ -53,9 +59,10 @@ use std::borrow::Cow;
 
 use serde::{Deserialize, Serialize};
 
+use crate::aligned::Aligned;
 use crate::coverage_map::CoverageMap;
 use crate::error::{CovmapError, Result};
-use crate::footprint::{CellVisitor, visit};
+use crate::footprint::{CellVisitor, ROW_BLOCK, visit};
 use crate::grid::Grid;
 use crate::numeric::{ln_normal, x_ln_x};
 use crate::scan::Pose;
@@ -159,16 +166,27 @@ pub fn reading_distribution(
 /// small difference of such sums: rounded to `f32` they put the fast evaluator
 /// 1e-4 (relative) off the exact one on some maps.
 struct LogCache {
-    h_ln_h: Vec<f64>,
+    /// Laid out as the histograms, from the start of a cache line.
+    h_ln_h: Aligned<f64>,
     entropy: Vec<f64>,
 }
 
 impl LogCache {
     fn new(map: &CoverageMap) -> Self {
         let bins = map.bins();
-        let h_ln_h: Vec<f64> = par_map_chunks(map.histograms(), 4096 * bins, |chunk| {
-            chunk.iter().map(|&v| x_ln_x(f64::from(v))).collect()
-        });
+        let h = map.histograms();
+        let mut h_ln_h = Aligned::filled(0.0, h.len());
+        let chunk = 4096 * bins;
+        let fill = |(out, h): (&mut [f64], &[f32])| {
+            out.iter_mut().zip(h).for_each(|(u, &v)| *u = x_ln_x(f64::from(v)));
+        };
+        #[cfg(feature = "parallel")]
+        {
+            use rayon::prelude::*;
+            h_ln_h.par_chunks_mut(chunk).zip(h.par_chunks(chunk)).for_each(fill);
+        }
+        #[cfg(not(feature = "parallel"))]
+        h_ln_h.chunks_mut(chunk).zip(h.chunks(chunk)).for_each(fill);
         let entropy = par_map_chunks(&h_ln_h, 4096 * bins, |chunk| {
             chunk.chunks_exact(bins).map(|u| -u.iter().sum::<f64>()).collect()
         });
@@ -436,7 +454,7 @@ impl<'a> GainEvaluator<'a> {
             k: rows(self.table.values_f64()),
             k_ln_k: rows(self.table.k_ln_k()),
         };
-        let mut sweep = FastBeam::<N> { beam, rows, total: 0.0, jobs: Vec::with_capacity(BATCH + 64) };
+        let mut sweep = FastBeam::<N> { beam, rows, total: 0.0, jobs: [(0, 0, 0.0); SLOTS], queued: 0 };
         visit(self.map.grid(), origin, angle, reach, self.footprint, &mut sweep);
         sweep.flush();
         sweep.total
@@ -506,16 +524,27 @@ struct Beam<'a> {
     wide: bool,
 }
 
+impl Beam<'_> {
+    /// The bucket of cells the footprint reaches at `enter` metres.
+    #[inline(always)]
+    fn bucket(&self, enter: f64) -> usize {
+        // Clamped in floating point, so that the conversion is a plain truncation.
+        (enter * self.inv_bucket_m).min(self.last_bucket) as i32 as usize
+    }
+}
+
 /// The fast evaluator's work for one beam, with `N` bins per histogram (0: any
 /// number).
 struct FastBeam<'a, const N: usize> {
     beam: &'a Beam<'a>,
     rows: Rows<'a, N>,
     total: f64,
-    /// Gains waiting to be computed: `(cell, kernel offset, weight)`.
-    /// Computing them in batches lets the processor overlap the
-    /// independent cells instead of waiting on each one's logarithm.
-    jobs: Vec<Job>,
+    /// Gains waiting to be computed, `jobs[..queued]`. Computing them in
+    /// batches lets the processor overlap the independent cells instead of
+    /// waiting on each one's logarithm. Fewer than [`BATCH`] wait between
+    /// calls, so a row block always finds room for its [`ROW_BLOCK`].
+    jobs: [Job; SLOTS],
+    queued: usize,
 }
 
 /// What one gain reads, cut into rows of `N` bins (empty for `N = 0`), so
@@ -554,20 +583,18 @@ fn z_order(x: u32, y: u32) -> u64 {
     spread(x) | (spread(y) << 1)
 }
 
-/// Gains computed per batch.
+/// Gains queued before a batch is computed.
 const BATCH: usize = 64;
+/// Room for the jobs of a batch: one row block may overfill it.
+const SLOTS: usize = BATCH + ROW_BLOCK;
 
 impl<const N: usize> FastBeam<'_, N> {
     /// Compute the waiting gains, in the order they were queued.
     fn flush(&mut self) {
-        for jobs in self.jobs.chunks(BATCH) {
-            self.total += if N == 0 {
-                weighted_gains_any(self.beam, jobs)
-            } else {
-                weighted_gains(&self.rows, self.beam.wide, jobs)
-            };
-        }
-        self.jobs.clear();
+        let jobs = &self.jobs[..self.queued];
+        self.total +=
+            if N == 0 { weighted_gains_any(self.beam, jobs) } else { weighted_gains(&self.rows, self.beam.wide, jobs) };
+        self.queued = 0;
     }
 }
 
@@ -586,7 +613,7 @@ fn wide_arithmetic() -> bool {
     }
 }
 
-/// `sum w I(h_i | k)` over at most [`BATCH`] jobs, in order, with the
+/// `sum w I(h_i | k)` over at most [`SLOTS`] jobs, in order, with the
 /// processor's widest arithmetic (`N > 0`).
 fn weighted_gains<const N: usize>(rows: &Rows<'_, N>, wide: bool, jobs: &[Job]) -> f64 {
     #[cfg(target_arch = "x86_64")]
@@ -607,24 +634,31 @@ fn weighted_gains_avx2_fma<const N: usize>(rows: &Rows<'_, N>, jobs: &[Job]) -> 
     weighted_gains_with::<N, true>(rows, jobs)
 }
 
-/// `sum w I(h_i | k)` over at most [`BATCH`] jobs, each gain
+/// `sum w I(h_i | k)` over at most [`SLOTS`] jobs, each gain
 /// `I = H(h) - H(h k / Z) = H(h) - ln Z + A / Z` with `Z = sum h k` and
 /// `A = sum h k ln(h k) = sum k (h ln h) + h (k ln k)`: three dot products and
 /// one logarithm. The logarithms of the batch are taken together, as vector
 /// code. `FMA`: fuse multiplications and additions.
 #[inline(always)]
 fn weighted_gains_with<const N: usize, const FMA: bool>(rows: &Rows<'_, N>, jobs: &[Job]) -> f64 {
-    let jobs = &jobs[..jobs.len().min(BATCH)];
+    let jobs = &jobs[..jobs.len().min(SLOTS)];
     // Unused slots hold Z = 1, A = 0.
-    let mut z = [1.0f64; BATCH];
-    let mut a = [0.0f64; BATCH];
+    let mut z = [1.0f64; SLOTS];
+    let mut a = [0.0f64; SLOTS];
     for (j, &(i, offset, _)) in jobs.iter().enumerate() {
         let e = offset / N;
+        #[cfg(target_arch = "x86_64")]
+        if FMA {
+            // SAFETY: `FMA` is set only inside `weighted_gains_avx2_fma`,
+            // which runs only where the processor has AVX2 and FMA.
+            (z[j], a[j]) = unsafe { sums_avx2::<N>(&rows.h[i], &rows.h_ln_h[i], &rows.k[e], &rows.k_ln_k[e]) };
+            continue;
+        }
         (z[j], a[j]) = sums::<N, FMA>(&rows.h[i], &rows.h_ln_h[i], &rows.k[e], &rows.k_ln_k[e]);
     }
     // `ln Z - A / Z` for the whole batch.
-    let mut posterior = [0.0f64; BATCH];
-    for j in 0..BATCH {
+    let mut posterior = [0.0f64; SLOTS];
+    for j in 0..SLOTS {
         posterior[j] = ln_normal(z[j]) - a[j] / z[j];
     }
     let mut total = 0.0;
@@ -658,6 +692,34 @@ fn sums<const N: usize, const FMA: bool>(h: &[f32; N], u: &[f64; N], k: &[f64; N
     ((z[0] + z[2]) + (z[1] + z[3]), (a[0] + a[2]) + (a[1] + a[3]))
 }
 
+/// [`sums`] with fused multiply-adds, in AVX2 registers: the same four lanes,
+/// added in the same order, so the same bits.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2,fma")]
+#[inline]
+fn sums_avx2<const N: usize>(h: &[f32; N], u: &[f64; N], k: &[f64; N], m: &[f64; N]) -> (f64, f64) {
+    use std::arch::x86_64::*;
+    let (mut z, mut a) = (_mm256_setzero_pd(), _mm256_setzero_pd());
+    for c in 0..N / 4 {
+        // SAFETY: `4 c + 3 < N`, the length of every array.
+        let (hv, uv, kv, mv) = unsafe {
+            (
+                _mm256_cvtps_pd(_mm_loadu_ps(h.as_ptr().add(4 * c))),
+                _mm256_loadu_pd(u.as_ptr().add(4 * c)),
+                _mm256_loadu_pd(k.as_ptr().add(4 * c)),
+                _mm256_loadu_pd(m.as_ptr().add(4 * c)),
+            )
+        };
+        z = _mm256_fmadd_pd(hv, kv, z);
+        a = _mm256_fmadd_pd(uv, kv, _mm256_fmadd_pd(hv, mv, a));
+    }
+    // (lane 0 + lane 2) + (lane 1 + lane 3), as `sums` adds them, for both
+    // sums at once: [z0 + z2, z1 + z3, a0 + a2, a1 + a3], then pairwise.
+    let halves = _mm256_add_pd(_mm256_permute2f128_pd::<0x20>(z, a), _mm256_permute2f128_pd::<0x31>(z, a));
+    let both = _mm256_hadd_pd(halves, halves);
+    (_mm256_cvtsd_f64(both), _mm_cvtsd_f64(_mm256_extractf128_pd::<1>(both)))
+}
+
 /// [`weighted_gains`] for any bin count, plainly.
 fn weighted_gains_any(beam: &Beam<'_>, jobs: &[Job]) -> f64 {
     let bins = beam.map.bins();
@@ -677,37 +739,126 @@ fn weighted_gains_any(beam: &Beam<'_>, jobs: &[Job]) -> f64 {
     total
 }
 
+impl<const N: usize> FastBeam<'_, N> {
+    /// Ask for the cache lines of cell `i`'s histogram and `h ln h`: its gains
+    /// are computed at the next flush, by when they have arrived.
+    #[inline(always)]
+    fn prefetch(&self, i: usize) {
+        #[cfg(target_arch = "x86_64")]
+        if let (Some(h), Some(u)) = (self.rows.h.get(i), self.rows.h_ln_h.get(i)) {
+            use std::arch::x86_64::{_MM_HINT_T0, _mm_prefetch};
+            let u = u.as_ptr().cast::<i8>();
+            // SAFETY: SSE is part of every x86-64 processor, and a prefetch
+            // only hints at an address: it never reads or faults.
+            unsafe {
+                _mm_prefetch::<_MM_HINT_T0>(h.as_ptr().cast());
+                _mm_prefetch::<_MM_HINT_T0>(u);
+                _mm_prefetch::<_MM_HINT_T0>(u.wrapping_add(64));
+            }
+        }
+        #[cfg(not(target_arch = "x86_64"))]
+        let _ = i;
+    }
+
+    /// The weight of the free kernel, if it is the only one every cell of a
+    /// cone's row block (at distances `d`) gets: every cell within `reach_m`,
+    /// the echoes that end before the block reaching none of it, the next
+    /// leaving all of it in free space, and either every cell or none within
+    /// the reach of no echo. The same weight [`CellVisitor::cell`] gives each.
+    #[inline(always)]
+    fn block_weight(&self, d: &[f64], reach_m: f64) -> Option<f64> {
+        let beam = self.beam;
+        let (near, far) = d.iter().fold((f64::INFINITY, 0.0f64), |(lo, hi), &x| (lo.min(x), hi.max(x)));
+        if !(far <= reach_m) {
+            return None;
+        }
+        let mut j = if beam.buckets.is_empty() { 0 } else { beam.buckets[beam.bucket(near)].0 };
+        while j < beam.possible.len() && beam.possible[j].reach < near {
+            j += 1;
+        }
+        if beam.possible.get(j).is_some_and(|h| !h.lookup.is_free(far)) {
+            return None;
+        }
+        if far <= beam.none_reach {
+            Some(beam.suffix[j] + beam.no_echo)
+        } else if near > beam.none_reach {
+            Some(beam.suffix[j])
+        } else {
+            None
+        }
+    }
+
+    /// Queue one gain; compute the batch when it is full.
+    #[inline(always)]
+    fn push(&mut self, job: Job) {
+        debug_assert!(self.queued < BATCH);
+        self.jobs[self.queued] = job;
+        self.queued += 1;
+        if self.queued >= BATCH {
+            self.flush();
+        }
+    }
+}
+
 impl<const N: usize> CellVisitor for FastBeam<'_, N> {
     #[inline(always)]
     fn cell(&mut self, i: usize, d_l: f64, enter: f64) {
         let beam = self.beam;
-        let (lo, hi) = if beam.buckets.is_empty() {
-            (0, beam.possible.len())
-        } else {
-            // Clamped in floating point, so that the conversion is a plain truncation.
-            let bucket = (enter * beam.inv_bucket_m).min(beam.last_bucket) as i32 as usize;
-            beam.buckets[bucket]
-        };
-        // Every echo that leaves the cell in free space gives it the same
-        // kernel as no echo does: region 0 at distance min(d_l, d) = d_l.
-        let mut free_weight = beam.suffix[hi];
-        for h in &beam.possible[lo..hi] {
+        self.prefetch(i);
+        let (lo, hi) =
+            if beam.buckets.is_empty() { (0, beam.possible.len()) } else { beam.buckets[beam.bucket(enter)] };
+        // Echoes that end near the cell need kernels of their own. From the
+        // first echo that reaches the cell and leaves it in free space on,
+        // every farther one does both (reach and freeness grow with the
+        // echo's distance) and gives it the kernel no echo gives: region 0 at
+        // distance min(d_l, d) = d_l.
+        let mut j = lo;
+        while j < hi {
+            let h = &beam.possible[j];
             if enter <= h.reach {
                 if h.lookup.is_free(d_l) {
-                    free_weight += h.p;
-                } else {
-                    self.jobs.push((i, h.lookup.offset(d_l), h.p));
+                    break;
                 }
+                self.push((i, h.lookup.offset(d_l), h.p));
             }
+            j += 1;
         }
-        if enter <= self.beam.none_reach {
-            free_weight += self.beam.no_echo;
+        let mut free_weight = beam.suffix[j];
+        if enter <= beam.none_reach {
+            free_weight += beam.no_echo;
         }
         if free_weight > 0.0 {
-            self.jobs.push((i, self.beam.none_lookup.offset(d_l), free_weight));
+            self.push((i, beam.none_lookup.free_offset(d_l), free_weight));
         }
-        if self.jobs.len() >= BATCH {
-            self.flush();
+    }
+
+    #[inline(always)]
+    fn row_block(&mut self, first: usize, d: &[f64; ROW_BLOCK], n: usize, reach_m: f64) {
+        if let Some(w) = self.block_weight(&d[..n], reach_m) {
+            // Every cell of the block gets the free kernel with weight `w`:
+            // what `cell` would queue for each, queued at once.
+            if w > 0.0 {
+                // Fewer than `BATCH` wait, so the block fits; the `min` only
+                // tells the compiler so.
+                let queued = self.queued.min(BATCH);
+                let free = &self.beam.none_lookup;
+                for (k, (job, &d)) in self.jobs[queued..queued + ROW_BLOCK].iter_mut().zip(d).enumerate() {
+                    *job = (first + k, free.free_offset(d), w);
+                }
+                for k in 0..n {
+                    self.prefetch(first + k);
+                }
+                self.queued = queued + n;
+                if self.queued >= BATCH {
+                    self.flush();
+                }
+            }
+            return;
+        }
+        for (k, &d) in d[..n].iter().enumerate() {
+            if d <= reach_m {
+                self.cell(first + k, d, d);
+            }
         }
     }
 }
@@ -766,7 +917,14 @@ mod tests {
         map.integrate(&Pose::new(3.0, 2.5, 0.1), &[1.2, 2.0, 6.0, 0.7, 1.5, 2.2, 3.0, 0.4], &bearings, &sonar).unwrap();
         map.integrate(&Pose::new(5.0, 2.0, -0.3), &[2.5, 1.0, 1.7, 0.9, 5.5, 2.2, 1.0, 0.8], &bearings, &sonar)
             .unwrap();
-        for model in [&sonar as &dyn SensorModel, &LaserModel::default()] {
+        // No band behind the end point: an echo's reach then ends where its
+        // free space does, give or take the end band.
+        let mut laser_no_band = LaserModel::default();
+        laser_no_band.range.band_m = 0.0;
+        let mut sonar_no_band = sonar;
+        sonar_no_band.range.band_m = 0.0;
+        let models: [&dyn SensorModel; 4] = [&sonar, &LaserModel::default(), &laser_no_band, &sonar_no_band];
+        for model in models {
             for stop_coverage in [StopCoverage::MaximumLikelihood, StopCoverage::Mean] {
                 let options = GainOptions { range_step_m: None, stop_coverage };
                 let mut eval = GainEvaluator::new(&map, model, options).unwrap();

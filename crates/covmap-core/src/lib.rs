@@ -24,6 +24,7 @@
 //! ```
 #![warn(missing_docs)]
 
+mod aligned;
 mod counting;
 mod coverage_map;
 mod error;

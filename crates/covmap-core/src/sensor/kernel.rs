@@ -176,8 +176,15 @@ impl ReadingLookup {
         } else {
             BAND_SLICES + 1
         };
+        region * (DISTANCE_STEPS + 1) * self.bins + self.free_offset(d_l)
+    }
+
+    /// [`ReadingLookup::offset`] for a cell in free space (`is_free`, or any
+    /// cell of a no-echo reading): region 0.
+    #[inline(always)]
+    pub(crate) fn free_offset(&self, d_l: f64) -> usize {
         let step = (d_l.max(0.0).min(self.d) * self.inv_step_s + 0.5).min(DISTANCE_STEPS as f64);
-        (region * (DISTANCE_STEPS + 1) + step as i32 as usize) * self.bins
+        step as i32 as usize * self.bins
     }
 }
 
