@@ -638,9 +638,10 @@ fn weighted_gains_avx2_fma<const N: usize>(rows: &Rows<'_, N>, jobs: &[Job]) -> 
 /// `I = H(h) - H(h k / Z) = H(h) - ln Z + A / Z` with `Z = sum h k` and
 /// `A = sum h k ln(h k) = sum k (h ln h) + h (k ln k)`: three dot products and
 /// one logarithm. The logarithms of the batch are taken together, as vector
-/// code. `FMA`: fuse multiplications and additions.
+/// code. `AVX2`: compute the sums with [`sums_avx2`] (only inside
+/// [`weighted_gains_avx2_fma`]).
 #[inline(always)]
-fn weighted_gains_with<const N: usize, const FMA: bool>(rows: &Rows<'_, N>, jobs: &[Job]) -> f64 {
+fn weighted_gains_with<const N: usize, const AVX2: bool>(rows: &Rows<'_, N>, jobs: &[Job]) -> f64 {
     let jobs = &jobs[..jobs.len().min(SLOTS)];
     // Unused slots hold Z = 1, A = 0.
     let mut z = [1.0f64; SLOTS];
@@ -648,13 +649,13 @@ fn weighted_gains_with<const N: usize, const FMA: bool>(rows: &Rows<'_, N>, jobs
     for (j, &(i, offset, _)) in jobs.iter().enumerate() {
         let e = offset / N;
         #[cfg(target_arch = "x86_64")]
-        if FMA {
-            // SAFETY: `FMA` is set only inside `weighted_gains_avx2_fma`,
+        if AVX2 {
+            // SAFETY: `AVX2` is set only inside `weighted_gains_avx2_fma`,
             // which runs only where the processor has AVX2 and FMA.
             (z[j], a[j]) = unsafe { sums_avx2::<N>(&rows.h[i], &rows.h_ln_h[i], &rows.k[e], &rows.k_ln_k[e]) };
             continue;
         }
-        (z[j], a[j]) = sums::<N, FMA>(&rows.h[i], &rows.h_ln_h[i], &rows.k[e], &rows.k_ln_k[e]);
+        (z[j], a[j]) = sums::<N>(&rows.h[i], &rows.h_ln_h[i], &rows.k[e], &rows.k_ln_k[e]);
     }
     // `ln Z - A / Z` for the whole batch.
     let mut posterior = [0.0f64; SLOTS];
@@ -673,27 +674,22 @@ fn weighted_gains_with<const N: usize, const FMA: bool>(rows: &Rows<'_, N>, jobs
 /// `Z = sum h k` and `A = sum k (h ln h) + h (k ln k)` for `N` bins (a
 /// multiple of 4), in four lanes added in a fixed order.
 #[inline(always)]
-fn sums<const N: usize, const FMA: bool>(h: &[f32; N], u: &[f64; N], k: &[f64; N], m: &[f64; N]) -> (f64, f64) {
+fn sums<const N: usize>(h: &[f32; N], u: &[f64; N], k: &[f64; N], m: &[f64; N]) -> (f64, f64) {
     let mut z = [0.0f64; 4];
     let mut a = [0.0f64; 4];
     for c in 0..N / 4 {
         for l in 0..4 {
             let b = 4 * c + l;
             let hb = f64::from(h[b]);
-            if FMA {
-                z[l] = hb.mul_add(k[b], z[l]);
-                a[l] = u[b].mul_add(k[b], hb.mul_add(m[b], a[l]));
-            } else {
-                z[l] += hb * k[b];
-                a[l] += u[b] * k[b] + hb * m[b];
-            }
+            z[l] += hb * k[b];
+            a[l] += u[b] * k[b] + hb * m[b];
         }
     }
     ((z[0] + z[2]) + (z[1] + z[3]), (a[0] + a[2]) + (a[1] + a[3]))
 }
 
-/// [`sums`] with fused multiply-adds, in AVX2 registers: the same four lanes,
-/// added in the same order, so the same bits.
+/// [`sums`] in AVX2 registers with fused multiply-adds: the same four lanes,
+/// added in the same order (the fused roundings make the last bits differ).
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx2,fma")]
 #[inline]
