@@ -19,6 +19,7 @@ __all__ = [
     "InvalidBearingError",
     "InvalidGridError",
     "InvalidHistogramError",
+    "InvalidHistoryError",
     "InvalidParameterError",
     "InvalidPolygonError",
     "InvalidPoseError",
@@ -68,6 +69,11 @@ class CellOutOfBoundsError(CovmapError, IndexError):
 
 class InvalidHistogramError(CovmapError, ValueError):
     """Histogram data handed in does not describe a valid map."""
+
+
+class InvalidHistoryError(CovmapError, ValueError):
+    """A stored entropy history holds an entropy no map can have (NaN, infinite
+    or negative)."""
 
 
 class ArrayShapeError(CovmapError, ValueError):

@@ -45,6 +45,7 @@ _Poses = npt.NDArray[np.float64] | Sequence[Sequence[float]]
 _Points = npt.NDArray[np.float64] | Sequence[Sequence[float]]
 _Point = Sequence[float] | npt.NDArray[np.floating[Any]]
 _Path = str | PathLike[str]
+_HistoryState = tuple[npt.NDArray[np.float32], npt.NDArray[np.uint32]]
 
 @final
 class Grid:
@@ -195,7 +196,10 @@ class CoverageMap:
     def tracks_history(self) -> bool: ...
     def measurements(self) -> npt.NDArray[np.uint32]: ...
     def stagnated(self) -> npt.NDArray[np.bool_]: ...
-    def __reduce__(self) -> tuple[Any, tuple[Grid, npt.NDArray[np.float32]]]: ...
+    def __reduce__(
+        self,
+    ) -> tuple[Any, tuple[Grid, npt.NDArray[np.float32]], _HistoryState | None]: ...
+    def __setstate__(self, state: _HistoryState | None) -> None: ...
 
 @final
 class OccupancyGrid:

@@ -150,6 +150,130 @@ def test_from_histograms_and_pickle(scanned_map: covmap.CoverageMap) -> None:
     assert "CoverageMap(Grid(" in repr(scanned_map)
 
 
+def settled_map(grid: covmap.Grid, model: Any, scans: ScanSource) -> covmap.CoverageMap:
+    """A map with its entropy history: random scans, then the same scan
+    repeated until the cells it reaches stagnate."""
+    cmap = covmap.CoverageMap(grid)
+    cmap.track_history(True)
+    for pose, ranges, bearings in scans(grid, 10, seed=3):
+        cmap.integrate(pose, ranges, bearings, model)
+    pose, ranges, bearings = next(scans(grid, 1, seed=4, beams=90))
+    for _ in range(25):
+        cmap.integrate(pose, ranges, bearings, model)
+    return cmap
+
+
+def test_pickle_and_copy_keep_the_entropy_history(
+    grid: covmap.Grid, model: Any, scans: ScanSource
+) -> None:
+    cmap = settled_map(grid, model, scans)
+    stagnated, measurements = cmap.stagnated(), cmap.measurements()
+    assert stagnated.any() and not stagnated.all()
+    assert measurements.max() > covmap.STAGNATION_MEASUREMENTS + 1
+    for clone in (pickle.loads(pickle.dumps(cmap)), copy.deepcopy(cmap), copy.copy(cmap)):
+        assert clone.tracks_history
+        np.testing.assert_array_equal(clone.histograms, cmap.histograms)
+        np.testing.assert_array_equal(clone.measurements(), measurements)
+        np.testing.assert_array_equal(clone.stagnated(), stagnated)
+        # The copy's history goes on as the original's does.
+        for pose, ranges, bearings in scans(grid, 5, seed=5):
+            clone.integrate(pose, ranges, bearings, model)
+        assert clone.measurements().sum() > measurements.sum()
+    twin = copy.deepcopy(cmap)
+    for pose, ranges, bearings in scans(grid, 5, seed=5):
+        cmap.integrate(pose, ranges, bearings, model)
+        twin.integrate(pose, ranges, bearings, model)
+    np.testing.assert_array_equal(twin.histograms, cmap.histograms)
+    np.testing.assert_array_equal(twin.measurements(), cmap.measurements())
+    np.testing.assert_array_equal(twin.stagnated(), cmap.stagnated())
+
+
+def test_pickle_without_history_stays_without(scanned_map: covmap.CoverageMap) -> None:
+    assert not scanned_map.tracks_history
+    _, args, state = scanned_map.__reduce__()
+    assert state is None
+    assert args[0] == scanned_map.grid
+    for clone in (pickle.loads(pickle.dumps(scanned_map)), copy.deepcopy(scanned_map)):
+        assert not clone.tracks_history
+        np.testing.assert_array_equal(clone.histograms, scanned_map.histograms)
+        assert not clone.measurements().any()
+
+
+def test_reduce_saves_the_history_as_arrays(
+    grid: covmap.Grid, model: Any, scans: ScanSource
+) -> None:
+    cmap = settled_map(grid, model, scans)
+    _, _, state = cmap.__reduce__()
+    assert state is not None
+    entropies, counts = state
+    assert entropies.dtype == np.float32
+    assert entropies.shape == (*grid.shape, covmap.STAGNATION_MEASUREMENTS + 1)
+    assert counts.dtype == np.uint32
+    np.testing.assert_array_equal(counts, cmap.measurements())
+    assert np.isfinite(entropies).all() and (entropies >= 0).all()
+    assert entropies.max() <= math.log(cmap.bins) + 1e-6
+
+
+def test_setstate_rejects_bad_state_and_leaves_the_map_unchanged(
+    grid: covmap.Grid, model: Any, scans: ScanSource
+) -> None:
+    tracked = settled_map(grid, model, scans)
+    _, _, state = tracked.__reduce__()
+    assert state is not None
+    entropies, counts = state
+    nan = entropies.copy()
+    nan[3, 4, 1] = np.nan
+    negative = entropies.copy()
+    negative[3, 4, 1] = -1.0
+    bad: list[tuple[Any, type[Exception]]] = [
+        ((entropies[:, :-1], counts), covmap.ArrayShapeError),
+        ((entropies[..., :-1], counts), covmap.ArrayShapeError),
+        ((entropies, counts[:-1]), covmap.ArrayShapeError),
+        ((entropies.reshape(-1), counts), covmap.ArrayShapeError),
+        ((entropies, counts[..., None]), covmap.ArrayShapeError),
+        ((entropies.astype(np.float64), counts), covmap.ArrayDtypeError),
+        ((entropies, counts.astype(np.int64)), covmap.ArrayDtypeError),
+        ((entropies.tolist(), counts), covmap.ArrayDtypeError),
+        ((nan, counts), covmap.InvalidHistoryError),
+        ((negative, counts), covmap.InvalidHistoryError),
+        ((entropies,), TypeError),
+        ((entropies, counts, counts), TypeError),
+        ([entropies, counts], TypeError),
+    ]
+    for cmap in (tracked, covmap.CoverageMap(grid)):
+        histograms, measurements, stagnated = cmap.histograms, cmap.measurements(), cmap.stagnated()
+        tracks = cmap.tracks_history
+        for bad_state, error in bad:
+            with pytest.raises(error):
+                cmap.__setstate__(bad_state)
+            assert cmap.tracks_history == tracks
+            np.testing.assert_array_equal(cmap.histograms, histograms)
+            np.testing.assert_array_equal(cmap.measurements(), measurements)
+            np.testing.assert_array_equal(cmap.stagnated(), stagnated)
+        cmap.__setstate__(None)
+        assert cmap.tracks_history == tracks
+    # The typed errors are also the builtins callers catch.
+    with pytest.raises(ValueError, match=r"history entropies must have shape"):
+        tracked.__setstate__((entropies[:, :-1], counts))
+    with pytest.raises(ValueError, match=r"invalid entropy history at cell 184"):
+        tracked.__setstate__((nan, counts))
+    with pytest.raises(TypeError, match=r"got a tuple of length 1"):
+        tracked.__setstate__((entropies,))  # type: ignore[arg-type]
+
+
+def test_setstate_restores_onto_a_map_without_history(
+    grid: covmap.Grid, model: Any, scans: ScanSource
+) -> None:
+    source = settled_map(grid, model, scans)
+    _, _, state = source.__reduce__()
+    target = covmap.CoverageMap.from_histograms(grid, source.histograms)
+    assert not target.tracks_history
+    target.__setstate__(state)
+    assert target.tracks_history
+    np.testing.assert_array_equal(target.measurements(), source.measurements())
+    np.testing.assert_array_equal(target.stagnated(), source.stagnated())
+
+
 def test_from_histograms_validates(grid: covmap.Grid) -> None:
     good = np.full((40, 60, 4), 0.25, dtype=np.float32)
     assert covmap.CoverageMap.from_histograms(grid, good).bins == 4

@@ -117,7 +117,7 @@ def test_wrong_argument_types_are_type_errors(grid: covmap.Grid, model: Any) -> 
 
 def test_every_error_class_derives_from_covmap_error() -> None:
     classes = [getattr(covmap, name) for name in covmap.__all__ if name.endswith("Error")]
-    assert len(classes) == 17
+    assert len(classes) == 18
     for cls in classes:
         assert issubclass(cls, covmap.CovmapError)
         assert cls is covmap.CovmapError or issubclass(cls, (ValueError, IndexError, TypeError, OSError))

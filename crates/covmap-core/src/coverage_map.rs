@@ -64,6 +64,41 @@ struct History {
     scan: u32,
 }
 
+/// The persistent part of a map's entropy history, to save a map with it and
+/// load it again ([`CoverageMap::history_state`],
+/// [`CoverageMap::restore_history`]).
+///
+/// Cell `i`'s last `STAGNATION_MEASUREMENTS + 1` entropies are a ring at
+/// `entropies[i * (STAGNATION_MEASUREMENTS + 1)..][..STAGNATION_MEASUREMENTS + 1]`:
+/// slot `k` holds the entropy (nats) after the cell's measurement `n`
+/// (counting from 0) with `n % (STAGNATION_MEASUREMENTS + 1) == k`, and slots
+/// not written yet hold 0. `count[i]` is the number of measurements of cell
+/// `i`. Both are row-major over the cells.
+///
+/// # Example
+/// ```
+/// use covmap_core::{CoverageMap, Grid, LaserModel, Pose};
+/// let grid = Grid::new([0.0, 0.0], 0.05, 4, 40).unwrap();
+/// let mut map = CoverageMap::new(grid);
+/// map.track_history(true);
+/// map.integrate(&Pose::new(0.01, 0.1, 0.0), &[1.0], &[0.0], &LaserModel::default()).unwrap();
+/// let state = map.history_state().unwrap();
+/// // Saved and loaded: the histograms and the history.
+/// let mut loaded = CoverageMap::from_histograms(grid, map.bins(), map.histograms().to_vec()).unwrap();
+/// loaded.restore_history(state.clone()).unwrap();
+/// assert!(loaded.tracks_history());
+/// assert_eq!(loaded.measurement_counts(), map.measurement_counts());
+/// assert_eq!(loaded.history_state(), Some(state));
+/// ```
+#[derive(Clone, Debug, PartialEq)]
+pub struct HistoryState {
+    /// Each cell's ring of its last `STAGNATION_MEASUREMENTS + 1` entropies,
+    /// nats, `grid.len() * (STAGNATION_MEASUREMENTS + 1)` values.
+    pub entropies: Vec<f32>,
+    /// Measurements of each cell, `grid.len()` values.
+    pub count: Vec<u32>,
+}
+
 impl CoverageMap {
     /// A map at the uniform prior with [`DEFAULT_BINS`] bins.
     pub fn new(grid: Grid) -> Self {
@@ -227,6 +262,48 @@ impl CoverageMap {
     /// Measurements of every cell since the history was turned on, row-major.
     pub fn measurement_counts(&self) -> Vec<u32> {
         self.history.as_ref().map_or_else(|| vec![0; self.grid.len()], |h| h.count.clone())
+    }
+
+    /// The entropy history (`None` while it is off), to be handed to
+    /// [`CoverageMap::restore_history`] of a map loaded from this one's
+    /// histograms.
+    pub fn history_state(&self) -> Option<HistoryState> {
+        self.history
+            .as_ref()
+            .map(|h| HistoryState { entropies: h.entropies.as_flattened().to_vec(), count: h.count.clone() })
+    }
+
+    /// Track the history and make it `state` (from
+    /// [`CoverageMap::history_state`] of a map with the same grid), so that
+    /// further scans continue it as they would have continued the original.
+    ///
+    /// A state whose lengths do not fit the grid, or with an entropy that is
+    /// not finite and non-negative, is an error and leaves the map exactly as
+    /// it was.
+    pub fn restore_history(&mut self, state: HistoryState) -> Result<()> {
+        const LEN: usize = STAGNATION_MEASUREMENTS + 1;
+        let cells = self.grid.len();
+        if state.count.len() != cells {
+            return Err(CovmapError::LengthMismatch {
+                what: "history measurement counts and grid cells",
+                left: state.count.len(),
+                right: cells,
+            });
+        }
+        if state.entropies.len() != cells * LEN {
+            return Err(CovmapError::LengthMismatch {
+                what: "history entropies and grid cells x (STAGNATION_MEASUREMENTS + 1)",
+                left: state.entropies.len(),
+                right: cells * LEN,
+            });
+        }
+        if let Some((i, &value)) = state.entropies.iter().enumerate().find(|(_, v)| !(v.is_finite() && **v >= 0.0)) {
+            return Err(CovmapError::InvalidHistory { cell: i / LEN, value: f64::from(value) });
+        }
+        let entropies = state.entropies.chunks_exact(LEN).map(|ring| std::array::from_fn(|k| ring[k])).collect();
+        // No scan of this map has stamped a cell yet: the per-scan bookkeeping starts afresh.
+        self.history = Some(Box::new(History { entropies, count: state.count, stamp: vec![0; cells], scan: 0 }));
+        Ok(())
     }
 
     /// Whether `cell`'s entropy changed by less than [`STAGNATION_NATS`] over
@@ -437,6 +514,94 @@ mod tests {
         assert_eq!(map.measurements(untouched).unwrap(), 0);
         assert!(!map.stagnated(untouched).unwrap());
         assert!(map.stagnated(Cell { row: 4, col: 0 }).is_err());
+    }
+
+    /// The scans of the history tests: one beam, then many beams per scan, so
+    /// that the cells along the beam settle and stagnate.
+    fn settling_scans(map: &mut CoverageMap, scans: std::ops::Range<usize>) {
+        let laser = LaserModel::default();
+        let sonar = SonarModel::default();
+        for k in scans {
+            let pose = Pose::new(0.01 + 0.002 * (k % 3) as f64, 0.1, 0.0);
+            let beams = if k < 5 { 1 } else { 50 };
+            if k % 4 == 3 {
+                map.integrate(&pose, &vec![1.2; beams], &vec![0.1; beams], &sonar).unwrap();
+            } else {
+                map.integrate(&pose, &vec![1.0; beams], &vec![0.0; beams], &laser).unwrap();
+            }
+        }
+    }
+
+    #[test]
+    fn restored_history_continues_like_the_original() {
+        let g = Grid::new([0.0, 0.0], 0.05, 4, 40).unwrap();
+        let total = 45;
+        // Before any cell has five measurements, and after the rings have wrapped.
+        for split in [3, 20] {
+            let mut original = CoverageMap::new(g);
+            original.track_history(true);
+            settling_scans(&mut original, 0..split);
+            let state = original.history_state().unwrap();
+            assert!(state.count.iter().any(|&n| n as usize == split), "a cell measured by every scan");
+
+            let mut loaded = CoverageMap::from_histograms(g, original.bins(), original.histograms().to_vec()).unwrap();
+            assert!(!loaded.tracks_history());
+            loaded.restore_history(state.clone()).unwrap();
+            assert!(loaded.tracks_history());
+            assert_eq!(loaded.history_state().as_ref(), Some(&state));
+            assert_eq!(loaded.stagnation(), original.stagnation());
+            assert_eq!(loaded.measurement_counts(), original.measurement_counts());
+
+            settling_scans(&mut original, split..total);
+            settling_scans(&mut loaded, split..total);
+            assert_eq!(loaded.histograms(), original.histograms());
+            assert_eq!(loaded.measurement_counts(), original.measurement_counts());
+            assert_eq!(loaded.history_state(), original.history_state());
+            let stagnation = original.stagnation();
+            assert_eq!(loaded.stagnation(), stagnation);
+            assert!(stagnation.iter().any(|&s| s) && stagnation.iter().any(|&s| !s), "split {split}");
+        }
+    }
+
+    #[test]
+    fn restore_history_rejects_bad_state_and_leaves_map_unchanged() {
+        let g = Grid::new([0.0, 0.0], 0.05, 4, 40).unwrap();
+        let mut tracked = CoverageMap::new(g);
+        tracked.track_history(true);
+        settling_scans(&mut tracked, 0..8);
+        let good = tracked.history_state().unwrap();
+        let mut untracked = CoverageMap::new(g);
+        assert_eq!(untracked.history_state(), None);
+
+        let len = STAGNATION_MEASUREMENTS + 1;
+        let with = |edit: &dyn Fn(&mut HistoryState)| {
+            let mut s = good.clone();
+            edit(&mut s);
+            s
+        };
+        let cases = [
+            with(&|s| s.count.truncate(g.len() - 1)),
+            with(&|s| s.count.push(0)),
+            with(&|s| s.entropies.truncate(g.len() * len - 1)),
+            with(&|s| s.entropies.truncate(g.len() * (len - 1))),
+            with(&|s| s.entropies[7 * len + 2] = f32::NAN),
+            with(&|s| s.entropies[7 * len + 2] = f32::INFINITY),
+            with(&|s| s.entropies[7 * len + 2] = -0.5),
+        ];
+        for map in [&mut tracked, &mut untracked] {
+            let (histograms, history) = (map.histograms().to_vec(), map.history_state());
+            for bad in &cases {
+                let err = map.restore_history(bad.clone()).unwrap_err();
+                if bad.count.len() != g.len() || bad.entropies.len() != g.len() * len {
+                    assert!(matches!(err, CovmapError::LengthMismatch { .. }), "{err}");
+                } else {
+                    assert!(matches!(err, CovmapError::InvalidHistory { cell: 7, .. }), "{err}");
+                }
+                assert_eq!(map.histograms(), &histograms[..]);
+                assert_eq!(map.history_state(), history);
+                assert_eq!(map.tracks_history(), history.is_some());
+            }
+        }
     }
 
     #[test]

@@ -89,6 +89,14 @@ pub enum CovmapError {
     /// Histogram data handed in does not describe a valid map.
     #[error("invalid histogram data: {0}")]
     InvalidHistogram(String),
+    /// A stored entropy history holds an entropy no map can have.
+    #[error("invalid entropy history at cell {cell}: {value} (expected a finite, non-negative entropy in nats)")]
+    InvalidHistory {
+        /// Row-major index of the cell.
+        cell: usize,
+        /// The rejected entropy.
+        value: f64,
+    },
 }
 
 /// Shorthand for results of this crate.

@@ -741,13 +741,16 @@ impl<const N: usize> FastBeam<'_, N> {
     #[inline(always)]
     fn prefetch(&self, i: usize) {
         #[cfg(target_arch = "x86_64")]
-        if let (Some(h), Some(u)) = (self.rows.h.get(i), self.rows.h_ln_h.get(i)) {
+        if N > 0 {
             use std::arch::x86_64::{_MM_HINT_T0, _mm_prefetch};
-            let u = u.as_ptr().cast::<i8>();
+            // Addresses only (`wrapping_add` never reads), so no bounds
+            // check: a prefetch of any address is harmless.
+            let h = self.rows.h.as_ptr().wrapping_add(i).cast::<i8>();
+            let u = self.rows.h_ln_h.as_ptr().wrapping_add(i).cast::<i8>();
             // SAFETY: SSE is part of every x86-64 processor, and a prefetch
             // only hints at an address: it never reads or faults.
             unsafe {
-                _mm_prefetch::<_MM_HINT_T0>(h.as_ptr().cast());
+                _mm_prefetch::<_MM_HINT_T0>(h);
                 _mm_prefetch::<_MM_HINT_T0>(u);
                 _mm_prefetch::<_MM_HINT_T0>(u.wrapping_add(64));
             }

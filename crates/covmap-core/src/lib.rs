@@ -39,7 +39,7 @@ mod scan;
 pub mod sensor;
 
 pub use counting::ScanCounts;
-pub use coverage_map::{CoverageMap, STAGNATION_MEASUREMENTS, STAGNATION_NATS};
+pub use coverage_map::{CoverageMap, HistoryState, STAGNATION_MEASUREMENTS, STAGNATION_NATS};
 pub use error::{CovmapError, Result};
 pub use grid::{Cell, Grid, MAX_CELLS};
 pub use occupancy::{OccupancyGrid, OccupancyModel};

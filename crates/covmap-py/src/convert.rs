@@ -7,8 +7,10 @@
 
 use covmap::gain::{GainMethod, StopCoverage};
 use covmap::{Cell, CovmapError, Grid, Pose, histogram};
-use numpy::ndarray::Array2;
-use numpy::{Element, IntoPyArray, PyArray2, PyArrayDyn, PyArrayMethods, PyUntypedArray, PyUntypedArrayMethods};
+use numpy::ndarray::{Array2, Array3};
+use numpy::{
+    Element, IntoPyArray, PyArray2, PyArray3, PyArrayDyn, PyArrayMethods, PyUntypedArray, PyUntypedArrayMethods,
+};
 use pyo3::exceptions::{PyRuntimeError, PyTypeError, PyValueError};
 use pyo3::prelude::*;
 
@@ -83,6 +85,30 @@ pub(crate) fn histograms(obj: &Bound<'_, PyAny>, grid: &Grid) -> PyResult<(Vec<f
         ));
     }
     Ok((values, shape[2]))
+}
+
+/// A per-cell array for a map over `grid`: a numpy array of element type `T`
+/// (`dtype` names it for messages) and shape `(rows, cols)`, or
+/// `(rows, cols, depth)` with `Some(depth)`. Returns the values row-major.
+pub(crate) fn cell_values<T: Element + Copy>(
+    obj: &Bound<'_, PyAny>,
+    grid: &Grid,
+    name: &str,
+    dtype: &str,
+    depth: Option<usize>,
+) -> PyResult<Vec<T>> {
+    let py = obj.py();
+    let (rows, cols) = grid.shape();
+    let expected: Vec<usize> = [rows, cols].into_iter().chain(depth).collect();
+    let Ok(array) = obj.cast::<PyUntypedArray>() else {
+        return Err(Exception::ArrayDtype
+            .err(py, format!("{name} must be a {dtype} numpy array of shape {expected:?}, got {}", obj.get_type())));
+    };
+    let (values, shape) = numpy_values::<T>(array, name, expected.len(), dtype)?;
+    if shape != expected {
+        return Err(Exception::ArrayShape.err(py, format!("{name} must have shape {expected:?}, got {shape:?}")));
+    }
+    Ok(values)
 }
 
 /// A bin count from a Python int: `MIN_BINS..=MAX_BINS`.
@@ -170,6 +196,20 @@ pub(crate) fn cell_array<'py, T: Element>(
     values: Vec<T>,
 ) -> PyResult<Bound<'py, PyArray2<T>>> {
     let array = Array2::from_shape_vec(grid.shape(), values).map_err(|e| PyRuntimeError::new_err(e.to_string()))?;
+    Ok(array.into_pyarray(py))
+}
+
+/// `depth` values per cell of `grid`, row-major, as a `(rows, cols, depth)`
+/// numpy array.
+pub(crate) fn cell_stack_array<'py, T: Element>(
+    py: Python<'py>,
+    grid: &Grid,
+    depth: usize,
+    values: Vec<T>,
+) -> PyResult<Bound<'py, PyArray3<T>>> {
+    let (rows, cols) = grid.shape();
+    let array =
+        Array3::from_shape_vec((rows, cols, depth), values).map_err(|e| PyRuntimeError::new_err(e.to_string()))?;
     Ok(array.into_pyarray(py))
 }
 

@@ -1,11 +1,11 @@
 //! `covmap.CoverageMap`: one histogram over coverage values per cell.
 
-use covmap::CoverageMap;
 use covmap::histogram::DEFAULT_BINS;
-use numpy::ndarray::Array3;
-use numpy::{IntoPyArray, PyArray1, PyArray2, PyArray3};
+use covmap::{CoverageMap, HistoryState, STAGNATION_MEASUREMENTS};
+use numpy::{PyArray1, PyArray2, PyArray3};
+use pyo3::exceptions::PyTypeError;
 use pyo3::prelude::*;
-use pyo3::types::PyType;
+use pyo3::types::{PyTuple, PyType};
 
 use crate::convert::{self, cell_array};
 use crate::errors::OrRaise;
@@ -15,8 +15,14 @@ use crate::scan::Scan;
 // The signature spells the default out so that Python shows it; keep it the core's.
 const _: () = assert!(DEFAULT_BINS == 16);
 
-/// What `__reduce__` returns: a constructor and its arguments.
-type Reduce<'py> = (Bound<'py, PyAny>, (PyGrid, Bound<'py, PyArray3<f32>>));
+/// The entropy history as `__reduce__` saves it: each cell's ring of entropies,
+/// float32 `(rows, cols, STAGNATION_MEASUREMENTS + 1)`, and its measurement
+/// count, uint32 `(rows, cols)`.
+type HistoryArrays<'py> = (Bound<'py, PyArray3<f32>>, Bound<'py, PyArray2<u32>>);
+
+/// What `__reduce__` returns: a constructor, its arguments and the state for
+/// `__setstate__` (the history, if kept).
+type Reduce<'py> = (Bound<'py, PyAny>, (PyGrid, Bound<'py, PyArray3<f32>>), Option<HistoryArrays<'py>>);
 
 /// A grid whose every cell holds a histogram over how much of it is covered by
 /// obstacles (0 = empty, 1 = fully covered), starting at the uniform prior.
@@ -70,10 +76,7 @@ impl PyCoverageMap {
     /// A copy of all histograms: float32, ``(rows, cols, bins)``.
     #[getter]
     fn histograms<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray3<f32>>> {
-        let (rows, cols) = self.0.grid().shape();
-        let array = Array3::from_shape_vec((rows, cols, self.0.bins()), self.0.histograms().to_vec())
-            .map_err(|e| pyo3::exceptions::PyRuntimeError::new_err(e.to_string()))?;
-        Ok(array.into_pyarray(py))
+        convert::cell_stack_array(py, self.0.grid(), self.0.bins(), self.0.histograms().to_vec())
     }
     /// One cell's histogram: float32, ``(bins,)``.
     fn histogram<'py>(&self, py: Python<'py>, row: i64, col: i64) -> PyResult<Bound<'py, PyArray1<f32>>> {
@@ -123,7 +126,8 @@ impl PyCoverageMap {
     /// Keep (``True``) or stop keeping (``False``) each cell's entropy after
     /// its last measurements, for ``stagnated()`` and ``Planner.status``. A
     /// scan that updates a cell counts as one measurement of it. Off by
-    /// default; turning it on (again) starts an empty history.
+    /// default; turning it on (again) starts an empty history. Pickling and
+    /// copying keep the history.
     fn track_history(&mut self, on: bool) {
         self.0.track_history(on);
     }
@@ -149,9 +153,42 @@ impl PyCoverageMap {
     fn __repr__(&self) -> String {
         format!("CoverageMap({}, bins={})", self.grid().__repr__(), self.0.bins())
     }
-    /// Pickle and copy support: rebuilt from the grid and the histograms.
+    /// Pickle and copy support: rebuilt from the grid and the histograms, the
+    /// entropy history (if kept) restored by ``__setstate__``.
     fn __reduce__<'py>(&self, py: Python<'py>) -> PyResult<Reduce<'py>> {
         let rebuild = py.get_type::<Self>().getattr("from_histograms")?;
-        Ok((rebuild, (self.grid(), self.histograms(py)?)))
+        let grid = self.0.grid();
+        let state = match self.0.history_state() {
+            Some(h) => Some((
+                convert::cell_stack_array(py, grid, STAGNATION_MEASUREMENTS + 1, h.entropies)?,
+                cell_array(py, grid, h.count)?,
+            )),
+            None => None,
+        };
+        Ok((rebuild, (self.grid(), self.histograms(py)?), state))
+    }
+    /// Unpickling support: restore the entropy history saved by
+    /// ``__reduce__``, ``(entropies, counts)`` (float32
+    /// ``(rows, cols, STAGNATION_MEASUREMENTS + 1)`` and uint32
+    /// ``(rows, cols)``), and keep tracking it; ``None`` changes nothing.
+    /// After an error the map is exactly as it was.
+    fn __setstate__(&mut self, py: Python<'_>, state: &Bound<'_, PyAny>) -> PyResult<()> {
+        if state.is_none() {
+            return Ok(());
+        }
+        let Ok((entropies, counts)) = state.extract::<(Bound<'_, PyAny>, Bound<'_, PyAny>)>() else {
+            let got = match state.cast::<PyTuple>() {
+                Ok(tuple) => format!("a tuple of length {}", tuple.len()),
+                Err(_) => state.get_type().to_string(),
+            };
+            return Err(PyTypeError::new_err(format!(
+                "state must be None or a tuple (entropies, counts) of two numpy arrays, got {got}"
+            )));
+        };
+        let grid = *self.0.grid();
+        let depth = Some(STAGNATION_MEASUREMENTS + 1);
+        let entropies = convert::cell_values::<f32>(&entropies, &grid, "history entropies", "float32", depth)?;
+        let count = convert::cell_values::<u32>(&counts, &grid, "history counts", "uint32", None)?;
+        self.0.restore_history(HistoryState { entropies, count }).or_raise(py)
     }
 }

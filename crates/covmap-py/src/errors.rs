@@ -25,6 +25,7 @@ pub(crate) enum Exception {
     LengthMismatch,
     CellOutOfBounds,
     InvalidHistogram,
+    InvalidHistory,
     /// An array argument has the wrong number of dimensions or shape.
     ArrayShape,
     /// An array argument has the wrong element type.
@@ -39,7 +40,7 @@ pub(crate) enum Exception {
     InvalidValue,
 }
 
-const CLASSES: usize = 17;
+const CLASSES: usize = 18;
 
 impl Exception {
     fn class_name(self) -> &'static str {
@@ -54,6 +55,7 @@ impl Exception {
             Self::LengthMismatch => "LengthMismatchError",
             Self::CellOutOfBounds => "CellOutOfBoundsError",
             Self::InvalidHistogram => "InvalidHistogramError",
+            Self::InvalidHistory => "InvalidHistoryError",
             Self::ArrayShape => "ArrayShapeError",
             Self::ArrayDtype => "ArrayDtypeError",
             Self::InvalidPolygon => "InvalidPolygonError",
@@ -76,6 +78,7 @@ impl Exception {
             CovmapError::LengthMismatch { .. } => Self::LengthMismatch,
             CovmapError::CellOutOfBounds { .. } => Self::CellOutOfBounds,
             CovmapError::InvalidHistogram(_) => Self::InvalidHistogram,
+            CovmapError::InvalidHistory { .. } => Self::InvalidHistory,
             // The core enum is non-exhaustive: a new variant is still a CovmapError.
             _ => Self::Base,
         }
