@@ -71,19 +71,7 @@ pub(crate) fn readings(obj: &Bound<'_, PyAny>, name: &str) -> PyResult<Vec<f64>>
 /// Histograms for a map over `grid`: a float32 array of shape `(rows, cols, bins)`.
 /// Returns the values cell-major and the bin count.
 pub(crate) fn histograms(obj: &Bound<'_, PyAny>, grid: &Grid) -> PyResult<(Vec<f32>, usize)> {
-    let py = obj.py();
-    let Ok(array) = obj.cast::<PyUntypedArray>() else {
-        return Err(
-            Exception::ArrayDtype.err(py, format!("histograms must be a float32 numpy array, got {}", obj.get_type()))
-        );
-    };
-    let (values, shape) = numpy_values::<f32>(array, "histograms", 3, "float32")?;
-    if (shape[0], shape[1]) != grid.shape() {
-        return Err(Exception::ArrayShape.err(
-            py,
-            format!("histograms of shape {shape:?} do not fit a grid of {} x {} cells", grid.rows(), grid.cols()),
-        ));
-    }
+    let (values, shape) = per_cell::<f32>(obj, grid, "histograms", "float32", &[None])?;
     Ok((values, shape[2]))
 }
 
@@ -97,18 +85,33 @@ pub(crate) fn cell_values<T: Element + Copy>(
     dtype: &str,
     depth: Option<usize>,
 ) -> PyResult<Vec<T>> {
+    let more = depth.map(Some);
+    Ok(per_cell::<T>(obj, grid, name, dtype, more.as_slice())?.0)
+}
+
+/// A numpy array of element type `T` of shape `(rows, cols, more..)` for
+/// `grid` (a `None` in `more`: any length): its values in order, and its shape.
+fn per_cell<T: Element + Copy>(
+    obj: &Bound<'_, PyAny>,
+    grid: &Grid,
+    name: &str,
+    dtype: &str,
+    more: &[Option<usize>],
+) -> PyResult<(Vec<T>, Vec<usize>)> {
     let py = obj.py();
     let (rows, cols) = grid.shape();
-    let expected: Vec<usize> = [rows, cols].into_iter().chain(depth).collect();
+    let expected: Vec<Option<usize>> = [Some(rows), Some(cols)].into_iter().chain(more.iter().copied()).collect();
+    let spelled: Vec<String> = expected.iter().map(|n| n.map_or_else(|| "any".to_owned(), |n| n.to_string())).collect();
+    let spelled = format!("({})", spelled.join(", "));
     let Ok(array) = obj.cast::<PyUntypedArray>() else {
         return Err(Exception::ArrayDtype
-            .err(py, format!("{name} must be a {dtype} numpy array of shape {expected:?}, got {}", obj.get_type())));
+            .err(py, format!("{name} must be a {dtype} numpy array of shape {spelled}, got {}", obj.get_type())));
     };
     let (values, shape) = numpy_values::<T>(array, name, expected.len(), dtype)?;
-    if shape != expected {
-        return Err(Exception::ArrayShape.err(py, format!("{name} must have shape {expected:?}, got {shape:?}")));
+    if shape.iter().zip(&expected).any(|(&n, want)| want.is_some_and(|w| w != n)) {
+        return Err(Exception::ArrayShape.err(py, format!("{name} must have shape {spelled}, got {shape:?}")));
     }
-    Ok(values)
+    Ok((values, shape))
 }
 
 /// A bin count from a Python int: `MIN_BINS..=MAX_BINS`.
