@@ -7,11 +7,16 @@
 //! beam's widest footprint. The exact evaluator costs seconds per candidate, so
 //! it is timed on 4 candidates spread over the map (every 250th): compare the
 //! two evaluators' times on those. `cone_walk_only` walks the same footprints
-//! and computes nothing.
+//! and computes nothing. The `planning_step` cases time what a robot pays per
+//! decision on that map: building the evaluator (ML map and the per-bin
+//! `h ln h` every candidate shares), and the planner's whole
+//! `next_viewpoint` (free space, Dijkstra, candidates, gains, choice), on all
+//! the machine's cores.
 //!
 //! Run: `cargo bench --bench gain`
 
 use covmap::gain::{GainEvaluator, GainMethod, GainOptions};
+use covmap::planner::{Planner, PlannerConfig};
 use covmap::{CoverageMap, Grid, Pose, SonarModel};
 use criterion::{Criterion, Throughput, criterion_group, criterion_main};
 use rand::{RngExt, SeedableRng};
@@ -64,6 +69,24 @@ fn gain(c: &mut Criterion) {
     });
     group.bench_function("fast_1_thread", |b| {
         b.iter(|| pool.install(|| eval.evaluate(few, &bearings, GainMethod::Fast).expect("valid")))
+    });
+    group.finish();
+
+    let mut group = c.benchmark_group("planning_step");
+    group.sample_size(10).measurement_time(std::time::Duration::from_secs(10));
+    // Evaluating no candidate still builds everything they would share.
+    group.bench_function("evaluator_build", |b| {
+        b.iter(|| {
+            let eval = GainEvaluator::new(&map, &sonar, GainOptions::default()).expect("valid options");
+            eval.evaluate(&[], &bearings, GainMethod::Fast).expect("valid")
+        })
+    });
+    let planner = Planner::new(PlannerConfig::default()).expect("valid config");
+    let robot = Pose::new(10.0, 10.0, 0.0);
+    let plan = planner.next_viewpoint(&map, &robot, &bearings, &sonar).expect("valid plan");
+    eprintln!("planning_step/next_viewpoint: {} candidates", plan.candidates.gains.len());
+    group.bench_function("next_viewpoint", |b| {
+        b.iter(|| planner.next_viewpoint(&map, &robot, &bearings, &sonar).expect("valid plan"))
     });
     group.finish();
 }

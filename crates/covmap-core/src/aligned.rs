@@ -54,7 +54,7 @@ impl<T: Plain> Aligned<T> {
     }
 
     /// `len` elements whose bits are all zero (`0.0`).
-    fn zeroed(len: usize) -> Self {
+    pub(crate) fn zeroed(len: usize) -> Self {
         let bytes = len.checked_mul(size_of::<T>()).expect("buffer size overflows");
         Self { lines: vec![Line::default(); bytes.div_ceil(LINE)], len, _element: PhantomData }
     }

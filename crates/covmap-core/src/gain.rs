@@ -64,7 +64,7 @@ use crate::coverage_map::CoverageMap;
 use crate::error::{CovmapError, Result};
 use crate::footprint::{CellVisitor, ROW_BLOCK, visit};
 use crate::grid::Grid;
-use crate::numeric::{ln_normal, x_ln_x};
+use crate::numeric::{ln_normal, x_ln_x, x_ln_x_of_f32};
 use crate::scan::Pose;
 use crate::sensor::{Footprint, KernelTable, RangeModel, ReadingLookup, SensorModel};
 
@@ -160,7 +160,8 @@ pub fn reading_distribution(
     ReadingDistribution { step_m, probabilities, no_echo: through }
 }
 
-/// `h ln h` of every bin of every histogram, in `f64`, and each histogram's
+/// `h ln h` of every bin of every histogram, in `f64` (through the
+/// vectorisable logarithm, within two ulps of `x_ln_x`), and each histogram's
 /// entropy summed from those same products (so that rounding cancels in the
 /// gain's differences). `f64` because the gain of a nearly certain cell is a
 /// small difference of such sums: rounded to `f32` they put the fast evaluator
@@ -175,36 +176,26 @@ impl LogCache {
     fn new(map: &CoverageMap) -> Self {
         let bins = map.bins();
         let h = map.histograms();
-        let mut h_ln_h = Aligned::filled(0.0, h.len());
-        let chunk = 4096 * bins;
-        let fill = |(out, h): (&mut [f64], &[f32])| {
-            out.iter_mut().zip(h).for_each(|(u, &v)| *u = x_ln_x(f64::from(v)));
+        let mut h_ln_h = Aligned::zeroed(h.len());
+        let mut entropy = vec![0.0; h.len() / bins];
+        // One pass per piece of the map: its `h ln h`, then its entropies.
+        const CELLS: usize = 4096;
+        let fill = |((u, e), h): ((&mut [f64], &mut [f64]), &[f32])| {
+            u.iter_mut().zip(h).for_each(|(u, &v)| *u = x_ln_x_of_f32(v));
+            e.iter_mut().zip(u.chunks_exact(bins)).for_each(|(e, u)| *e = -u.iter().sum::<f64>());
         };
         #[cfg(feature = "parallel")]
         {
             use rayon::prelude::*;
-            h_ln_h.par_chunks_mut(chunk).zip(h.par_chunks(chunk)).for_each(fill);
+            h_ln_h
+                .par_chunks_mut(CELLS * bins)
+                .zip(entropy.par_chunks_mut(CELLS))
+                .zip(h.par_chunks(CELLS * bins))
+                .for_each(fill);
         }
         #[cfg(not(feature = "parallel"))]
-        h_ln_h.chunks_mut(chunk).zip(h.chunks(chunk)).for_each(fill);
-        let entropy = par_map_chunks(&h_ln_h, 4096 * bins, |chunk| {
-            chunk.chunks_exact(bins).map(|u| -u.iter().sum::<f64>()).collect()
-        });
+        h_ln_h.chunks_mut(CELLS * bins).zip(entropy.chunks_mut(CELLS)).zip(h.chunks(CELLS * bins)).for_each(fill);
         Self { h_ln_h, entropy }
-    }
-}
-
-/// Map `f` over `chunk`-sized pieces of `data` (in parallel with the
-/// `parallel` feature) and concatenate the results in order.
-fn par_map_chunks<T: Sync, U: Send>(data: &[T], chunk: usize, f: impl Fn(&[T]) -> Vec<U> + Sync + Send) -> Vec<U> {
-    #[cfg(feature = "parallel")]
-    {
-        use rayon::prelude::*;
-        data.par_chunks(chunk).flat_map_iter(f).collect()
-    }
-    #[cfg(not(feature = "parallel"))]
-    {
-        data.chunks(chunk).flat_map(f).collect()
     }
 }
 

@@ -113,13 +113,11 @@ pub fn entropy(h: &[f32]) -> f32 {
 
 /// The index of the most probable bin (the first on ties).
 pub fn argmax(h: &[f32]) -> usize {
-    let mut best = 0;
-    for (b, &p) in h.iter().enumerate() {
-        if p > h[best] {
-            best = b;
-        }
-    }
-    best
+    // The largest value first, then where it first occurs: two passes without
+    // a data-dependent branch, which beat one that mispredicts on every new
+    // maximum. NaN, which no histogram holds, is skipped by `max`.
+    let top = h.iter().copied().fold(f32::NEG_INFINITY, f32::max);
+    h.iter().position(|&p| p == top).unwrap_or(0)
 }
 
 /// Expected coverage.
@@ -158,6 +156,31 @@ mod tests {
         assert_eq!(entropy(&c), 0.0);
         assert_eq!(argmax(&c), 3);
         assert!((mean(&c) - 0.2).abs() < 1e-6);
+    }
+
+    /// The first of the most probable bins, as a plain scan finds it, ties
+    /// included.
+    #[test]
+    fn argmax_is_the_first_maximum() {
+        let mut state = 0x2545_f491_4f6c_dd1du64;
+        for n in 0..20_000 {
+            let h: Vec<f32> = (0..2 + n % 31)
+                .map(|_| {
+                    state ^= state << 13;
+                    state ^= state >> 7;
+                    state ^= state << 17;
+                    // Few distinct values, so that ties are common.
+                    (state % 5) as f32 * 0.25
+                })
+                .collect();
+            let mut want = 0;
+            for (b, &p) in h.iter().enumerate() {
+                if p > h[want] {
+                    want = b;
+                }
+            }
+            assert_eq!(argmax(&h), want, "{h:?}");
+        }
     }
 
     #[test]
