@@ -6,7 +6,9 @@
 //! Throughput of the fast evaluator is in (beam, cell) pairs: the cells of each
 //! beam's widest footprint. The exact evaluator costs seconds per candidate, so
 //! it is timed on 4 candidates spread over the map (every 250th): compare the
-//! two evaluators' times on those. `cone_walk_only` walks the same footprints
+//! two evaluators' times on those. `fast_1_thread_6_scans` evaluates the same
+//! candidates early in an exploration, on the map after its first 6 scans,
+//! where most cells are still at the prior. `cone_walk_only` walks the same footprints
 //! and computes nothing. The `planning_step` cases time what a robot pays per
 //! decision on that map: building the evaluator (ML map and the per-bin
 //! `h ln h` every candidate shares), and the planner's whole
@@ -22,10 +24,11 @@ use criterion::{Criterion, Throughput, criterion_group, criterion_main};
 use rand::{RngExt, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 
-fn explored_map(sonar: &SonarModel, bearings: &[f64]) -> CoverageMap {
+/// The 20 m map after `scans` seeded sonar scans from random poses.
+fn explored_map(sonar: &SonarModel, bearings: &[f64], scans: usize) -> CoverageMap {
     let mut map = CoverageMap::new(Grid::new([0.0, 0.0], 0.05, 400, 400).expect("valid grid"));
     let mut rng = ChaCha8Rng::seed_from_u64(5);
-    for _ in 0..60 {
+    for _ in 0..scans {
         let pose = Pose::new(rng.random_range(2.0..18.0), rng.random_range(2.0..18.0), rng.random_range(-3.1..3.1));
         let ranges: Vec<f64> = bearings.iter().map(|_| rng.random_range(0.5..6.0)).collect();
         map.integrate(&pose, &ranges, bearings, sonar).expect("valid scan");
@@ -40,10 +43,17 @@ fn candidates() -> Vec<Pose> {
 fn gain(c: &mut Criterion) {
     let sonar = SonarModel::default();
     let bearings: Vec<f64> = (0..24).map(|i| i as f64 * std::f64::consts::TAU / 24.0).collect();
-    let map = explored_map(&sonar, &bearings);
+    let map = explored_map(&sonar, &bearings, 60);
     let eval = GainEvaluator::new(&map, &sonar, GainOptions::default()).expect("valid options");
     let poses = candidates();
     let pairs = eval.pairs(&poses, &bearings).expect("valid poses");
+    // Early in an exploration: the same candidates (so the same pairs) after 6 scans.
+    let early = explored_map(&sonar, &bearings, 6);
+    let early_eval = GainEvaluator::new(&early, &sonar, GainOptions::default()).expect("valid options");
+    for (name, m) in [("60 scans", &map), ("6 scans", &early)] {
+        let prior = m.histograms().chunks_exact(m.bins()).filter(|h| h.iter().all(|&v| v == 1.0 / 16.0)).count();
+        eprintln!("map after {name}: {:.1} % of its cells at the prior", 100.0 * prior as f64 / m.grid().len() as f64);
+    }
 
     let mut group = c.benchmark_group("gain_1000_candidates_24_sonars");
     group.sample_size(10).measurement_time(std::time::Duration::from_secs(10));
@@ -54,6 +64,10 @@ fn gain(c: &mut Criterion) {
             b.iter(|| pool.install(|| eval.evaluate(&poses, &bearings, GainMethod::Fast).expect("valid")))
         });
     }
+    group.bench_function("fast_1_thread_6_scans", |b| {
+        let pool = rayon::ThreadPoolBuilder::new().num_threads(1).build().expect("thread pool");
+        b.iter(|| pool.install(|| early_eval.evaluate(&poses, &bearings, GainMethod::Fast).expect("valid")))
+    });
     // The cones alone, each cell visited and nothing computed: the part of
     // the per-pair cost that walking the footprints takes.
     group.bench_function("cone_walk_only", |b| b.iter(|| eval.pairs(&poses, &bearings).expect("valid")));

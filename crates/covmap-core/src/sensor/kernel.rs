@@ -183,8 +183,15 @@ impl ReadingLookup {
     /// cell of a no-echo reading): region 0.
     #[inline(always)]
     pub(crate) fn free_offset(&self, d_l: f64) -> usize {
-        let step = (d_l.max(0.0).min(self.d) * self.inv_step_s + 0.5).min(DISTANCE_STEPS as f64);
-        step as i32 as usize * self.bins
+        self.free_step(d_l) * self.bins
+    }
+
+    /// The distance step of [`ReadingLookup::free_offset`]: the index of the
+    /// kernel among the table's free-space kernels (region 0, the first
+    /// `DISTANCE_STEPS + 1`).
+    #[inline(always)]
+    pub(crate) fn free_step(&self, d_l: f64) -> usize {
+        (d_l.max(0.0).min(self.d) * self.inv_step_s + 0.5).min(DISTANCE_STEPS as f64) as i32 as usize
     }
 }
 
