@@ -51,7 +51,8 @@ fn gain(c: &mut Criterion) {
     let early = explored_map(&sonar, &bearings, 6);
     let early_eval = GainEvaluator::new(&early, &sonar, GainOptions::default()).expect("valid options");
     for (name, m) in [("60 scans", &map), ("6 scans", &early)] {
-        let prior = m.histograms().chunks_exact(m.bins()).filter(|h| h.iter().all(|&v| v == 1.0 / 16.0)).count();
+        let prior =
+            m.histograms().chunks_exact(m.bins()).filter(|h| h.iter().all(|&v| v == 1.0 / m.bins() as f32)).count();
         eprintln!("map after {name}: {:.1} % of its cells at the prior", 100.0 * prior as f64 / m.grid().len() as f64);
     }
 
