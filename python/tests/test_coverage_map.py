@@ -170,6 +170,14 @@ def settled_map(grid: covmap.Grid, model: Any, scans: ScanSource) -> covmap.Cove
     return cmap
 
 
+def saved_history(cmap: covmap.CoverageMap) -> tuple[Any, Any]:
+    """The (entropies, counts) state `__reduce__` saves for a tracked map."""
+    _, _, state = cmap.__reduce__()
+    assert state is not None
+    entropies, counts = state
+    return entropies, counts
+
+
 def test_pickle_and_copy_keep_the_entropy_history(
     grid: covmap.Grid, model: Any, scans: ScanSource
 ) -> None:
@@ -198,9 +206,7 @@ def test_reduce_saves_the_history_as_arrays(
     grid: covmap.Grid, model: Any, scans: ScanSource
 ) -> None:
     cmap = settled_map(grid, model, scans)
-    _, _, state = cmap.__reduce__()
-    assert state is not None
-    entropies, counts = state
+    entropies, counts = saved_history(cmap)
     assert entropies.dtype == np.float32
     assert entropies.shape == (*grid.shape, covmap.STAGNATION_MEASUREMENTS + 1)
     assert counts.dtype == np.uint32
@@ -213,9 +219,7 @@ def test_setstate_rejects_bad_state_and_leaves_the_map_unchanged(
     grid: covmap.Grid, model: Any, scans: ScanSource
 ) -> None:
     tracked = settled_map(grid, model, scans)
-    _, _, state = tracked.__reduce__()
-    assert state is not None
-    entropies, counts = state
+    entropies, counts = saved_history(tracked)
     nan = entropies.copy()
     nan[3, 4, 1] = np.nan
     negative = entropies.copy()
@@ -260,10 +264,9 @@ def test_setstate_restores_onto_a_map_without_history(
     grid: covmap.Grid, model: Any, scans: ScanSource
 ) -> None:
     source = settled_map(grid, model, scans)
-    _, _, state = source.__reduce__()
     target = covmap.CoverageMap.from_histograms(grid, source.histograms)
     assert not target.tracks_history
-    target.__setstate__(state)
+    target.__setstate__(saved_history(source))
     assert target.tracks_history
     np.testing.assert_array_equal(target.measurements(), source.measurements())
     np.testing.assert_array_equal(target.stagnated(), source.stagnated())

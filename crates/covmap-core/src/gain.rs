@@ -178,7 +178,8 @@ struct LogCache {
     /// Laid out as the histograms, from the start of a cache line.
     h_ln_h: Aligned<f64>,
     entropy: Vec<f64>,
-    /// 1 for a cell at the uniform prior, else 0.
+    /// 1 for a cell at the uniform prior, else 0 (bytes, so that a row block
+    /// reads its eight flags as one word).
     prior: Vec<u8>,
     /// The gain of the prior histogram under each kernel of the table, by
     /// kernel index (offset / bins). Empty if no cell is at the prior.
@@ -203,23 +204,19 @@ impl LogCache {
                 .zip(h.chunks_exact(bins))
                 .for_each(|(p, h)| *p = u8::from(h.iter().all(|v| v.to_bits() == prior_bits)));
         };
-        #[cfg(feature = "parallel")]
-        {
-            use rayon::prelude::*;
-            h_ln_h
-                .par_chunks_mut(CELLS * bins)
-                .zip(entropy.par_chunks_mut(CELLS))
-                .zip(prior.par_chunks_mut(CELLS))
-                .zip(h.par_chunks(CELLS * bins))
-                .for_each(fill);
-        }
-        #[cfg(not(feature = "parallel"))]
-        h_ln_h
+        let pieces: Vec<Piece<'_>> = h_ln_h
             .chunks_mut(CELLS * bins)
             .zip(entropy.chunks_mut(CELLS))
             .zip(prior.chunks_mut(CELLS))
             .zip(h.chunks(CELLS * bins))
-            .for_each(fill);
+            .collect();
+        #[cfg(feature = "parallel")]
+        {
+            use rayon::prelude::*;
+            pieces.into_par_iter().for_each(fill);
+        }
+        #[cfg(not(feature = "parallel"))]
+        pieces.into_iter().for_each(fill);
         let prior_gain = if prior.contains(&1) { prior_gains(bins, table) } else { Vec::new() };
         Self { h_ln_h, entropy, prior, prior_gain }
     }
@@ -926,12 +923,11 @@ impl<const N: usize> CellVisitor for FastBeam<'_, N> {
                 // pairwise over the block; the others are queued.
                 let mut g = [0.0f64; ROW_BLOCK];
                 for k in 0..n {
-                    let offset = free.free_offset(d[k]);
                     if prior[k] != 0 {
-                        g[k] = self.beam.cache.prior_gain[self.kernel_index(offset)];
+                        g[k] = self.beam.cache.prior_gain[free.free_step(d[k])];
                     } else {
                         self.prefetch(first + k);
-                        self.push((first + k, offset, w));
+                        self.push((first + k, free.free_offset(d[k]), w));
                     }
                 }
                 self.total += w * pairwise_sum(&g);
