@@ -8,7 +8,11 @@
 //! it is timed on 4 candidates spread over the map (every 250th): compare the
 //! two evaluators' times on those. `fast_1_thread_6_scans` evaluates the same
 //! candidates early in an exploration, on the map after its first 6 scans,
-//! where most cells are still at the prior. `cone_walk_only` walks the same footprints
+//! where most cells are still at the prior. `fast_1_thread_office` evaluates
+//! them on a map of a building: the built-in `office` world after 60
+//! simulated sonar scans, whose walls stop the predicted beams (the random
+//! ranges of the other maps trace no walls, so their beams mostly run to the
+//! maximum range). `cone_walk_only` walks the same footprints
 //! and computes nothing. The `planning_step` cases time what a robot pays per
 //! decision on that map: building the evaluator (ML map and the per-bin
 //! `h ln h` every candidate shares), and the planner's whole
@@ -19,6 +23,7 @@
 
 use covmap::gain::{GainEvaluator, GainMethod, GainOptions};
 use covmap::planner::{Planner, PlannerConfig};
+use covmap::sim::{Robot, SonarRing, World, simulate};
 use covmap::{CoverageMap, Grid, Pose, SonarModel};
 use criterion::{Criterion, Throughput, criterion_group, criterion_main};
 use rand::{RngExt, SeedableRng};
@@ -32,6 +37,28 @@ fn explored_map(sonar: &SonarModel, bearings: &[f64], scans: usize) -> CoverageM
         let pose = Pose::new(rng.random_range(2.0..18.0), rng.random_range(2.0..18.0), rng.random_range(-3.1..3.1));
         let ranges: Vec<f64> = bearings.iter().map(|_| rng.random_range(0.5..6.0)).collect();
         map.integrate(&pose, &ranges, bearings, sonar).expect("valid scan");
+    }
+    map
+}
+
+/// The 20 m map over the south-west of the built-in `office` world after
+/// `scans` simulated sonar scans from seeded collision-free poses: walls the
+/// ML map holds as covered stop the predicted beams, as in a real building.
+fn office_map(sonar: &SonarModel, scans: usize) -> CoverageMap {
+    let world = World::builtin("office").expect("built-in world");
+    let robot = Robot::new(0.25).expect("valid radius");
+    let mut rng = ChaCha8Rng::seed_from_u64(11);
+    let mut poses = Vec::with_capacity(scans);
+    while poses.len() < scans {
+        let pose = Pose::new(rng.random_range(1.0..19.0), rng.random_range(1.0..19.0), rng.random_range(-3.1..3.1));
+        if !robot.collides(&world, &pose) {
+            poses.push(pose);
+        }
+    }
+    let ring = SonarRing::ring(24).with_model(sonar);
+    let mut map = CoverageMap::new(Grid::new([0.0, 0.0], 0.05, 400, 400).expect("valid grid"));
+    for scan in simulate(&ring, &world, &poses, 11).expect("valid poses") {
+        map.integrate(&scan.pose, &scan.ranges_m, &scan.bearings_rad, sonar).expect("valid scan");
     }
     map
 }
@@ -50,7 +77,10 @@ fn gain(c: &mut Criterion) {
     // Early in an exploration: the same candidates (so the same pairs) after 6 scans.
     let early = explored_map(&sonar, &bearings, 6);
     let early_eval = GainEvaluator::new(&early, &sonar, GainOptions::default()).expect("valid options");
-    for (name, m) in [("60 scans", &map), ("6 scans", &early)] {
+    // A building: the same candidates on the office world after 60 scans.
+    let office = office_map(&sonar, 60);
+    let office_eval = GainEvaluator::new(&office, &sonar, GainOptions::default()).expect("valid options");
+    for (name, m) in [("60 scans", &map), ("6 scans", &early), ("60 scans of the office", &office)] {
         let prior =
             m.histograms().chunks_exact(m.bins()).filter(|h| h.iter().all(|&v| v == 1.0 / m.bins() as f32)).count();
         eprintln!("map after {name}: {:.1} % of its cells at the prior", 100.0 * prior as f64 / m.grid().len() as f64);
@@ -68,6 +98,10 @@ fn gain(c: &mut Criterion) {
     group.bench_function("fast_1_thread_6_scans", |b| {
         let pool = rayon::ThreadPoolBuilder::new().num_threads(1).build().expect("thread pool");
         b.iter(|| pool.install(|| early_eval.evaluate(&poses, &bearings, GainMethod::Fast).expect("valid")))
+    });
+    group.bench_function("fast_1_thread_office", |b| {
+        let pool = rayon::ThreadPoolBuilder::new().num_threads(1).build().expect("thread pool");
+        b.iter(|| pool.install(|| office_eval.evaluate(&poses, &bearings, GainMethod::Fast).expect("valid")))
     });
     // The cones alone, each cell visited and nothing computed: the part of
     // the per-pair cost that walking the footprints takes.

@@ -34,7 +34,11 @@
 //!   leave it in free space contribute `I_free * (sum of their p(d))`: a suffix
 //!   sum of `p(d)`; only the few readings that end near the cell need a kernel
 //!   of their own;
-//! - readings of probability 0 contribute nothing and are skipped;
+//! - readings of probability 0 contribute nothing and are skipped, and a
+//!   beam's footprint is walked only out to the reach of its farthest
+//!   possible reading: a cell the ML map holds as fully covered stops every
+//!   predicted beam, so the cells behind it (out of reach of every reading
+//!   that can occur) are not visited at all;
 //! - every cell still at the uniform prior gains the same under a given
 //!   kernel, so those gains are computed once per kernel of the table and
 //!   looked up (in unexplored space a pair costs a table read);
@@ -441,8 +445,6 @@ impl<'a> GainEvaluator<'a> {
         let dist = self.distribution(origin, angle);
         let (none_reach, _) = self.range.reach(self.range.max_range_m);
         let n = dist.probabilities.len();
-        // The widest footprint: the farthest echo's, or no echo's.
-        let reach = n.checked_sub(1).map_or(none_reach, |j| self.range.reach(j as f64 * dist.step_m).0.max(none_reach));
         // Only echoes of non-zero probability matter.
         let possible: Vec<Hypothesis> = (0..n)
             .filter(|&j| dist.probabilities[j] > 0.0)
@@ -452,6 +454,11 @@ impl<'a> GainEvaluator<'a> {
                 Hypothesis { lookup: self.table.reading(d, echo), reach, p: dist.probabilities[j] }
             })
             .collect();
+        // The footprint of the farthest reading that can occur: no cell
+        // beyond it is updated by any (behind a wall the ML map marks as
+        // covered, none), and footprints of growing reaches are nested.
+        let echo_reach = possible.last().map_or(0.0, |h| h.reach);
+        let reach = if dist.no_echo > 0.0 { echo_reach.max(none_reach) } else { echo_reach };
         let mut suffix = vec![0.0; possible.len() + 1];
         for j in (0..possible.len()).rev() {
             suffix[j] = suffix[j + 1] + possible[j].p;
