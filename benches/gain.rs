@@ -29,9 +29,14 @@ use criterion::{Criterion, Throughput, criterion_group, criterion_main};
 use rand::{RngExt, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 
+/// The benchmark's 20 m x 20 m map at 5 cm, at the prior.
+fn empty_map() -> CoverageMap {
+    CoverageMap::new(Grid::new([0.0, 0.0], 0.05, 400, 400).expect("valid grid"))
+}
+
 /// The 20 m map after `scans` seeded sonar scans from random poses.
 fn explored_map(sonar: &SonarModel, bearings: &[f64], scans: usize) -> CoverageMap {
-    let mut map = CoverageMap::new(Grid::new([0.0, 0.0], 0.05, 400, 400).expect("valid grid"));
+    let mut map = empty_map();
     let mut rng = ChaCha8Rng::seed_from_u64(5);
     for _ in 0..scans {
         let pose = Pose::new(rng.random_range(2.0..18.0), rng.random_range(2.0..18.0), rng.random_range(-3.1..3.1));
@@ -41,8 +46,8 @@ fn explored_map(sonar: &SonarModel, bearings: &[f64], scans: usize) -> CoverageM
     map
 }
 
-/// The 20 m map over the south-west of the built-in `office` world after
-/// `scans` simulated sonar scans from seeded collision-free poses: walls the
+/// The 20 m map over the western 20 m of the built-in `office` world (30 m x
+/// 20 m) after `scans` simulated sonar scans from seeded collision-free poses: walls the
 /// ML map holds as covered stop the predicted beams, as in a real building.
 fn office_map(sonar: &SonarModel, scans: usize) -> CoverageMap {
     let world = World::builtin("office").expect("built-in world");
@@ -56,7 +61,7 @@ fn office_map(sonar: &SonarModel, scans: usize) -> CoverageMap {
         }
     }
     let ring = SonarRing::ring(24).with_model(sonar);
-    let mut map = CoverageMap::new(Grid::new([0.0, 0.0], 0.05, 400, 400).expect("valid grid"));
+    let mut map = empty_map();
     for scan in simulate(&ring, &world, &poses, 11).expect("valid poses") {
         map.integrate(&scan.pose, &scan.ranges_m, &scan.bearings_rad, sonar).expect("valid scan");
     }
@@ -89,20 +94,18 @@ fn gain(c: &mut Criterion) {
     let mut group = c.benchmark_group("gain_1000_candidates_24_sonars");
     group.sample_size(10).measurement_time(std::time::Duration::from_secs(10));
     group.throughput(Throughput::Elements(pairs));
-    for threads in [1, 2] {
-        let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().expect("thread pool");
-        group.bench_function(format!("fast_{threads}_threads"), |b| {
+    let pool = |threads| rayon::ThreadPoolBuilder::new().num_threads(threads).build().expect("thread pool");
+    let (one, two) = (pool(1), pool(2));
+    for (name, pool, eval) in [
+        ("fast_1_threads", &one, &eval),
+        ("fast_2_threads", &two, &eval),
+        ("fast_1_thread_6_scans", &one, &early_eval),
+        ("fast_1_thread_office", &one, &office_eval),
+    ] {
+        group.bench_function(name, |b| {
             b.iter(|| pool.install(|| eval.evaluate(&poses, &bearings, GainMethod::Fast).expect("valid")))
         });
     }
-    group.bench_function("fast_1_thread_6_scans", |b| {
-        let pool = rayon::ThreadPoolBuilder::new().num_threads(1).build().expect("thread pool");
-        b.iter(|| pool.install(|| early_eval.evaluate(&poses, &bearings, GainMethod::Fast).expect("valid")))
-    });
-    group.bench_function("fast_1_thread_office", |b| {
-        let pool = rayon::ThreadPoolBuilder::new().num_threads(1).build().expect("thread pool");
-        b.iter(|| pool.install(|| office_eval.evaluate(&poses, &bearings, GainMethod::Fast).expect("valid")))
-    });
     // The cones alone, each cell visited and nothing computed: the part of
     // the per-pair cost that walking the footprints takes.
     group.bench_function("cone_walk_only", |b| b.iter(|| eval.pairs(&poses, &bearings).expect("valid")));
@@ -112,13 +115,10 @@ fn gain(c: &mut Criterion) {
     let few = &few[..];
     let mut group = c.benchmark_group("gain_4_candidates_24_sonars");
     group.sample_size(10).measurement_time(std::time::Duration::from_secs(20));
-    let pool = rayon::ThreadPoolBuilder::new().num_threads(1).build().expect("thread pool");
-    group.bench_function("exact_1_thread", |b| {
-        b.iter(|| pool.install(|| eval.evaluate(few, &bearings, GainMethod::Exact).expect("valid")))
-    });
-    group.bench_function("fast_1_thread", |b| {
-        b.iter(|| pool.install(|| eval.evaluate(few, &bearings, GainMethod::Fast).expect("valid")))
-    });
+    for (name, method) in [("exact_1_thread", GainMethod::Exact), ("fast_1_thread", GainMethod::Fast)] {
+        group
+            .bench_function(name, |b| b.iter(|| one.install(|| eval.evaluate(few, &bearings, method).expect("valid"))));
+    }
     group.finish();
 
     let mut group = c.benchmark_group("planning_step");
