@@ -241,14 +241,7 @@ fn prior_gains(bins: usize, table: &KernelTable) -> Vec<f64> {
         .values_f64()
         .chunks_exact(bins)
         .zip(table.k_ln_k().chunks_exact(bins))
-        .map(|(k, m)| {
-            let (mut z, mut a) = (0.0, 0.0);
-            for (&k, &m) in k.iter().zip(m) {
-                z += h * k;
-                a += u * k + h * m;
-            }
-            entropy - (z.ln() - a / z)
-        })
+        .map(|(k, m)| plain_gain(std::iter::repeat_n((h, u), bins), entropy, k, m))
         .collect()
 }
 
@@ -774,15 +767,23 @@ fn weighted_gains_any(beam: &Beam<'_>, jobs: &[Job]) -> f64 {
     for &(i, offset, w) in jobs {
         let cell = i * bins..(i + 1) * bins;
         let (h, u) = (&beam.map.histograms()[cell.clone()], &beam.cache.h_ln_h[cell]);
-        let (mut z, mut a) = (0.0, 0.0);
-        for b in 0..bins {
-            let (hb, kb) = (f64::from(h[b]), k[offset + b]);
-            z += hb * kb;
-            a += u[b] * kb + hb * m[offset + b];
-        }
-        total += w * (beam.cache.entropy[i] - (z.ln() - a / z));
+        let kernel = offset..offset + bins;
+        let h_u = h.iter().map(|&v| f64::from(v)).zip(u.iter().copied());
+        total += w * plain_gain(h_u, beam.cache.entropy[i], &k[kernel.clone()], &m[kernel]);
     }
     total
+}
+
+/// `H(h) - H(h k / Z) = H(h) - ln Z + A / Z` (see [`weighted_gains_with`]),
+/// plainly, for any bin count: `h_u` gives each bin's `(h, h ln h)`,
+/// `entropy` is `H(h)`, `k` the kernel and `m` its `k ln k`.
+fn plain_gain(h_u: impl Iterator<Item = (f64, f64)>, entropy: f64, k: &[f64], m: &[f64]) -> f64 {
+    let (mut z, mut a) = (0.0, 0.0);
+    for ((h, u), (&k, &m)) in h_u.zip(k.iter().zip(m)) {
+        z += h * k;
+        a += u * k + h * m;
+    }
+    entropy - (z.ln() - a / z)
 }
 
 impl<const N: usize> FastBeam<'_, N> {
