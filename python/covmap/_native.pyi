@@ -220,8 +220,8 @@ def expected_information_gain(
     poses: _Poses,
     bearings: _Readings,
     model: _Model,
-    *,
     method: Literal["fast", "exact"] = "fast",
+    *,
     range_step_m: float | None = None,
     stop_coverage: Literal["ml", "maximum_likelihood", "mean"] = "ml",
 ) -> npt.NDArray[np.float64]: ...

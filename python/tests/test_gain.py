@@ -41,6 +41,9 @@ def test_fast_equals_exact(scans: ScanSource, model: Any, stop_coverage: Literal
     exact = covmap.expected_information_gain(
         cmap, poses, bearings, model, method="exact", stop_coverage=stop_coverage
     )
+    # `method` may also be given by position, as the fifth argument.
+    positional = covmap.expected_information_gain(cmap, poses, bearings, model, "exact", stop_coverage=stop_coverage)
+    np.testing.assert_array_equal(positional, exact)
     assert fast.shape == (10,) and fast.dtype == np.float64
     assert np.all(exact > 0.0)
     np.testing.assert_allclose(fast, exact, rtol=1e-6)

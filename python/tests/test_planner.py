@@ -132,6 +132,11 @@ def test_bad_poses_raise(room: covmap.CoverageMap) -> None:
         planner.status(room, (-1.0, 4.0, 0.0))
     with pytest.raises(covmap.ArrayShapeError):
         planner.path_costs(room, (4.0, 4.0))
+    # A pose that is no sequence of numbers: a covmap error (and a TypeError).
+    for bad in [("a", 4.0, 0.0), None, np.array(["4", "4", "0"])]:
+        with pytest.raises(covmap.ArrayDtypeError) as info:
+            planner.next_viewpoint(room, bad, RING, SONAR)  # type: ignore[arg-type]
+        assert isinstance(info.value, covmap.CovmapError) and isinstance(info.value, TypeError)
 
 
 def test_status_of_a_fresh_room(room: covmap.CoverageMap) -> None:

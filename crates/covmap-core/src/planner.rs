@@ -2,16 +2,21 @@
 //! eq. 14), reachability and path costs for a disc robot, and termination.
 //!
 //! # Traversability
-//! A cell is *blocked* when its mean coverage exceeds `blocked_coverage`, and
-//! *unknown* while its entropy is at least `unknown_entropy_fraction` of the
-//! prior's. Where the robot's centre may be: no blocked cell (and, unless
-//! `unknown_is_free`, no unknown cell) within `robot_radius_m` of it, i.e. the
-//! obstacles inflated by the robot's radius. Paths run between cell centres,
-//! 8-connected, with Euclidean step lengths (Dijkstra). Cells the robot stands
-//! on are always allowed, so that a robot inside freshly seen space can leave it.
+//! A cell is *blocked* when its coverage on the ML map exceeds
+//! `blocked_coverage`, and *unknown* while its entropy is at least
+//! `unknown_entropy_fraction` of the prior's (a cell at the prior has ML
+//! coverage 0, so only this rule keeps unexplored space out of reach). The
+//! robot's centre may be at a cell's centre when its disc of
+//! `robot_radius_m` there overlaps no blocked cell (and, unless
+//! `unknown_is_free`, no unknown cell): the obstacles, whole cells, inflated by
+//! the robot's radius. Paths run between cell centres, 8-connected, with
+//! Euclidean step lengths (Dijkstra). The robot may also pass through the
+//! cells under its own disc where it stands that are not blocked themselves,
+//! so that a robot too close to an obstacle (as the map now has it) can move
+//! away; those cells are goals only if they are free.
 //!
 //! # Candidates and choice
-//! Candidate viewpoints are the reachable cells on a lattice of
+//! Candidate viewpoints are the reachable free cells on a lattice of
 //! `candidate_stride_m`, at least `min_travel_m` away along the path, whose
 //! expected information gain exceeds `min_gain_nats` (a negligible gain makes no
 //! goal). Of those, the pose maximising
@@ -52,7 +57,7 @@ pub struct PlannerConfig {
     pub min_travel_m: f64,
     /// Candidates whose expected gain is at most this are not goals, nats.
     pub min_gain_nats: f64,
-    /// Mean coverage above which a cell blocks the robot.
+    /// Coverage on the ML map above which a cell blocks the robot.
     pub blocked_coverage: f64,
     /// A cell is unknown while its entropy is at least this fraction of the
     /// prior's (`ln bins`).
@@ -293,45 +298,69 @@ impl Planner {
 
     /// Where the robot's centre may be on `map`: see the module documentation.
     pub fn free_space(&self, map: &CoverageMap) -> Vec<bool> {
+        self.free_and_blocked(map).0
+    }
+
+    /// [`Self::free_space`], and the cells that block.
+    fn free_and_blocked(&self, map: &CoverageMap) -> (Vec<bool>, Vec<bool>) {
         let grid = map.grid();
         let blocked = self.blocked(map, !self.config.unknown_is_free);
-        let reach = (self.config.robot_radius_m / grid.resolution_m()).floor() as i64;
+        let offsets = disc_offsets(self.config.robot_radius_m / grid.resolution_m());
         let (rows, cols) = (grid.rows() as i64, grid.cols() as i64);
         let mut free = vec![true; grid.len()];
         for (i, _) in blocked.iter().enumerate().filter(|(_, b)| **b) {
             let (row, col) = ((i / grid.cols()) as i64, (i % grid.cols()) as i64);
-            for dr in -reach..=reach {
-                for dc in -reach..=reach {
-                    let (nr, nc) = (row + dr, col + dc);
-                    if dr * dr + dc * dc <= reach * reach && nr >= 0 && nc >= 0 && nr < rows && nc < cols {
-                        free[(nr * cols + nc) as usize] = false;
-                    }
+            for &(dr, dc) in &offsets {
+                let (nr, nc) = (row + dr, col + dc);
+                if nr >= 0 && nc >= 0 && nr < rows && nc < cols {
+                    free[(nr * cols + nc) as usize] = false;
                 }
             }
         }
-        free
+        (free, blocked)
     }
 
-    /// Cells that block: covered above the threshold, or, with
+    /// Cells that block: covered above the threshold on the ML map, or, with
     /// `unknown_blocks`, still unknown.
     fn blocked(&self, map: &CoverageMap, unknown_blocks: bool) -> Vec<bool> {
         let unknown_entropy = self.config.unknown_entropy_fraction * (map.bins() as f64).ln();
-        let mean = map.mean();
+        let ml = map.ml();
         let entropy = map.entropy();
-        mean.iter()
+        ml.iter()
             .zip(&entropy)
-            .map(|(&m, &h)| {
-                f64::from(m) > self.config.blocked_coverage || (unknown_blocks && f64::from(h) >= unknown_entropy)
+            .map(|(&c, &h)| {
+                f64::from(c) > self.config.blocked_coverage || (unknown_blocks && f64::from(h) >= unknown_entropy)
             })
             .collect()
     }
 
-    /// Shortest paths from `pose` over the robot's free space.
+    /// Shortest paths from `pose` over the robot's free space and the cells
+    /// under its disc there that do not block.
     pub fn reachability(&self, map: &CoverageMap, pose: &Pose) -> Result<Reachability> {
+        Ok(self.free_and_reachable(map, pose)?.1)
+    }
+
+    /// [`Self::free_space`], and shortest paths over it from `pose`.
+    fn free_and_reachable(&self, map: &CoverageMap, pose: &Pose) -> Result<(Vec<bool>, Reachability)> {
         let start = self.start_cell(map, pose)?;
-        let mut free = self.free_space(map);
-        free[map.grid().index(start)?] = true;
-        shortest_paths(map.grid(), &free, start)
+        let grid = map.grid();
+        let (free, blocked) = self.free_and_blocked(map);
+        let mut passable = free.clone();
+        passable[grid.index(start)?] = true;
+        let radius = self.config.robot_radius_m / grid.resolution_m();
+        let reach = radius.floor() as i64;
+        let (rows, cols) = (grid.rows() as i64, grid.cols() as i64);
+        for dr in -reach..=reach {
+            for dc in -reach..=reach {
+                let (nr, nc) = (start.row as i64 + dr, start.col as i64 + dc);
+                if ((dr * dr + dc * dc) as f64).sqrt() <= radius && nr >= 0 && nc >= 0 && nr < rows && nc < cols {
+                    let i = (nr * cols + nc) as usize;
+                    passable[i] |= !blocked[i];
+                }
+            }
+        }
+        let reach = shortest_paths(grid, &passable, start)?;
+        Ok((free, reach))
     }
 
     fn start_cell(&self, map: &CoverageMap, pose: &Pose) -> Result<Cell> {
@@ -358,14 +387,14 @@ impl Planner {
         bearings: &[f64],
         model: &M,
     ) -> Result<Plan> {
-        let reach = self.reachability(map, pose)?;
+        let (free, reach) = self.free_and_reachable(map, pose)?;
         let grid = map.grid();
         let stride = ((self.config.candidate_stride_m / grid.resolution_m()).round() as usize).max(1);
         let mut indices = Vec::new();
         for row in (stride / 2..grid.rows()).step_by(stride) {
             for col in (stride / 2..grid.cols()).step_by(stride) {
                 let i = row * grid.cols() + col;
-                if reach.reachable(i) && reach.cost(i) >= self.config.min_travel_m {
+                if free[i] && reach.reachable(i) && reach.cost(i) >= self.config.min_travel_m {
                     indices.push(i);
                 }
             }
@@ -433,6 +462,25 @@ impl Planner {
             status.reachable_cells > 0 && status.certain_cells + status.stagnated_cells == status.reachable_cells;
         Ok(status)
     }
+}
+
+/// The cell offsets `(rows, columns)` a blocked cell takes from the robot's
+/// free space, for a robot of `radius` cells: the cell itself, and every cell
+/// whose centre lies less than `radius` from some point of it (the robot's
+/// disc there would overlap it).
+fn disc_offsets(radius: f64) -> Vec<(i64, i64)> {
+    let reach = (radius + 0.5).ceil() as i64;
+    // Distance from a centre `d` cells away to the nearest point of a cell.
+    let gap = |d: i64| (d.abs() as f64 - 0.5).max(0.0);
+    let mut offsets = Vec::new();
+    for dr in -reach..=reach {
+        for dc in -reach..=reach {
+            if (dr == 0 && dc == 0) || gap(dr).hypot(gap(dc)) < radius {
+                offsets.push((dr, dc));
+            }
+        }
+    }
+    offsets
 }
 
 /// How far exploration has come.
@@ -513,6 +561,79 @@ mod tests {
         assert_eq!(c.costs[near.chosen.unwrap()], min_cost);
         assert_eq!(far.candidates.gains[far.chosen.unwrap()], max_gain);
         assert!(max_gain > c.gains[near.chosen.unwrap()]);
+    }
+
+    /// A 3 m square map at 5 cm whose cells in `walls` are certainly covered
+    /// (all mass in the last bin) and the others certainly free (all mass in
+    /// bin 0) or, with `rest_at_prior`, still at the prior.
+    fn walled_map(walls: impl Fn(usize, usize) -> bool, rest_at_prior: bool) -> CoverageMap {
+        let grid = Grid::new([0.0, 0.0], 0.05, 60, 60).unwrap();
+        let bins = 16;
+        let mut data = vec![0.0f32; grid.len() * bins];
+        for (i, h) in data.chunks_exact_mut(bins).enumerate() {
+            if walls(i / 60, i % 60) {
+                h[bins - 1] = 1.0;
+            } else if rest_at_prior {
+                h.fill(1.0 / bins as f32);
+            } else {
+                h[0] = 1.0;
+            }
+        }
+        CoverageMap::from_histograms(grid, bins, data).unwrap()
+    }
+
+    /// A cell is free exactly when the robot's disc at its centre overlaps no
+    /// blocked cell, checked against the geometry for radii that are and are
+    /// not whole numbers of cells.
+    #[test]
+    fn free_space_is_the_disc_clear_of_blocked_cells() {
+        let map = walled_map(|row, col| (row, col) == (30, 30), false);
+        let grid = map.grid();
+        let [wx0, wy0] = grid.cell_center(Cell { row: 30, col: 30 });
+        let half = 0.5 * grid.resolution_m();
+        for radius in [0.0, 0.05, 0.12, 0.25, 0.27, 0.29] {
+            let planner = Planner::new(PlannerConfig { robot_radius_m: radius, ..PlannerConfig::default() }).unwrap();
+            let free = planner.free_space(&map);
+            for (i, &f) in free.iter().enumerate() {
+                let [x, y] = grid.cell_center(grid.cell(i));
+                // Distance from the centre to the nearest point of the blocked cell.
+                let gap = ((x - wx0).abs() - half).max(0.0).hypot(((y - wy0).abs() - half).max(0.0));
+                let clear = gap >= radius - 1e-9 && !((x - wx0).abs() < half && (y - wy0).abs() < half);
+                // Away from the rounding of `gap == radius` itself.
+                if (gap - radius).abs() > 1e-9 {
+                    assert_eq!(f, clear, "radius {radius}, cell {:?}, gap {gap}", grid.cell(i));
+                }
+            }
+        }
+    }
+
+    /// A robot standing too close to a wall may leave, but its own cell is no
+    /// goal, and no candidate is.
+    #[test]
+    fn a_robot_too_close_to_a_wall_never_picks_a_colliding_pose() {
+        // A wall along column 40 in unexplored space.
+        let map = walled_map(|_, col| col == 40, true);
+        // 0.15 m from the wall's face: inside the inflated wall, on the lattice.
+        let pose = Pose::new(1.875, 1.875, 0.0);
+        let start = map.grid().world_to_cell(pose.x_m, pose.y_m).unwrap();
+        let config = PlannerConfig {
+            alpha: 0.0,
+            candidate_stride_m: 0.25,
+            min_gain_nats: 0.0,
+            unknown_is_free: true,
+            ..PlannerConfig::default()
+        };
+        let planner = Planner::new(config).unwrap();
+        let free = planner.free_space(&map);
+        assert!(!free[map.grid().index(start).unwrap()], "the start must lie in the inflated wall");
+        let plan = planner.next_viewpoint(&map, &pose, &ring(), &SonarModel::default()).unwrap();
+        for p in &plan.candidates.poses {
+            let i = map.grid().index(map.grid().world_to_cell(p.x_m, p.y_m).unwrap()).unwrap();
+            assert!(free[i], "candidate {p:?} collides");
+        }
+        let goal = plan.pose.expect("free space around");
+        assert_ne!(map.grid().world_to_cell(goal.x_m, goal.y_m).unwrap(), start);
+        assert_eq!(plan.path.first().map(|c| map.grid().world_to_cell(c[0], c[1]).unwrap()), Some(start));
     }
 
     #[test]

@@ -11,7 +11,7 @@ use numpy::ndarray::{Array2, Array3};
 use numpy::{
     Element, IntoPyArray, PyArray2, PyArray3, PyArrayDyn, PyArrayMethods, PyUntypedArray, PyUntypedArrayMethods,
 };
-use pyo3::exceptions::{PyRuntimeError, PyTypeError, PyValueError};
+use pyo3::exceptions::{PyRuntimeError, PyValueError};
 use pyo3::prelude::*;
 
 use crate::errors::{Exception, to_py};
@@ -42,16 +42,23 @@ fn numpy_values<T: Element + Copy>(
 }
 
 /// A pose: any sequence of three numbers `(x, y, theta)`, metres and radians.
+/// Another length raises `ArrayShapeError`, anything else `ArrayDtypeError`.
 pub(crate) fn pose(obj: &Bound<'_, PyAny>) -> PyResult<Pose> {
     let py = obj.py();
-    obj.extract::<[f64; 3]>().map(Pose::from).map_err(|e| {
-        let message = format!("pose must be a sequence of three numbers (x, y, theta): {e}");
-        if e.is_instance_of::<PyValueError>(py) {
-            Exception::ArrayShape.err(py, message)
-        } else {
-            PyTypeError::new_err(message)
-        }
-    })
+    obj.extract::<[f64; 3]>()
+        .map(Pose::from)
+        .map_err(|e| sequence_error(py, &e, format!("pose must be a sequence of three numbers (x, y, theta): {e}")))
+}
+
+/// The error for a sequence of numbers that could not be read (`cause`): of
+/// the wrong length (a `ValueError` from the extraction) `ArrayShapeError`,
+/// else `ArrayDtypeError`.
+fn sequence_error(py: Python<'_>, cause: &PyErr, message: String) -> PyErr {
+    if cause.is_instance_of::<PyValueError>(py) {
+        Exception::ArrayShape.err(py, message)
+    } else {
+        Exception::ArrayDtype.err(py, message)
+    }
 }
 
 /// A scan's ranges or bearings: a 1-D float64 numpy array, or a sequence of
@@ -178,12 +185,7 @@ pub(crate) fn point(obj: &Bound<'_, PyAny>, name: &str, heading_ok: bool) -> PyR
     let py = obj.py();
     let fail = |e: PyErr| {
         let what = if heading_ok { "(x, y) or a pose (x, y, theta)" } else { "(x, y)" };
-        let message = format!("{name} must be a sequence of two numbers {what}: {e}");
-        if e.is_instance_of::<PyValueError>(py) {
-            Exception::ArrayShape.err(py, message)
-        } else {
-            PyTypeError::new_err(message)
-        }
+        sequence_error(py, &e, format!("{name} must be a sequence of two numbers {what}: {e}"))
     };
     match obj.extract::<Vec<f64>>() {
         Ok(v) if v.len() == 2 || (heading_ok && v.len() == 3) => Ok([v[0], v[1]]),

@@ -22,7 +22,7 @@ use crate::sensor::AnyModel;
 /// the map or not finite raises; the map is never changed. Runs with the GIL
 /// released, candidates in parallel.
 #[pyfunction]
-#[pyo3(signature = (map, poses, bearings, model, *, method="fast", range_step_m=None, stop_coverage="ml"))]
+#[pyo3(signature = (map, poses, bearings, model, method="fast", *, range_step_m=None, stop_coverage="ml"))]
 #[allow(clippy::too_many_arguments, reason = "the evaluator's inputs and its three options")]
 pub(crate) fn expected_information_gain<'py>(
     py: Python<'py>,

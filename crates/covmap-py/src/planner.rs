@@ -13,11 +13,13 @@ use crate::sensor::AnyModel;
 
 /// The decision-theoretic exploration planner.
 ///
-/// A cell *blocks* when its mean coverage exceeds ``blocked_coverage`` and is
-/// *unknown* while its entropy is at least ``unknown_entropy_fraction`` of the
-/// prior's; the robot (a disc of ``robot_radius_m``) keeps clear of blocked
-/// cells and, unless ``unknown_is_free``, of unknown ones; paths are
-/// 8-connected between cell centres. Candidates are the reachable cells on a
+/// A cell *blocks* when its coverage on the ML map exceeds
+/// ``blocked_coverage`` and is *unknown* while its entropy is at least
+/// ``unknown_entropy_fraction`` of the prior's; the robot (a disc of
+/// ``robot_radius_m``) keeps its disc clear of blocked cells and, unless
+/// ``unknown_is_free``, of unknown ones; paths are 8-connected between cell
+/// centres (from where the robot stands, it may also cross the unblocked
+/// cells under its disc). Candidates are the reachable free cells on a
 /// lattice of ``candidate_stride_m``, at least ``min_travel_m`` away, whose
 /// expected gain exceeds ``min_gain_nats``; the chosen one maximises
 /// ``alpha * gain / max gain - (1 - alpha) * cost / max cost`` (``alpha = 0``:
@@ -118,7 +120,7 @@ impl PyPlanner {
     fn min_gain_nats(&self) -> f64 {
         self.config().min_gain_nats
     }
-    /// Mean coverage above which a cell blocks the robot.
+    /// Coverage on the ML map above which a cell blocks the robot.
     #[getter]
     fn blocked_coverage(&self) -> f64 {
         self.config().blocked_coverage
