@@ -340,7 +340,8 @@ impl Planner {
         Ok(self.free_and_reachable(map, pose)?.1)
     }
 
-    /// [`Self::free_space`], and shortest paths over it from `pose`.
+    /// [`Self::free_space`], and shortest paths from `pose` over it and the
+    /// unblocked cells under the robot's disc at `pose`.
     fn free_and_reachable(&self, map: &CoverageMap, pose: &Pose) -> Result<(Vec<bool>, Reachability)> {
         let start = self.start_cell(map, pose)?;
         let grid = map.grid();
@@ -348,10 +349,10 @@ impl Planner {
         let mut passable = free.clone();
         passable[grid.index(start)?] = true;
         let radius = self.config.robot_radius_m / grid.resolution_m();
-        let reach = radius.floor() as i64;
+        let span = radius.floor() as i64;
         let (rows, cols) = (grid.rows() as i64, grid.cols() as i64);
-        for dr in -reach..=reach {
-            for dc in -reach..=reach {
+        for dr in -span..=span {
+            for dc in -span..=span {
                 let (nr, nc) = (start.row as i64 + dr, start.col as i64 + dc);
                 if ((dr * dr + dc * dc) as f64).sqrt() <= radius && nr >= 0 && nc >= 0 && nr < rows && nc < cols {
                     let i = (nr * cols + nc) as usize;
