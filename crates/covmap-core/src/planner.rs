@@ -11,7 +11,7 @@
 //! `unknown_is_free`, no unknown cell): the obstacles, whole cells, inflated by
 //! the robot's radius. Paths run between cell centres, 8-connected, with
 //! Euclidean step lengths (Dijkstra). The robot may also pass through the
-//! cells under its own disc where it stands that are not blocked themselves,
+//! cells its disc overlaps where it stands that are not blocked themselves,
 //! so that a robot too close to an obstacle (as the map now has it) can move
 //! away; those cells are goals only if they are free.
 //!
@@ -305,19 +305,19 @@ impl Planner {
     fn free_and_blocked(&self, map: &CoverageMap) -> (Vec<bool>, Vec<bool>) {
         let grid = map.grid();
         let blocked = self.blocked(map, !self.config.unknown_is_free);
-        let offsets = disc_offsets(self.config.robot_radius_m / grid.resolution_m());
-        let (rows, cols) = (grid.rows() as i64, grid.cols() as i64);
+        let offsets = self.disc_offsets(grid);
         let mut free = vec![true; grid.len()];
         for (i, _) in blocked.iter().enumerate().filter(|(_, b)| **b) {
-            let (row, col) = ((i / grid.cols()) as i64, (i % grid.cols()) as i64);
-            for &(dr, dc) in &offsets {
-                let (nr, nc) = (row + dr, col + dc);
-                if nr >= 0 && nc >= 0 && nr < rows && nc < cols {
-                    free[(nr * cols + nc) as usize] = false;
-                }
+            for n in cells_at(grid, i, &offsets) {
+                free[n] = false;
             }
         }
         (free, blocked)
+    }
+
+    /// [`disc_offsets`] for this robot on `grid`.
+    fn disc_offsets(&self, grid: &Grid) -> Vec<(i64, i64)> {
+        disc_offsets(self.config.robot_radius_m / grid.resolution_m())
     }
 
     /// Cells that block: covered above the threshold on the ML map, or, with
@@ -335,30 +335,24 @@ impl Planner {
     }
 
     /// Shortest paths from `pose` over the robot's free space and the cells
-    /// under its disc there that do not block.
+    /// its disc there overlaps that do not block.
     pub fn reachability(&self, map: &CoverageMap, pose: &Pose) -> Result<Reachability> {
         Ok(self.free_and_reachable(map, pose)?.1)
     }
 
     /// [`Self::free_space`], and shortest paths from `pose` over it and the
-    /// unblocked cells under the robot's disc at `pose`.
+    /// unblocked cells the robot's disc at `pose` overlaps.
     fn free_and_reachable(&self, map: &CoverageMap, pose: &Pose) -> Result<(Vec<bool>, Reachability)> {
         let start = self.start_cell(map, pose)?;
         let grid = map.grid();
         let (free, blocked) = self.free_and_blocked(map);
+        let start_index = grid.index(start)?;
         let mut passable = free.clone();
-        passable[grid.index(start)?] = true;
-        let radius = self.config.robot_radius_m / grid.resolution_m();
-        let span = radius.floor() as i64;
-        let (rows, cols) = (grid.rows() as i64, grid.cols() as i64);
-        for dr in -span..=span {
-            for dc in -span..=span {
-                let (nr, nc) = (start.row as i64 + dr, start.col as i64 + dc);
-                if ((dr * dr + dc * dc) as f64).sqrt() <= radius && nr >= 0 && nc >= 0 && nr < rows && nc < cols {
-                    let i = (nr * cols + nc) as usize;
-                    passable[i] |= !blocked[i];
-                }
-            }
+        passable[start_index] = true;
+        // The disc overlaps a cell exactly when the cell, inflated, takes in
+        // the disc's centre: the same offsets.
+        for n in cells_at(grid, start_index, &self.disc_offsets(grid)) {
+            passable[n] |= !blocked[n];
         }
         let reach = shortest_paths(grid, &passable, start)?;
         Ok((free, reach))
@@ -484,6 +478,16 @@ fn disc_offsets(radius: f64) -> Vec<(i64, i64)> {
     offsets
 }
 
+/// Row-major indices of the cells at `offsets` from cell `i` that lie on `grid`.
+fn cells_at<'o>(grid: &Grid, i: usize, offsets: &'o [(i64, i64)]) -> impl Iterator<Item = usize> + 'o {
+    let (rows, cols) = (grid.rows() as i64, grid.cols() as i64);
+    let (row, col) = ((i / grid.cols()) as i64, (i % grid.cols()) as i64);
+    offsets.iter().filter_map(move |&(dr, dc)| {
+        let (nr, nc) = (row + dr, col + dc);
+        (nr >= 0 && nc >= 0 && nr < rows && nc < cols).then_some((nr * cols + nc) as usize)
+    })
+}
+
 /// How far exploration has come.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
 pub struct ExplorationStatus {
@@ -590,7 +594,8 @@ mod tests {
     fn free_space_is_the_disc_clear_of_blocked_cells() {
         let map = walled_map(|row, col| (row, col) == (30, 30), false);
         let grid = map.grid();
-        let [wx0, wy0] = grid.cell_center(Cell { row: 30, col: 30 });
+        let wall = Cell { row: 30, col: 30 };
+        let [wx0, wy0] = grid.cell_center(wall);
         let half = 0.5 * grid.resolution_m();
         for radius in [0.0, 0.05, 0.12, 0.25, 0.27, 0.29] {
             let planner = Planner::new(PlannerConfig { robot_radius_m: radius, ..PlannerConfig::default() }).unwrap();
@@ -599,7 +604,7 @@ mod tests {
                 let [x, y] = grid.cell_center(grid.cell(i));
                 // Distance from the centre to the nearest point of the blocked cell.
                 let gap = ((x - wx0).abs() - half).max(0.0).hypot(((y - wy0).abs() - half).max(0.0));
-                let clear = gap >= radius - 1e-9 && !((x - wx0).abs() < half && (y - wy0).abs() < half);
+                let clear = grid.cell(i) != wall && gap >= radius;
                 // Away from the rounding of `gap == radius` itself.
                 if (gap - radius).abs() > 1e-9 {
                     assert_eq!(f, clear, "radius {radius}, cell {:?}, gap {gap}", grid.cell(i));

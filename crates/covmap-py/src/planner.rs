@@ -19,7 +19,7 @@ use crate::sensor::AnyModel;
 /// ``robot_radius_m``) keeps its disc clear of blocked cells and, unless
 /// ``unknown_is_free``, of unknown ones; paths are 8-connected between cell
 /// centres (from where the robot stands, it may also cross the unblocked
-/// cells under its disc). Candidates are the reachable free cells on a
+/// cells its disc overlaps there). Candidates are the reachable free cells on a
 /// lattice of ``candidate_stride_m``, at least ``min_travel_m`` away, whose
 /// expected gain exceeds ``min_gain_nats``; the chosen one maximises
 /// ``alpha * gain / max gain - (1 - alpha) * cost / max cost`` (``alpha = 0``:
