@@ -114,3 +114,6 @@ def test_kernel_rejects_bad_bins_and_resolution(model: Any) -> None:
             model.kernel(1.0, 2.0, bins=bins)
     with pytest.raises(covmap.InvalidParameterError):
         model.kernel(1.0, 2.0, resolution=0.0)
+    for d_l, d in ((float("nan"), 2.0), (1.0, float("nan")), (-0.1, 2.0), (1.0, float("inf"))):
+        with pytest.raises(covmap.InvalidParameterError):
+            model.kernel(d_l, d)

@@ -39,11 +39,15 @@ pub(crate) struct Aligned<T: Plain> {
 }
 
 impl<T: Plain> Aligned<T> {
-    /// `len` elements, all `value`.
-    pub(crate) fn filled(value: T, len: usize) -> Self {
-        let mut buffer = Self::zeroed(len);
+    /// `len` elements, all `value`, or `None` if the memory cannot be had.
+    pub(crate) fn try_filled(value: T, len: usize) -> Option<Self> {
+        let lines = len.checked_mul(size_of::<T>())?.div_ceil(LINE);
+        let mut storage = Vec::new();
+        storage.try_reserve_exact(lines).ok()?;
+        storage.resize(lines, Line::default());
+        let mut buffer = Self { lines: storage, len, _element: PhantomData };
         buffer.fill(value);
-        buffer
+        Some(buffer)
     }
 
     /// A copy of `values`.
@@ -64,7 +68,7 @@ impl<T: Plain> Deref for Aligned<T> {
     type Target = [T];
     fn deref(&self) -> &[T] {
         // SAFETY: `lines` holds at least `len * size_of::<T>()` initialised
-        // bytes (`zeroed`), aligned to 64 and so to `T`; `T` is `f32` or `f64`
+        // bytes (`zeroed`, `try_filled`), aligned to 64 and so to `T`; `T` is `f32` or `f64`
         // (`Plain` is sealed), for which every bit pattern is a valid value.
         unsafe { std::slice::from_raw_parts(self.lines.as_ptr().cast::<T>(), self.len) }
     }
@@ -87,6 +91,16 @@ impl<T: Plain + fmt::Debug> fmt::Debug for Aligned<T> {
 mod tests {
     use super::*;
 
+    /// A buffer no address space holds is refused, not aborted on.
+    #[test]
+    fn try_filled_refuses_what_cannot_be_allocated() {
+        assert!(Aligned::try_filled(0.0f32, usize::MAX / 2).is_none(), "size overflows");
+        assert!(Aligned::try_filled(0.0f64, isize::MAX as usize / 8).is_none(), "beyond the address space");
+        let a = Aligned::try_filled(0.25f32, 17).unwrap();
+        assert_eq!(a.as_ptr() as usize % LINE, 0);
+        assert!(a.iter().all(|&v| v == 0.25) && a.len() == 17);
+    }
+
     #[test]
     fn starts_on_a_line_and_keeps_its_values() {
         for len in [0, 1, 15, 16, 17, 1000] {
@@ -99,7 +113,7 @@ mod tests {
             assert_eq!(b.len(), len);
             assert!(b.iter().enumerate().all(|(i, &v)| v == i as f64));
         }
-        let mut c = Aligned::filled(0.25f32, 33);
+        let mut c = Aligned::try_filled(0.25f32, 33).unwrap();
         c[32] = 1.0;
         assert_eq!(c.iter().sum::<f32>(), 0.25 * 32.0 + 1.0);
         assert_eq!(&c.clone()[..], &c[..]);

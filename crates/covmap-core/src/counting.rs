@@ -16,10 +16,46 @@ use crate::sensor::SensorModel;
 /// interception adds the beam's weight: 1, or, with a discount range `D`,
 /// `min(1, D / d)`, so that long, less reliable beams count less.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(try_from = "ScanCountsData")]
 pub struct ScanCounts {
     grid: Grid,
     discount_beyond_m: Option<f64>,
     counts: Vec<f32>,
+}
+
+/// The serialised form of [`ScanCounts`], validated on the way in: one
+/// finite, non-negative count per cell and a valid discount range.
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct ScanCountsData {
+    grid: Grid,
+    discount_beyond_m: Option<f64>,
+    counts: Vec<f32>,
+}
+
+impl TryFrom<ScanCountsData> for ScanCounts {
+    type Error = CovmapError;
+    fn try_from(d: ScanCountsData) -> Result<Self> {
+        let empty = match d.discount_beyond_m {
+            Some(m) => Self::with_discount(d.grid, m)?,
+            None => Self::new(d.grid),
+        };
+        if d.counts.len() != empty.counts.len() {
+            return Err(CovmapError::LengthMismatch {
+                what: "counts and grid cells",
+                left: d.counts.len(),
+                right: empty.counts.len(),
+            });
+        }
+        if let Some(&c) = d.counts.iter().find(|c| !(c.is_finite() && **c >= 0.0)) {
+            return Err(CovmapError::InvalidParameter {
+                name: "counts",
+                value: f64::from(c),
+                expected: "finite, non-negative counts",
+            });
+        }
+        Ok(Self { counts: d.counts, ..empty })
+    }
 }
 
 impl ScanCounts {
@@ -87,6 +123,33 @@ impl ScanCounts {
             visit(&self.grid, [pose.x_m, pose.y_m], pose.theta_rad + bearing, reach, model.footprint(), &mut |i, _| {
                 counts[i] += w
             });
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::sensor::LaserModel;
+
+    /// A deserialised count array is checked as the constructors check it,
+    /// so that a later scan cannot index past it.
+    #[test]
+    fn serde_validates() {
+        let grid = Grid::new([0.0, 0.0], 0.1, 10, 10).unwrap();
+        let mut counts = ScanCounts::with_discount(grid, 2.0).unwrap();
+        counts.integrate(&Pose::new(0.5, 0.5, 0.0), &[0.3], &[0.0], &LaserModel::default()).unwrap();
+        let s = serde_json::to_string(&counts).unwrap();
+        assert_eq!(serde_json::from_str::<ScanCounts>(&s).unwrap(), counts);
+        let zeros = serde_json::to_string(&vec![0.0f32; 100]).unwrap();
+        let plain = serde_json::to_string(&ScanCounts::new(grid)).unwrap();
+        for bad in [
+            plain.replace(&zeros, "[]"),
+            plain.replace(&zeros, &zeros.replacen("0.0", "-1.0", 1)),
+            s.replace("\"discount_beyond_m\":2.0", "\"discount_beyond_m\":-1.0"),
+        ] {
+            assert_ne!(bad, plain);
+            assert!(serde_json::from_str::<ScanCounts>(&bad).is_err(), "{bad}");
         }
     }
 }

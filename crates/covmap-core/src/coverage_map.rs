@@ -101,22 +101,30 @@ pub struct HistoryState {
 
 impl CoverageMap {
     /// A map at the uniform prior with [`DEFAULT_BINS`] bins.
+    ///
+    /// # Panics
+    /// If the histograms (64 bytes a cell) cannot be allocated;
+    /// [`Self::with_bins`] returns an error instead.
     pub fn new(grid: Grid) -> Self {
-        Self::with_bins(grid, DEFAULT_BINS).expect("the default bin count is valid")
+        Self::with_bins(grid, DEFAULT_BINS).expect("the default bin count is valid and the map fits in memory")
     }
 
     /// A map at the uniform prior with `bins` bins per cell (2 to 256).
+    ///
+    /// Errors if the bin count is not supported, or the histograms
+    /// (`4 * bins` bytes a cell) cannot be allocated.
     pub fn with_bins(grid: Grid, bins: usize) -> Result<Self> {
         histogram::check_bins(bins)?;
         let p = 1.0 / bins as f32;
-        Ok(Self {
-            grid,
-            bins,
-            floor: histogram::bin_floor(bins),
-            data: Aligned::filled(p, grid.len() * bins),
-            table: None,
-            history: None,
-        })
+        let data = Aligned::try_filled(p, grid.len() * bins).ok_or_else(|| {
+            CovmapError::InvalidGrid(format!(
+                "{} x {} cells of {bins} bins need {} bytes, more than can be allocated",
+                grid.rows(),
+                grid.cols(),
+                grid.len() as u128 * bins as u128 * 4
+            ))
+        })?;
+        Ok(Self { grid, bins, floor: histogram::bin_floor(bins), data, table: None, history: None })
     }
 
     /// A map from stored histograms (`grid.len() * bins` values, cell-major).
@@ -435,15 +443,28 @@ mod tests {
             (Pose::new(1.0, 1.0, f64::INFINITY), vec![1.0], vec![0.0]),
             (Pose::new(-0.01, 1.0, 0.0), vec![1.0], vec![0.0]),
             (Pose::new(4.0, 1.0, 0.0), vec![1.0], vec![0.0]),
+            // Heading plus bearing overflows.
+            (Pose::new(2.0, 1.5, 1e308), vec![1.0], vec![1e308]),
         ];
         for (pose, r, b) in cases {
             assert!(map.integrate(&pose, &r, &b, &sonar).is_err(), "{pose:?} {r:?} {b:?}");
             assert_eq!(map.histograms(), &before[..]);
         }
-        let mut bad = sonar;
-        bad.range.sigma_min = -1.0;
-        assert!(map.integrate(&p, &[1.0], &[0.0], &bad).is_err());
-        assert_eq!(map.histograms(), &before[..]);
+        // Parameters of the right sign whose kernels cannot be computed: a
+        // subnormal sigma overflows the density's scale, a huge uniform
+        // weight the normalising sum.
+        let breaks: [fn(&mut SonarModel); 4] = [
+            |m| m.range.sigma_min = -1.0,
+            |m| (m.range.sigma_min, m.range.sigma_per_m) = (1e-310, 0.0),
+            |m| m.range.xi_min = 1e308,
+            |m| m.range.xi_per_m = 1e306,
+        ];
+        for brk in breaks {
+            let mut bad = sonar;
+            brk(&mut bad);
+            assert!(matches!(map.integrate(&p, &[1.0], &[0.0], &bad), Err(CovmapError::InvalidParameter { .. })));
+            assert_eq!(map.histograms(), &before[..]);
+        }
     }
 
     #[test]

@@ -30,8 +30,11 @@ pub enum CovmapError {
         /// The rejected reading.
         value: f64,
     },
-    /// A bearing is NaN or infinite.
-    #[error("invalid bearing at index {index}: {value} (expected a finite angle in radians)")]
+    /// A bearing is NaN or infinite, or the beam's direction (the pose's
+    /// heading plus the bearing) overflows to infinity.
+    #[error(
+        "invalid bearing at index {index}: {value} (expected a finite angle in radians, finite when added to the heading)"
+    )]
     InvalidBearing {
         /// Position of the bearing in the scan.
         index: usize,

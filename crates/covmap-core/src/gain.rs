@@ -28,7 +28,7 @@
 //! [`GainMethod::Exact`] is the equation as written: for every discretised
 //! reading, the gain of every cell it would update, each entropy from its
 //! definition. It is the reference. [`GainMethod::Fast`] gives the same sums
-//! (to rounding) much faster, from three facts:
+//! (to rounding) much faster, from these facts:
 //! - a cell in front of the end point gets a kernel that depends on the cell's
 //!   distance, not on the reading (see [`crate::sensor`]), so the readings that
 //!   leave it in free space contribute `I_free * (sum of their p(d))`: a suffix
@@ -72,7 +72,7 @@ use crate::error::{CovmapError, Result};
 use crate::footprint::{CellVisitor, ROW_BLOCK, visit};
 use crate::grid::Grid;
 use crate::numeric::{ln_normal, x_ln_x, x_ln_x_of_f32};
-use crate::scan::Pose;
+use crate::scan::{Pose, check_bearings};
 use crate::sensor::{Footprint, KernelTable, RangeModel, ReadingLookup, SensorModel};
 
 /// Which evaluator computes the expected gain.
@@ -104,7 +104,8 @@ pub enum StopCoverage {
 #[serde(deny_unknown_fields)]
 pub struct GainOptions {
     /// Spacing of the hypothetical readings, metres; `None`: the grid
-    /// resolution. At most the grid resolution.
+    /// resolution. Between [`MIN_STEP_FRACTION`] (1/1024) of the grid
+    /// resolution and the resolution.
     pub range_step_m: Option<f64>,
     /// Which coverage value of a cell stops a predicted beam.
     pub stop_coverage: StopCoverage,
@@ -137,7 +138,13 @@ pub struct ReadingDistribution {
 
 /// Predict the readings of a beam from `origin` along `angle_rad` by tracing
 /// its axis through `stop` (one coverage value per cell); see the
-/// [module documentation](self).
+/// [module documentation](self). Readings past the map's far corner cannot
+/// occur and get no slot.
+///
+/// Errors if `stop` does not hold one value per cell, the origin is not
+/// finite or lies outside the grid, the angle is not finite, the range model
+/// is invalid, or `step_m` is not a step between [`MIN_STEP_FRACTION`] of
+/// the grid resolution and the resolution.
 pub fn reading_distribution(
     grid: &Grid,
     stop: &[f32],
@@ -145,12 +152,67 @@ pub fn reading_distribution(
     angle_rad: f64,
     range: &RangeModel,
     step_m: f64,
+) -> Result<ReadingDistribution> {
+    if stop.len() != grid.len() {
+        return Err(CovmapError::LengthMismatch {
+            what: "stop coverage and grid cells",
+            left: stop.len(),
+            right: grid.len(),
+        });
+    }
+    if !(origin[0].is_finite() && origin[1].is_finite() && angle_rad.is_finite()) {
+        return Err(CovmapError::InvalidPose { x: origin[0], y: origin[1], theta: angle_rad });
+    }
+    grid.check_inside(origin[0], origin[1])?;
+    range.validate()?;
+    check_step(step_m, grid.resolution_m())?;
+    Ok(trace_readings(grid, stop, origin, angle_rad, range, step_m))
+}
+
+/// The finest spacing of hypothetical readings, as a fraction of the grid
+/// resolution (the kernels resolve a reading to 1/32 of a cell).
+pub const MIN_STEP_FRACTION: f64 = 1.0 / 1024.0;
+
+/// Errors unless `step_m` lies between [`MIN_STEP_FRACTION`] of
+/// `resolution_m` and `resolution_m`.
+fn check_step(step_m: f64, resolution_m: f64) -> Result<()> {
+    if step_m >= MIN_STEP_FRACTION * resolution_m && step_m <= resolution_m {
+        Ok(())
+    } else {
+        Err(CovmapError::InvalidParameter {
+            name: "range_step_m",
+            value: step_m,
+            expected: "a step between 1/1024 of the grid resolution and the resolution",
+        })
+    }
+}
+
+/// [`reading_distribution`] of valid inputs.
+fn trace_readings(
+    grid: &Grid,
+    stop: &[f32],
+    origin: [f64; 2],
+    angle_rad: f64,
+    range: &RangeModel,
+    step_m: f64,
 ) -> ReadingDistribution {
-    let slots = (range.max_range_m / step_m).ceil() as usize;
-    let slots = (0..=slots).rev().find(|&j| (j as f64) * step_m < range.max_range_m).map_or(0, |j| j + 1);
+    let r = grid.resolution_m();
+    // A reading ends at most half a cell past the centre of a cell the beam
+    // crosses, so none lies beyond the map's farthest corner plus a cell.
+    let [x0, y0, x1, y1] = grid.bounds_m();
+    let far = (origin[0] - x0).max(x1 - origin[0]).hypot((origin[1] - y0).max(y1 - origin[1]));
+    let limit = ((far + r) / step_m).ceil() + 1.0;
+    let wanted = (range.max_range_m / step_m).ceil();
+    let slots = if wanted > limit {
+        // Every one of these readings lies below the maximum range.
+        limit as usize
+    } else {
+        // The readings `j * step_m` below the maximum range.
+        let n = wanted as usize;
+        (0..=n).rev().find(|&j| (j as f64) * step_m < range.max_range_m).map_or(0, |j| j + 1)
+    };
     let mut probabilities = vec![0.0; slots];
     let mut through = 1.0f64;
-    let r = grid.resolution_m();
     let mut trace = |i: usize, d_l: f64| {
         let c = f64::from(stop[i]);
         if c <= 0.0 || through <= 0.0 {
@@ -278,17 +340,16 @@ pub struct GainEvaluator<'a> {
 
 impl<'a> GainEvaluator<'a> {
     /// An evaluator for `map` and `model`.
+    ///
+    /// # Errors
+    /// [`CovmapError::InvalidParameter`] if the model is invalid, or
+    /// `options.range_step_m` is not between [`MIN_STEP_FRACTION`] of the
+    /// grid resolution and the resolution.
     pub fn new<M: SensorModel + ?Sized>(map: &'a CoverageMap, model: &M, options: GainOptions) -> Result<Self> {
         model.validate()?;
         let resolution = map.grid().resolution_m();
         let step_m = options.range_step_m.unwrap_or(resolution);
-        if !(step_m > 0.0 && step_m <= resolution) {
-            return Err(CovmapError::InvalidParameter {
-                name: "range_step_m",
-                value: step_m,
-                expected: "a positive step no larger than the grid resolution",
-            });
-        }
+        check_step(step_m, resolution)?;
         let range = *model.range_model();
         let table = map.kernel_table(&range)?;
         let stop = match options.stop_coverage {
@@ -315,8 +376,11 @@ impl<'a> GainEvaluator<'a> {
     /// The expected information gain (nats) of scanning from each pose with
     /// beams at `bearings` (relative to each pose's heading).
     ///
-    /// Errors if a pose is not finite or lies outside the map, or a bearing is
-    /// not finite.
+    /// # Errors
+    /// [`CovmapError::InvalidPose`] if a pose is not finite,
+    /// [`CovmapError::PoseOutsideMap`] if one lies in no cell of the map,
+    /// [`CovmapError::InvalidBearing`] if a bearing, or its sum with a
+    /// pose's heading, is not finite.
     pub fn evaluate(&self, poses: &[Pose], bearings: &[f64], method: GainMethod) -> Result<Vec<f64>> {
         self.validate(poses, bearings)?;
         if method == GainMethod::Fast {
@@ -395,15 +459,14 @@ impl<'a> GainEvaluator<'a> {
                 return Err(CovmapError::InvalidPose { x: pose.x_m, y: pose.y_m, theta: pose.theta_rad });
             }
             self.map.grid().check_inside(pose.x_m, pose.y_m)?;
+            check_bearings(pose.theta_rad, bearings)?;
         }
-        if let Some((index, &value)) = bearings.iter().enumerate().find(|(_, b)| !b.is_finite()) {
-            return Err(CovmapError::InvalidBearing { index, value });
-        }
-        Ok(())
+        // With no pose, the bearings themselves.
+        check_bearings(0.0, bearings)
     }
 
     fn distribution(&self, origin: [f64; 2], angle: f64) -> ReadingDistribution {
-        reading_distribution(self.map.grid(), &self.stop, origin, angle, &self.range, self.step_m)
+        trace_readings(self.map.grid(), &self.stop, origin, angle, &self.range, self.step_m)
     }
 
     /// The widest reach of any hypothetical reading.
@@ -1005,14 +1068,14 @@ mod tests {
             stop[grid.index(crate::Cell { row, col: 80 }).unwrap()] = 1.0;
         }
         let range = SonarModel::default().range;
-        let d = reading_distribution(&grid, &stop, [1.025, 2.525], 0.0, &range, 0.05);
+        let d = reading_distribution(&grid, &stop, [1.025, 2.525], 0.0, &range, 0.05).unwrap();
         let total: f64 = d.probabilities.iter().sum::<f64>() + d.no_echo;
         assert!((total - 1.0).abs() < 1e-12);
         assert_eq!(d.no_echo, 0.0, "the full wall stops every beam");
         // The partial cell at x in [3.0, 3.05) reflects 40 %, at 3.05 - 0.4 * 0.05 = 3.03.
         let j = ((3.03 - 1.025) / 0.05f64).round() as usize;
         assert!((d.probabilities[j] - 0.4).abs() < 1e-7, "{:?}", &d.probabilities[35..45]);
-        let open = reading_distribution(&grid, &vec![0.0; grid.len()], [1.0, 1.0], 0.3, &range, 0.05);
+        let open = reading_distribution(&grid, &vec![0.0; grid.len()], [1.0, 1.0], 0.3, &range, 0.05).unwrap();
         assert_eq!(open.no_echo, 1.0);
     }
 
@@ -1076,7 +1139,47 @@ mod tests {
         assert!(eval.evaluate(&[Pose::new(-1.0, 0.5, 0.0)], &[0.0], GainMethod::Fast).is_err());
         assert!(eval.evaluate(&[Pose::new(0.5, 0.5, f64::NAN)], &[0.0], GainMethod::Fast).is_err());
         assert!(eval.evaluate(&[Pose::new(0.5, 0.5, 0.0)], &[f64::INFINITY], GainMethod::Exact).is_err());
-        let bad = GainOptions { range_step_m: Some(0.2), ..GainOptions::default() };
-        assert!(GainEvaluator::new(&map, &sonar, bad).is_err());
+        // The direction overflows although heading and bearing are finite.
+        let err = eval.evaluate(&[Pose::new(0.5, 0.5, 1e308)], &[1e308], GainMethod::Fast).unwrap_err();
+        assert!(matches!(err, CovmapError::InvalidBearing { index: 0, .. }), "{err}");
+        for step in [0.2, 0.0, 5e-324, 0.05 / 1024.0, f64::NAN] {
+            let bad = GainOptions { range_step_m: Some(step), ..GainOptions::default() };
+            assert!(GainEvaluator::new(&map, &sonar, bad).is_err(), "{step}");
+        }
+        let finest = GainOptions { range_step_m: Some(0.1 / 1024.0), ..GainOptions::default() };
+        assert!(GainEvaluator::new(&map, &sonar, finest).is_ok());
+        // The public trace validates what the evaluator validates once.
+        let (grid, range, stop) = (map.grid(), sonar.range, map.ml());
+        assert!(reading_distribution(grid, &stop[1..], [0.5, 0.5], 0.0, &range, 0.1).is_err());
+        assert!(reading_distribution(grid, &stop, [1.5, 0.5], 0.0, &range, 0.1).is_err());
+        assert!(reading_distribution(grid, &stop, [0.5, 0.5], f64::NAN, &range, 0.1).is_err());
+        assert!(reading_distribution(grid, &stop, [0.5, 0.5], 0.0, &range, 0.0).is_err());
+    }
+
+    /// A maximum range far beyond the map gives readings only as far as the
+    /// map reaches: no slot is allocated past it, and the gains are those of
+    /// the same sensor on the map.
+    #[test]
+    fn a_range_far_beyond_the_map_is_traced_to_the_map_edge() {
+        let grid = Grid::new([0.0, 0.0], 0.1, 30, 40).unwrap();
+        let mut map = CoverageMap::new(grid);
+        let mut laser = LaserModel::default();
+        laser.range.max_range_m = 1e12;
+        laser.range.sigma_per_m = 0.0;
+        laser.range.xi_per_m = 0.0;
+        let bearings: Vec<f64> = (0..8).map(|k| f64::from(k) * 0.8).collect();
+        map.integrate(&Pose::new(2.0, 1.5, 0.1), &[1.0, 0.7, 3.0, 0.4, 2.0, 0.9, 1e13, 1.2], &bearings, &laser)
+            .unwrap();
+        let d = reading_distribution(map.grid(), &map.ml(), [2.0, 1.5], 0.3, &laser.range, 0.1).unwrap();
+        assert!(d.probabilities.len() <= 60, "{} slots", d.probabilities.len());
+        let total: f64 = d.probabilities.iter().sum::<f64>() + d.no_echo;
+        assert!((total - 1.0).abs() < 1e-12);
+        let eval = GainEvaluator::new(&map, &laser, GainOptions::default()).unwrap();
+        let poses = [Pose::new(1.0, 1.0, 0.0), Pose::new(3.5, 2.5, 2.0)];
+        let fast = eval.evaluate(&poses, &bearings, GainMethod::Fast).unwrap();
+        let exact = eval.evaluate(&poses, &bearings, GainMethod::Exact).unwrap();
+        for (f, e) in fast.iter().zip(&exact) {
+            assert!(*e > 0.0 && (f - e).abs() <= 1e-6 * e, "{f} {e}");
+        }
     }
 }

@@ -67,8 +67,9 @@ impl Grid {
     /// A grid with its lower-left corner at `origin_m`, square cells of side
     /// `resolution_m`, `rows` cells along y and `cols` along x.
     ///
-    /// Errors if the resolution is not finite and positive, the origin is not
-    /// finite, a dimension is zero, or the grid has more than [`MAX_CELLS`].
+    /// Errors ([`CovmapError::InvalidGrid`]) if the resolution is not finite
+    /// and positive, the origin is not finite, a dimension is zero, the grid
+    /// has more than [`MAX_CELLS`], or its far corner is not finite.
     pub fn new(origin_m: [f64; 2], resolution_m: f64, rows: usize, cols: usize) -> Result<Self> {
         if !(resolution_m.is_finite() && resolution_m > 0.0) {
             return Err(CovmapError::InvalidGrid(format!(
@@ -148,10 +149,12 @@ impl Grid {
         let [ox, oy] = self.origin_m;
         [ox, oy, ox + self.cols as f64 * self.resolution_m, oy + self.rows as f64 * self.resolution_m]
     }
-    /// Whether the world point lies inside the grid (the upper edges excluded).
+    /// Whether the world point lies inside the grid (the upper edges
+    /// excluded): exactly when [`Self::world_to_cell`] finds its cell, so a
+    /// point a rounding error below an upper edge is inside only if it falls
+    /// in the last cell.
     pub fn contains(&self, x: f64, y: f64) -> bool {
-        let [x0, y0, x1, y1] = self.bounds_m();
-        x >= x0 && x < x1 && y >= y0 && y < y1
+        self.world_to_cell(x, y).is_some()
     }
     /// The cell containing a world point, or `None` outside the grid.
     pub fn world_to_cell(&self, x: f64, y: f64) -> Option<Cell> {
@@ -188,9 +191,9 @@ impl Grid {
     }
 
     /// Errors unless `(x, y)` lies inside the grid.
-    pub(crate) fn check_inside(&self, x: f64, y: f64) -> Result<()> {
-        if self.contains(x, y) {
-            return Ok(());
+    pub(crate) fn check_inside(&self, x: f64, y: f64) -> Result<Cell> {
+        if let Some(cell) = self.world_to_cell(x, y) {
+            return Ok(cell);
         }
         let [x_min, y_min, x_max, y_max] = self.bounds_m();
         Err(CovmapError::PoseOutsideMap { x, y, x_min, x_max, y_min, y_max })
@@ -225,6 +228,23 @@ mod tests {
         assert_eq!(g.world_to_cell(1.0, 1.5), None, "upper x edge excluded");
         assert_eq!(g.world_to_cell(0.999, 2.999), Some(Cell { row: 7, col: 11 }));
         assert!(g.index(Cell { row: 8, col: 0 }).is_err());
+    }
+
+    /// A point a rounding error below an upper edge is inside exactly when it
+    /// falls in a cell: `contains`, `world_to_cell` and `check_inside` agree.
+    #[test]
+    fn inside_means_in_a_cell() {
+        let g = Grid::new([-1.3, 0.0], 0.3, 2, 5).unwrap();
+        let [_, _, x_max, y_max] = g.bounds_m();
+        let below = |v: f64| f64::from_bits(v.to_bits() - 1);
+        // Rounds up to the far edge in grid coordinates: in no cell.
+        assert_eq!(g.world_to_grid(below(x_max), 0.05)[0], 5.0);
+        for (x, y) in [(below(x_max), 0.05), (0.05, below(y_max)), (below(below(x_max)), 0.05), (-1.3, 0.0)] {
+            let cell = g.world_to_cell(x, y);
+            assert_eq!(g.contains(x, y), cell.is_some(), "({x}, {y})");
+            assert_eq!(g.check_inside(x, y).ok(), cell, "({x}, {y})");
+        }
+        assert!(!g.contains(below(x_max), 0.05));
     }
 
     #[test]

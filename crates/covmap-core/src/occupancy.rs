@@ -57,10 +57,44 @@ fn logit(p: f64) -> f32 {
 
 /// A standard log-odds occupancy grid, with the scan counts of the same beams.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(try_from = "OccupancyGridData")]
 pub struct OccupancyGrid {
     model: OccupancyModel,
     log_odds: Vec<f32>,
     counts: ScanCounts,
+}
+
+/// The serialised form of an [`OccupancyGrid`], validated on the way in: a
+/// valid model, and one log-odds value per cell within its limit.
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct OccupancyGridData {
+    model: OccupancyModel,
+    log_odds: Vec<f32>,
+    counts: ScanCounts,
+}
+
+impl TryFrom<OccupancyGridData> for OccupancyGrid {
+    type Error = CovmapError;
+    fn try_from(d: OccupancyGridData) -> Result<Self> {
+        let empty = Self::with_model(d.model, d.counts)?;
+        if d.log_odds.len() != empty.log_odds.len() {
+            return Err(CovmapError::LengthMismatch {
+                what: "log-odds and grid cells",
+                left: d.log_odds.len(),
+                right: empty.log_odds.len(),
+            });
+        }
+        let limit = empty.model.log_odds_limit as f32;
+        if let Some(&l) = d.log_odds.iter().find(|l| !(l.abs() <= limit)) {
+            return Err(CovmapError::InvalidParameter {
+                name: "log_odds",
+                value: f64::from(l),
+                expected: "log-odds within the model's limit",
+            });
+        }
+        Ok(Self { log_odds: d.log_odds, ..empty })
+    }
 }
 
 impl OccupancyGrid {
@@ -130,5 +164,29 @@ impl OccupancyGrid {
         }
         self.counts.count(pose, ranges, bearings, model);
         Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A deserialised grid is checked as the constructors check it.
+    #[test]
+    fn serde_validates() {
+        let grid = Grid::new([0.0, 0.0], 0.1, 4, 5).unwrap();
+        let occ = OccupancyGrid::new(grid);
+        let s = serde_json::to_string(&occ).unwrap();
+        assert_eq!(serde_json::from_str::<OccupancyGrid>(&s).unwrap(), occ);
+        let zeros = serde_json::to_string(&vec![0.0f32; 20]).unwrap();
+        let log_odds = format!("\"log_odds\":{zeros}");
+        for bad in [
+            s.replace(&log_odds, "\"log_odds\":[]"),
+            s.replace(&log_odds, &log_odds.replacen("0.0", "9.0", 1)),
+            s.replace("\"p_occupied\":0.7", "\"p_occupied\":7.0"),
+        ] {
+            assert_ne!(bad, s);
+            assert!(serde_json::from_str::<OccupancyGrid>(&bad).is_err(), "{bad}");
+        }
     }
 }

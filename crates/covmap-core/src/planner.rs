@@ -60,7 +60,7 @@ pub struct PlannerConfig {
     /// Coverage on the ML map above which a cell blocks the robot.
     pub blocked_coverage: f64,
     /// A cell is unknown while its entropy is at least this fraction of the
-    /// prior's (`ln bins`).
+    /// prior's (`ln bins`, as the map computes it: in `f32`).
     pub unknown_entropy_fraction: f64,
     /// Whether the robot may plan through unknown cells.
     pub unknown_is_free: bool,
@@ -162,8 +162,14 @@ pub struct Reachability {
     previous: Vec<usize>,
 }
 
+/// Cells are named by their row-major index on the map's grid
+/// ([`Grid::index`]); like a slice, the methods taking an index panic if it is
+/// not below [`Grid::len`].
 impl Reachability {
     /// Path length to a cell, metres (`inf` where unreachable).
+    ///
+    /// # Panics
+    /// If `index` is not a cell of the grid.
     pub fn cost(&self, index: usize) -> f64 {
         self.cost[index]
     }
@@ -172,10 +178,16 @@ impl Reachability {
         &self.cost
     }
     /// Whether the cell can be reached.
+    ///
+    /// # Panics
+    /// If `index` is not a cell of the grid.
     pub fn reachable(&self, index: usize) -> bool {
         self.cost[index].is_finite()
     }
     /// The cell centres of a shortest path from the start to `index`.
+    ///
+    /// # Panics
+    /// If `index` is not a cell of the grid.
     pub fn path_to(&self, index: usize) -> Vec<[f64; 2]> {
         if !self.reachable(index) {
             return Vec::new();
@@ -285,7 +297,11 @@ pub struct Planner {
 }
 
 impl Planner {
-    /// A planner with `config`, validated.
+    /// A planner with `config`.
+    ///
+    /// # Errors
+    /// [`CovmapError::InvalidParameter`] naming the first setting outside its
+    /// valid range (see [`PlannerConfig::validate`]).
     pub fn new(config: PlannerConfig) -> Result<Self> {
         config.validate()?;
         Ok(Self { config })
@@ -315,15 +331,22 @@ impl Planner {
         (free, blocked)
     }
 
-    /// [`disc_offsets`] for this robot on `grid`.
+    /// [`disc_offsets`] for this robot on `grid`. A disc wider than the
+    /// grid's diagonal overlaps every cell from anywhere on it, as the disc
+    /// of that diagonal does, so the radius is cut to it (the offsets never
+    /// outnumber the cells of a grid twice the size).
     fn disc_offsets(&self, grid: &Grid) -> Vec<(i64, i64)> {
-        disc_offsets(self.config.robot_radius_m / grid.resolution_m())
+        let diagonal = (grid.rows() as f64).hypot(grid.cols() as f64);
+        disc_offsets((self.config.robot_radius_m / grid.resolution_m()).min(diagonal))
     }
 
     /// Cells that block: covered above the threshold on the ML map, or, with
     /// `unknown_blocks`, still unknown.
     fn blocked(&self, map: &CoverageMap, unknown_blocks: bool) -> Vec<bool> {
-        let unknown_entropy = self.config.unknown_entropy_fraction * (map.bins() as f64).ln();
+        // The prior's entropy as the map computes every cell's (in `f32`,
+        // a little off `ln bins`), so that a fraction of 1 holds it unknown.
+        let prior = vec![1.0 / map.bins() as f32; map.bins()];
+        let unknown_entropy = self.config.unknown_entropy_fraction * f64::from(crate::histogram::entropy(&prior));
         let ml = map.ml();
         let entropy = map.entropy();
         ml.iter()
@@ -336,6 +359,10 @@ impl Planner {
 
     /// Shortest paths from `pose` over the robot's free space and the cells
     /// its disc there overlaps that do not block.
+    ///
+    /// # Errors
+    /// [`CovmapError::InvalidPose`] if the pose is not finite,
+    /// [`CovmapError::PoseOutsideMap`] if it lies in no cell of the map.
     pub fn reachability(&self, map: &CoverageMap, pose: &Pose) -> Result<Reachability> {
         Ok(self.free_and_reachable(map, pose)?.1)
     }
@@ -362,19 +389,18 @@ impl Planner {
         if !(pose.x_m.is_finite() && pose.y_m.is_finite() && pose.theta_rad.is_finite()) {
             return Err(CovmapError::InvalidPose { x: pose.x_m, y: pose.y_m, theta: pose.theta_rad });
         }
-        map.grid().check_inside(pose.x_m, pose.y_m)?;
-        map.grid().world_to_cell(pose.x_m, pose.y_m).ok_or(CovmapError::PoseOutsideMap {
-            x: pose.x_m,
-            y: pose.y_m,
-            x_min: map.grid().bounds_m()[0],
-            x_max: map.grid().bounds_m()[2],
-            y_min: map.grid().bounds_m()[1],
-            y_max: map.grid().bounds_m()[3],
-        })
+        map.grid().check_inside(pose.x_m, pose.y_m)
     }
 
     /// Choose the next viewpoint for a robot at `pose` scanning with beams at
     /// `bearings` through `model` (eq. 14).
+    ///
+    /// # Errors
+    /// As [`Self::reachability`] for the pose; [`CovmapError::InvalidBearing`]
+    /// for a bearing that is not finite (or not when added to the heading);
+    /// [`CovmapError::InvalidParameter`] for an invalid model or a
+    /// `gain.range_step_m` the map's resolution does not allow (see
+    /// [`GainEvaluator::new`]).
     pub fn next_viewpoint<M: SensorModel + ?Sized>(
         &self,
         map: &CoverageMap,
@@ -404,7 +430,7 @@ impl Planner {
         let evaluator = GainEvaluator::new(map, model, self.config.gain)?;
         let gains = evaluator.evaluate(&poses, bearings, GainMethod::Fast)?;
         let costs: Vec<f64> = indices.iter().map(|&i| reach.cost(i)).collect();
-        let utilities = self.utilities(&gains, &costs);
+        let utilities = self.utilities(&gains, &costs)?;
         let chosen = (0..utilities.len())
             .filter(|&k| utilities[k] > f64::NEG_INFINITY)
             .max_by(|&a, &b| utilities[a].total_cmp(&utilities[b]).then_with(|| b.cmp(&a)));
@@ -417,12 +443,17 @@ impl Planner {
     }
 
     /// Eq. 14 over the candidates worth visiting; `-inf` for the others.
-    pub fn utilities(&self, gains: &[f64], costs: &[f64]) -> Vec<f64> {
+    ///
+    /// Errors if `gains` and `costs` differ in length.
+    pub fn utilities(&self, gains: &[f64], costs: &[f64]) -> Result<Vec<f64>> {
+        if gains.len() != costs.len() {
+            return Err(CovmapError::LengthMismatch { what: "gains and costs", left: gains.len(), right: costs.len() });
+        }
         let worth = |k: usize| gains[k] > self.config.min_gain_nats;
         let max_gain = (0..gains.len()).filter(|&k| worth(k)).map(|k| gains[k]).fold(0.0, f64::max);
         let max_cost = (0..gains.len()).filter(|&k| worth(k)).map(|k| costs[k]).fold(0.0, f64::max);
         let a = self.config.alpha;
-        (0..gains.len())
+        Ok((0..gains.len())
             .map(|k| {
                 if !worth(k) {
                     return f64::NEG_INFINITY;
@@ -431,10 +462,13 @@ impl Planner {
                 let c = if max_cost > 0.0 { costs[k] / max_cost } else { 0.0 };
                 a * g - (1.0 - a) * c
             })
-            .collect()
+            .collect())
     }
 
     /// The exploration status of `map` for a robot at `pose`.
+    ///
+    /// # Errors
+    /// As [`Self::reachability`].
     pub fn status(&self, map: &CoverageMap, pose: &Pose) -> Result<ExplorationStatus> {
         let start = self.start_cell(map, pose)?;
         let mut passable: Vec<bool> = self.blocked(map, false).iter().map(|b| !b).collect();
@@ -504,7 +538,7 @@ pub struct ExplorationStatus {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::sensor::SonarModel;
+    use crate::sensor::{LaserModel, SonarModel};
 
     fn ring() -> Vec<f64> {
         (0..24).map(|i| i as f64 * std::f64::consts::TAU / 24.0).collect()
@@ -647,5 +681,37 @@ mod tests {
         assert!(Planner::new(PlannerConfig { alpha: 1.5, ..PlannerConfig::default() }).is_err());
         assert!(Planner::new(PlannerConfig { candidate_stride_m: 0.0, ..PlannerConfig::default() }).is_err());
         assert!(Planner::new(PlannerConfig { robot_radius_m: f64::NAN, ..PlannerConfig::default() }).is_err());
+        let planner = Planner::new(PlannerConfig::default()).unwrap();
+        assert!(matches!(planner.utilities(&[2.0, 3.0], &[1.0]), Err(CovmapError::LengthMismatch { .. })));
+    }
+
+    /// With `unknown_entropy_fraction = 1`, a cell at the prior is still
+    /// unknown, whatever the bin count (the map's `f32` entropy of the prior
+    /// lies a little below `ln bins` for some).
+    #[test]
+    fn a_fraction_of_one_keeps_the_prior_unknown() {
+        for bins in [10, 16, 17, 100, 256] {
+            let map = CoverageMap::with_bins(Grid::new([0.0, 0.0], 0.05, 20, 20).unwrap(), bins).unwrap();
+            let config =
+                PlannerConfig { unknown_entropy_fraction: 1.0, robot_radius_m: 0.0, ..PlannerConfig::default() };
+            let free = Planner::new(config).unwrap().free_space(&map);
+            assert!(free.iter().all(|&f| !f), "{bins} bins: unexplored cells counted free");
+        }
+    }
+
+    /// A radius far beyond the map blocks the whole map around one blocked
+    /// cell, without building a disc of that radius.
+    #[test]
+    fn a_robot_wider_than_the_map_fits_nowhere_near_an_obstacle() {
+        let mut map = CoverageMap::new(Grid::new([0.0, 0.0], 0.05, 40, 40).unwrap());
+        let laser = LaserModel::default();
+        for _ in 0..20 {
+            map.integrate(&Pose::new(0.3, 1.0, 0.0), &[1.2], &[0.0], &laser).unwrap();
+        }
+        let config = PlannerConfig { robot_radius_m: 1e3, unknown_is_free: true, ..PlannerConfig::default() };
+        let free = Planner::new(config).unwrap().free_space(&map);
+        assert!(free.iter().all(|&f| !f));
+        let unblocked = PlannerConfig { robot_radius_m: 0.25, ..config };
+        assert!(Planner::new(unblocked).unwrap().free_space(&map).iter().any(|&f| f), "a small robot fits");
     }
 }

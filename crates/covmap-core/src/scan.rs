@@ -30,7 +30,8 @@ impl From<[f64; 3]> for Pose {
 }
 
 /// Check a scan against a grid: finite pose inside the map, equal lengths,
-/// finite non-negative ranges, finite bearings.
+/// finite non-negative ranges, finite bearings whose beam directions (heading
+/// plus bearing) are finite too.
 pub(crate) fn validate_scan(grid: &Grid, pose: &Pose, ranges: &[f64], bearings: &[f64]) -> Result<()> {
     if !(pose.x_m.is_finite() && pose.y_m.is_finite() && pose.theta_rad.is_finite()) {
         return Err(CovmapError::InvalidPose { x: pose.x_m, y: pose.y_m, theta: pose.theta_rad });
@@ -46,8 +47,14 @@ pub(crate) fn validate_scan(grid: &Grid, pose: &Pose, ranges: &[f64], bearings: 
     if let Some((index, &value)) = ranges.iter().enumerate().find(|(_, r)| !(r.is_finite() && **r >= 0.0)) {
         return Err(CovmapError::InvalidRange { index, value });
     }
-    if let Some((index, &value)) = bearings.iter().enumerate().find(|(_, b)| !b.is_finite()) {
-        return Err(CovmapError::InvalidBearing { index, value });
+    check_bearings(pose.theta_rad, bearings)
+}
+
+/// Errors on the first bearing that is not finite or whose beam direction,
+/// `theta_rad + bearing`, is not (`theta_rad` is finite).
+pub(crate) fn check_bearings(theta_rad: f64, bearings: &[f64]) -> Result<()> {
+    match bearings.iter().enumerate().find(|(_, b)| !(b.is_finite() && (theta_rad + **b).is_finite())) {
+        Some((index, &value)) => Err(CovmapError::InvalidBearing { index, value }),
+        None => Ok(()),
     }
-    Ok(())
 }

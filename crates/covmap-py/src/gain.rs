@@ -16,7 +16,8 @@ use crate::sensor::AnyModel;
 ///
 /// ``method`` is ``"fast"`` (the production evaluator) or ``"exact"`` (the
 /// equation as written, equal to rounding). Predicted readings are spaced
-/// ``range_step_m`` apart (default: the grid resolution, at most that), and
+/// ``range_step_m`` apart (default: the grid resolution; between 1/1024 of
+/// it and it), and
 /// a predicted beam is stopped by each cell's ``stop_coverage``: ``"ml"``
 /// (most probable coverage, the paper's choice) or ``"mean"``. A pose outside
 /// the map or not finite raises; the map is never changed. Runs with the GIL

@@ -169,6 +169,7 @@ impl PySonarModel {
     /// for a reading of ``measured_distance`` (metres), on a grid of
     /// ``resolution`` (metres) with ``bins`` bins: a float32 array of shape
     /// ``(bins,)`` summing to 1, or ``None`` where the cell is not updated.
+    /// A NaN, infinite or negative distance raises ``InvalidParameterError``.
     #[pyo3(signature = (cell_distance, measured_distance, *, resolution=0.05, bins=16))]
     fn kernel<'py>(
         &self,
@@ -283,6 +284,7 @@ impl PyLaserModel {
     /// for a reading of ``measured_distance`` (metres), on a grid of
     /// ``resolution`` (metres) with ``bins`` bins: a float32 array of shape
     /// ``(bins,)`` summing to 1, or ``None`` where the cell is not updated.
+    /// A NaN, infinite or negative distance raises ``InvalidParameterError``.
     #[pyo3(signature = (cell_distance, measured_distance, *, resolution=0.05, bins=16))]
     fn kernel<'py>(
         &self,

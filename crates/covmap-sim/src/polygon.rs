@@ -36,7 +36,9 @@ impl Polygon {
         Self::with_holes(vertices, Vec::new(), material)
     }
 
-    /// A polygon with holes.
+    /// A polygon with holes. The rings must be simple, no two edges may
+    /// cross or touch, every hole must lie inside the exterior, and no hole
+    /// inside another (an island in a hole is a polygon of its own).
     pub fn with_holes(exterior: Vec<[f64; 2]>, holes: Vec<Vec<[f64; 2]>>, material: Material) -> Result<Self> {
         let invalid = |reason: String| SimError::InvalidPolygon { index: 0, reason };
         let mut rings = Vec::with_capacity(1 + holes.len());
@@ -54,6 +56,22 @@ impl Polygon {
         for (k, hole) in rings.iter().enumerate().skip(1) {
             if !ring_contains(&rings[0], hole[0]) {
                 return Err(invalid(format!("hole {} lies outside the exterior ring", k - 1)));
+            }
+        }
+        // No edges cross, so a hole lies wholly inside another or apart from
+        // it: one vertex tells, and only a hole whose bounds hold it can.
+        let bounds: Vec<[f64; 4]> = rings.iter().map(|r| ring_bounds(r)).collect();
+        for outer in 1..rings.len() {
+            for inner in 1..rings.len() {
+                let (o, i) = (bounds[outer], bounds[inner]);
+                let within = o[0] <= i[0] && o[1] <= i[1] && i[2] <= o[2] && i[3] <= o[3];
+                if outer != inner && within && ring_contains(&rings[outer], rings[inner][0]) {
+                    return Err(invalid(format!(
+                        "hole {} lies inside hole {} (an island in a hole is a polygon of its own)",
+                        inner - 1,
+                        outer - 1
+                    )));
+                }
             }
         }
         let bounds_m = ring_bounds(&rings[0]);
@@ -251,7 +269,9 @@ fn clean_ring(ring: Vec<[f64; 2]>) -> std::result::Result<Vec<[f64; 2]>, String>
     let [x0, y0, x1, y1] = ring_bounds(&out);
     let scale = (x1 - x0).max(y1 - y0);
     if !(area.abs() > 1e-12 * scale * scale) {
-        return Err(format!("zero area ({area} m^2)"));
+        return Err(format!(
+            "zero area: {area} m^2, negligible against its {scale} m extent (at most 1e-12 of its square)"
+        ));
     }
     Ok(out)
 }
@@ -387,6 +407,14 @@ mod tests {
         // A hole crossing the exterior.
         let cross = vec![[0.5, 0.5], [1.5, 0.5], [1.5, 0.7]];
         assert!(Polygon::with_holes(sq, vec![cross], w).is_err());
+        // A hole inside another: the even-odd rule would fill the inner one,
+        // the area would subtract it.
+        let square = |lo: f64, hi: f64| vec![[lo, lo], [hi, lo], [hi, hi], [lo, hi]];
+        for holes in [vec![square(2.0, 8.0), square(4.0, 6.0)], vec![square(4.0, 6.0), square(2.0, 8.0)]] {
+            let e = Polygon::with_holes(square(0.0, 10.0), holes, w).unwrap_err();
+            assert!(e.to_string().contains("lies inside hole"), "{e}");
+        }
+        assert!(Polygon::with_holes(square(0.0, 10.0), vec![square(1.0, 3.0), square(5.0, 8.0)], w).is_ok());
     }
 
     #[test]

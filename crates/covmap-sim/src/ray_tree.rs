@@ -26,6 +26,8 @@ use crate::material::Material;
 
 /// The longest piece of an edge the ray caster tests as one leaf, metres.
 pub(crate) const RAY_PIECE_M: f64 = 2.0;
+/// The most pieces one edge is cut into (2 km of edge at [`RAY_PIECE_M`]).
+pub(crate) const MAX_PIECES: usize = 1024;
 
 /// Marks a child link as a piece index rather than a node index (a world
 /// would need billions of pieces to reach it).
@@ -151,12 +153,14 @@ pub(crate) struct RayStack(Vec<(u32, f64)>);
 
 impl RayTree {
     /// The tree over `edges` (`[start, end, material]` each, non-degenerate),
-    /// each cut into pieces no longer than [`RAY_PIECE_M`].
+    /// each cut into pieces no longer than [`RAY_PIECE_M`], but into no more
+    /// than [`MAX_PIECES`] (an edge kilometres long gets longer pieces, not
+    /// unbounded memory).
     pub(crate) fn new(edges: impl IntoIterator<Item = ([f64; 2], [f64; 2], Material)>) -> Self {
         let (mut lines, mut faces) = (Vec::new(), Vec::new());
         for (a, b, material) in edges {
             let (a, b) = (Vector::new(a[0], a[1]), Vector::new(b[0], b[1]));
-            let count = ((b - a).length() / RAY_PIECE_M).ceil().max(1.0) as usize;
+            let count = ((b - a).length() / RAY_PIECE_M).ceil().clamp(1.0, MAX_PIECES as f64) as usize;
             for k in 0..count {
                 // Cut points computed from both ends, so the pieces meet exactly.
                 let at = |t: usize| if t == count { b } else { a + (b - a) * (t as f64 / count as f64) };
@@ -613,6 +617,18 @@ mod tests {
         assert_eq!(tree.first_hit(&Ray::new([0.0, 0.5], [1.0, 0.0]), 1.0), None, "the range is exclusive");
         let empty = RayTree::new([]);
         assert_eq!(empty.first_hit(&Ray::new([0.0, 0.0], [1.0, 0.0]), 5.0), None);
+    }
+
+    /// An edge of a million kilometres is cut into at most `MAX_PIECES`,
+    /// and rays still find it where it is.
+    #[test]
+    fn a_very_long_edge_takes_bounded_pieces() {
+        let tree = RayTree::new([([0.0, 0.0], [1e9, 0.0], Material::Wall), ([0.0, 1.0], [1.0, 2.0], Material::Wall)]);
+        assert_eq!(tree.lines.len(), MAX_PIECES + 1);
+        let mut stack = RayStack::default();
+        let ray = Ray::new([3.5e8, 5.0], [0.0, -1.0]);
+        assert_matches_brute_force(&tree, &ray, 10.0, &mut stack);
+        assert!(tree.first_hit(&ray, 10.0).is_some_and(|(_, t)| (t - 5.0).abs() < 1e-6));
     }
 
     #[test]

@@ -97,7 +97,11 @@ impl Robot {
     }
 
     /// Whether driving straight from `from_m` to `to_m` touches an obstacle.
+    /// A move with a non-finite end collides, as a non-finite pose does.
     pub fn move_collides(&self, world: &World, from_m: [f64; 2], to_m: [f64; 2]) -> bool {
+        if !from_m.iter().chain(&to_m).all(|v| v.is_finite()) {
+            return true;
+        }
         let length = (to_m[0] - from_m[0]).hypot(to_m[1] - from_m[1]);
         if self.clearance_m(world, from_m) <= 0.0 || self.clearance_m(world, to_m) <= 0.0 {
             return true;
@@ -146,5 +150,13 @@ mod tests {
         // Both ends free but the block in between.
         assert!(r.move_collides(&w, [0.0, 0.0], [6.0, 0.0]));
         assert_eq!(r.free_travel_m(&w, [1.6, 0.0], [0.0, 0.0]), 0.0);
+        // A non-finite end collides, as a non-finite pose does, even with
+        // nothing in the way.
+        let empty = World::new(Vec::new());
+        for (from, to) in
+            [([f64::NAN, 1.3], [2.0, 1.3]), ([2.0, 1.3], [f64::NAN, 1.3]), ([0.0, 0.0], [f64::INFINITY, 0.0])]
+        {
+            assert!(r.move_collides(&empty, from, to), "{from:?} -> {to:?}");
+        }
     }
 }

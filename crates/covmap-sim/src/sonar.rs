@@ -38,8 +38,10 @@ use crate::world::World;
 ///
 /// A reading that ends at or beyond `max_range_m` is reported as exactly
 /// `max_range_m`: no echo, as the core's models read it. Every reading takes
-/// exactly four draws from the generator, in sensor order, so changing a
-/// probability does not shift the draws of the other sensors.
+/// the same four samples from the generator (three uniform, one normal),
+/// in sensor order, whatever the parameters and whether or not it uses
+/// them, so changing a probability does not shift the samples of the other
+/// sensors.
 ///
 /// `Default` is 24 sensors 15 degrees apart, first straight ahead, with the cone
 /// and maximum range of [`SonarModel::default`] (use [`SonarRing::with_model`]

@@ -69,18 +69,42 @@ pub struct RangeModel {
     pub xi_per_m: f64,
 }
 
+/// The smallest `sigma_min`: a standard deviation of coverage (which spans
+/// 0 to 1) below it only makes the density's scale overflow.
+const MIN_SIGMA: f64 = 1e-6;
+/// The largest uniform weight `xi` anywhere up to the maximum range: beyond
+/// it the kernel is uniform to far below `f32` precision anyway, and the sum
+/// that normalises it could overflow.
+const MAX_XI: f64 = 1e6;
+
 impl RangeModel {
-    /// Errors unless every parameter lies in its valid range.
+    /// Errors unless every parameter lies in its valid range: the distances
+    /// positive (`band_m` non-negative), `sigma_min` at least 1e-6,
+    /// `sigma_end` no smaller than `sigma` anywhere outside the band, `xi_min`
+    /// positive, the growths non-negative, and the uniform weight at most 1e6
+    /// out to the maximum range.
     pub fn validate(&self) -> Result<()> {
         fn check(name: &'static str, value: f64, ok: bool, expected: &'static str) -> Result<()> {
             if ok && value.is_finite() { Ok(()) } else { Err(CovmapError::InvalidParameter { name, value, expected }) }
         }
         check("max_range_m", self.max_range_m, self.max_range_m > 0.0, "a positive distance")?;
         check("band_m", self.band_m, self.band_m >= 0.0, "a non-negative distance")?;
-        check("sigma_min", self.sigma_min, self.sigma_min > 0.0, "a positive standard deviation")?;
+        check(
+            "sigma_min",
+            self.sigma_min,
+            self.sigma_min >= MIN_SIGMA,
+            "a standard deviation of at least 1e-6 (coverage)",
+        )?;
         check("sigma_per_m", self.sigma_per_m, self.sigma_per_m >= 0.0, "a non-negative growth")?;
         check("xi_min", self.xi_min, self.xi_min > 0.0, "a positive weight")?;
         check("xi_per_m", self.xi_per_m, self.xi_per_m >= 0.0, "a non-negative growth")?;
+        let heaviest = self.xi(self.max_range_m);
+        check(
+            "xi_per_m",
+            self.xi_per_m,
+            heaviest <= MAX_XI,
+            "a growth that keeps the uniform weight at most 1e6 out to the maximum range",
+        )?;
         let widest = self.sigma(self.max_range_m);
         check(
             "sigma_end",
@@ -111,6 +135,10 @@ impl RangeModel {
     /// bins, or `None` where the cell is not updated. It comes from the same
     /// precomputed table the update uses (built anew on every call: for
     /// looking at kernels, not for loops).
+    ///
+    /// Errors if the model is invalid, the resolution is not positive and
+    /// finite, the bin count is not supported, or a distance is NaN,
+    /// infinite or negative.
     pub fn kernel(
         &self,
         cell_distance_m: f64,
@@ -118,6 +146,7 @@ impl RangeModel {
         resolution_m: f64,
         bins: usize,
     ) -> Result<Option<Vec<f32>>> {
+        check_distances(cell_distance_m, measured_distance_m)?;
         let table = KernelTable::new(self, resolution_m, bins)?;
         Ok(table.kernel_at(cell_distance_m, measured_distance_m))
     }
@@ -127,7 +156,24 @@ impl RangeModel {
     /// bins: the histogram the update multiplies in, normalised to sum 1, or
     /// `None` where the cell is not updated (further than the band behind the
     /// end point). This is the reference the kernel table is tested against.
+    ///
+    /// Errors as [`Self::kernel`] does.
     pub fn kernel_exact(
+        &self,
+        cell_distance_m: f64,
+        measured_distance_m: f64,
+        resolution_m: f64,
+        bins: usize,
+    ) -> Result<Option<Vec<f64>>> {
+        check_distances(cell_distance_m, measured_distance_m)?;
+        self.validate()?;
+        kernel::check_resolution(resolution_m)?;
+        crate::histogram::check_bins(bins)?;
+        Ok(self.exact_kernel(cell_distance_m, measured_distance_m, resolution_m, bins))
+    }
+
+    /// [`Self::kernel_exact`] of valid inputs.
+    fn exact_kernel(
         &self,
         cell_distance_m: f64,
         measured_distance_m: f64,
@@ -151,6 +197,17 @@ impl RangeModel {
         };
         Some(kernel_values(mu, sigma, self.xi(s), bins))
     }
+}
+
+/// Errors unless both distances of a kernel query are finite and
+/// non-negative.
+fn check_distances(cell_distance_m: f64, measured_distance_m: f64) -> Result<()> {
+    for (name, value) in [("cell_distance_m", cell_distance_m), ("measured_distance_m", measured_distance_m)] {
+        if !(value.is_finite() && value >= 0.0) {
+            return Err(CovmapError::InvalidParameter { name, value, expected: "a finite, non-negative distance" });
+        }
+    }
+    Ok(())
 }
 
 /// `xi + N(x_b; mu, sigma)` at the bin values `x_b = b / (bins - 1)`, normalised.
@@ -193,7 +250,8 @@ pub trait SensorModel {
     /// The kernel the map multiplies in for a cell at `cell_distance_m` and a
     /// reading of `measured_distance_m`, on a grid of `resolution_m` with
     /// `bins` bins, or `None` where the cell is not updated; see
-    /// [`RangeModel::kernel`]. Errors if the model is invalid.
+    /// [`RangeModel::kernel`]. Errors if the model is invalid, and as
+    /// [`RangeModel::kernel`] does.
     fn kernel(
         &self,
         cell_distance_m: f64,

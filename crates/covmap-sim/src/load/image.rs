@@ -263,7 +263,9 @@ fn decode_pgm(bytes: &[u8], path: &Path) -> Result<Grey> {
     })?;
     let pixel = |i: usize| format!("pixel ({}, {})", i % width, i / width);
     let scale = 1.0 / maxval as f64;
-    let mut values = Vec::with_capacity(count);
+    // Every pixel takes at least a byte of the file: a header that promises
+    // more than the file holds reserves no more than the file could fill.
+    let mut values = Vec::with_capacity(count.min(bytes.len()));
     if binary {
         // Exactly one whitespace byte ends the header.
         if !bytes.get(pos).is_some_and(u8::is_ascii_whitespace) {
