@@ -24,6 +24,7 @@ __all__ = [
     "InvalidPolygonError",
     "InvalidPoseError",
     "InvalidRangeError",
+    "InvalidTypeError",
     "InvalidValueError",
     "LengthMismatchError",
     "PoseOutsideMapError",
@@ -48,7 +49,8 @@ class InvalidRangeError(CovmapError, ValueError):
 
 
 class InvalidBearingError(CovmapError, ValueError):
-    """A bearing is NaN or infinite."""
+    """A bearing is NaN or infinite, or so large that added to the heading it
+    overflows."""
 
 
 class InvalidPoseError(CovmapError, ValueError):
@@ -72,8 +74,8 @@ class InvalidHistogramError(CovmapError, ValueError):
 
 
 class InvalidHistoryError(CovmapError, ValueError):
-    """A stored entropy history holds an entropy no map can have (NaN, infinite
-    or negative)."""
+    """A stored entropy history holds an entropy no map can have (NaN, infinite,
+    negative, or above the prior's ``ln(bins)``)."""
 
 
 class ArrayShapeError(CovmapError, ValueError):
@@ -82,6 +84,12 @@ class ArrayShapeError(CovmapError, ValueError):
 
 class ArrayDtypeError(CovmapError, TypeError):
     """An array argument has the wrong element type (covmap never converts silently)."""
+
+
+class InvalidTypeError(CovmapError, TypeError):
+    """An argument has the wrong type: a model that is neither a SonarModel
+    nor a LaserModel, a pickled state of the wrong form, a seed that is not an
+    integer, arguments that exclude each other."""
 
 
 class InvalidPolygonError(CovmapError, ValueError):

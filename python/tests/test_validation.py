@@ -106,8 +106,10 @@ def test_error_messages_name_the_value(grid: covmap.Grid, model: Any) -> None:
 def test_wrong_argument_types_are_type_errors(grid: covmap.Grid, model: Any) -> None:
     cmap = covmap.CoverageMap(grid)
     before = cmap.histograms
-    with pytest.raises(TypeError, match="SonarModel or a LaserModel"):
+    with pytest.raises(covmap.InvalidTypeError, match="SonarModel or a LaserModel"):
         cmap.integrate(POSE, R, B, "laser")  # type: ignore[arg-type]
+    with pytest.raises(covmap.InvalidTypeError, match="SonarModel or a LaserModel"):
+        cmap.integrate(POSE, R, B, None)  # type: ignore[arg-type]
     with pytest.raises(TypeError, match="pose"):
         cmap.integrate(("a", "b", "c"), R, B, model)  # type: ignore[arg-type]
     with pytest.raises(TypeError):
@@ -117,12 +119,13 @@ def test_wrong_argument_types_are_type_errors(grid: covmap.Grid, model: Any) -> 
 
 def test_every_error_class_derives_from_covmap_error() -> None:
     classes = [getattr(covmap, name) for name in covmap.__all__ if name.endswith("Error")]
-    assert len(classes) == 18
+    assert len(classes) == 19
     for cls in classes:
         assert issubclass(cls, covmap.CovmapError)
         assert cls is covmap.CovmapError or issubclass(cls, (ValueError, IndexError, TypeError, OSError))
     assert issubclass(covmap.CellOutOfBoundsError, IndexError)
     assert issubclass(covmap.ArrayDtypeError, TypeError)
+    assert issubclass(covmap.InvalidTypeError, TypeError)
     assert issubclass(covmap.FileIOError, OSError)
     for cls in (
         covmap.FileFormatError,
@@ -131,3 +134,108 @@ def test_every_error_class_derives_from_covmap_error() -> None:
         covmap.UnknownWorldError,
     ):
         assert issubclass(cls, ValueError)
+
+
+def test_a_huge_heading_or_bearing_is_the_direction_it_names(grid: covmap.Grid) -> None:
+    """A finite but huge heading plus bearing updates the cells of the
+    direction its sine and cosine give, as the same direction written small
+    does; one that overflows is an InvalidBearingError."""
+    sonar = covmap.SonarModel()
+    small = math.atan2(math.sin(1e16), math.cos(1e16))
+    maps = []
+    for pose, bearing in (((1.5, 1.0, 0.0), 1e16), ((1.5, 1.0, 1e16), 0.0), ((1.5, 1.0, 0.0), small)):
+        cmap = covmap.CoverageMap(grid)
+        assert cmap.integrate(pose, np.array([0.8]), np.array([bearing]), sonar) > 50
+        maps.append(cmap.histograms)
+    np.testing.assert_array_equal(maps[0], maps[2])
+    np.testing.assert_array_equal(maps[1], maps[2])
+    cmap = covmap.CoverageMap(grid)
+    before = cmap.histograms
+    with pytest.raises(covmap.InvalidBearingError):
+        cmap.integrate((1.5, 1.0, 1e308), np.array([0.8]), np.array([1e308]), sonar)
+    np.testing.assert_array_equal(cmap.histograms, before)
+
+
+def test_seeds_are_integers_from_0_to_2_to_the_64(grid: covmap.Grid) -> None:
+    world = covmap.World.builtin("corridor")
+    ring = covmap.SonarRing()
+    for bad in (-1, 2**64):
+        with pytest.raises(covmap.InvalidParameterError, match="seed"):
+            ring.simulate(world, (2.0, 1.3, 0.0), seed=bad)
+        with pytest.raises(covmap.InvalidParameterError, match="seed"):
+            covmap.Laser().simulate_path(world, np.array([[2.0, 1.3, 0.0]]), seed=bad)
+    for wrong in ("1", 1.5, None):
+        with pytest.raises(covmap.InvalidTypeError, match="seed"):
+            ring.simulate(world, (2.0, 1.3, 0.0), seed=wrong)  # type: ignore[arg-type]
+    a = ring.simulate(world, (2.0, 1.3, 0.0), seed=np.uint64(2**64 - 1))
+    b = ring.simulate(world, (2.0, 1.3, 0.0), seed=2**64 - 1)
+    np.testing.assert_array_equal(a[0], b[0])
+
+
+def test_sensor_counts_are_bounded_before_anything_is_allocated() -> None:
+    with pytest.raises(covmap.InvalidParameterError):
+        covmap.SonarRing.ring(2**40)
+    with pytest.raises(covmap.InvalidParameterError):
+        covmap.Laser(2**40)
+    assert len(covmap.SonarRing.ring(65536).bearings_rad) == 65536
+
+
+def test_arguments_of_the_wrong_type_are_covmap_errors(grid: covmap.Grid) -> None:
+    square = [[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]]
+    with pytest.raises(covmap.InvalidTypeError, match="materials"):
+        covmap.World([square], "wall")  # type: ignore[arg-type]
+    with pytest.raises(covmap.InvalidTypeError, match="polygons"):
+        covmap.World(5)  # type: ignore[arg-type]
+    with pytest.raises(covmap.InvalidTypeError):
+        covmap.Laser(5, bearings_rad=[0.0])
+    cmap = covmap.CoverageMap(grid)
+    with pytest.raises(covmap.InvalidTypeError, match="state"):
+        cmap.__setstate__((1,))
+    with pytest.raises(covmap.ArrayShapeError, match="origin"):
+        covmap.Grid(origin=(0.0, 0.0, 0.0), resolution=1.0, shape=(2, 2))  # type: ignore[arg-type]
+    # Any cell has a centre, on the grid or not.
+    assert grid.cell_center(-1, 0) == pytest.approx((grid.origin[0] + 0.5 * grid.resolution, grid.origin[1] - 0.5 * grid.resolution))
+
+
+def test_an_impossible_entropy_history_is_refused(grid: covmap.Grid) -> None:
+    cmap = covmap.CoverageMap(grid)
+    cmap.track_history(True)
+    cmap.integrate(POSE, R, B, covmap.SonarModel())
+    entropies, counts = cmap.__reduce__()[2]
+    entropies = entropies.copy()
+    entropies.flat[0] = 100.0  # more than ln(16) nats
+    fresh = covmap.CoverageMap(grid)
+    with pytest.raises(covmap.InvalidHistoryError):
+        fresh.__setstate__((entropies, counts))
+
+
+def test_points_that_are_not_finite_are_invalid_values() -> None:
+    robot, world = covmap.Robot(), covmap.World.builtin("corridor")
+    with pytest.raises(covmap.InvalidValueError):
+        robot.clearance(world, np.array([[math.nan, 0.0]]))
+    for x, y in ((math.nan, 0.0), (math.inf, 0.0)):
+        with pytest.raises(covmap.InvalidValueError):
+            world.distance_to_obstacle(x, y)
+    with pytest.raises(covmap.InvalidValueError):
+        robot.free_travel(world, (1.0, 1.3), (math.nan, 1.3))
+    # A goal far beyond the world is as free as the wall in between allows.
+    near, far = robot.free_travel(world, (2.0, 1.3), (1e3, 1.3)), robot.free_travel(world, (2.0, 1.3), (1e155, 1.3))
+    assert 0.0 < near < 100.0
+    assert far == pytest.approx(near)
+
+
+def test_degenerate_grids_are_refused() -> None:
+    for origin, resolution in (((0.0, 0.0), 1e-310), ((0.0, 0.0), 1e-7), ((1e17, 0.0), 0.05)):
+        with pytest.raises(covmap.InvalidGridError):
+            covmap.Grid(origin=origin, resolution=resolution, shape=(4, 4))
+    with pytest.raises(covmap.InvalidParameterError):
+        covmap.LaserModel().kernel(0.5, 1.0, resolution=5e-324)
+
+
+def test_masked_arrays_are_refused(grid: covmap.Grid) -> None:
+    cmap = covmap.CoverageMap(grid)
+    before = cmap.histograms
+    masked = np.ma.masked_array(R, mask=[False, True, False])
+    with pytest.raises(covmap.ArrayDtypeError, match="masked"):
+        cmap.integrate(POSE, masked, B, covmap.SonarModel())
+    np.testing.assert_array_equal(cmap.histograms, before)

@@ -305,7 +305,11 @@ impl CoverageMap {
                 right: cells * LEN,
             });
         }
-        if let Some((i, &value)) = state.entropies.iter().enumerate().find(|(_, v)| !(v.is_finite() && **v >= 0.0)) {
+        // No histogram's entropy exceeds the prior's, `ln bins` (with room
+        // for the rounding of an `f32` entropy).
+        let most = (self.bins as f32).ln() * (1.0 + 1e-5) + 1e-6;
+        let impossible = |v: &f32| !(v.is_finite() && *v >= 0.0 && *v <= most);
+        if let Some((i, &value)) = state.entropies.iter().enumerate().find(|(_, v)| impossible(v)) {
             return Err(CovmapError::InvalidHistory { cell: i / LEN, value: f64::from(value) });
         }
         let entropies = state.entropies.chunks_exact(LEN).map(|ring| std::array::from_fn(|k| ring[k])).collect();
@@ -608,6 +612,8 @@ mod tests {
             with(&|s| s.entropies[7 * len + 2] = f32::NAN),
             with(&|s| s.entropies[7 * len + 2] = f32::INFINITY),
             with(&|s| s.entropies[7 * len + 2] = -0.5),
+            // More than the prior's ln 16 = 2.77 nats.
+            with(&|s| s.entropies[7 * len + 2] = 2.8),
         ];
         for map in [&mut tracked, &mut untracked] {
             let (histograms, history) = (map.histograms().to_vec(), map.history_state());

@@ -92,8 +92,9 @@ pub enum CovmapError {
     /// Histogram data handed in does not describe a valid map.
     #[error("invalid histogram data: {0}")]
     InvalidHistogram(String),
-    /// A stored entropy history holds an entropy no map can have.
-    #[error("invalid entropy history at cell {cell}: {value} (expected a finite, non-negative entropy in nats)")]
+    /// A stored entropy history holds an entropy no map can have (NaN,
+    /// infinite, negative, or above the prior's `ln bins`).
+    #[error("invalid entropy history at cell {cell}: {value} (expected an entropy from 0 to ln(bins) nats)")]
     InvalidHistory {
         /// Row-major index of the cell.
         cell: usize,

@@ -76,6 +76,11 @@ fn centre_range(a: f64, b: f64, r: f64, n: usize) -> Option<(usize, usize)> {
     (lo <= hi).then_some((lo as usize, hi as usize))
 }
 
+/// Beyond this magnitude (radians) a cone's axis is reduced to (-pi, pi]
+/// before its cells are found; below it, differences of angles keep 13 or
+/// more significant digits.
+const LARGE_ANGLE: f64 = 1e3;
+
 /// Cells of a cone's row whose distances are computed together.
 pub(crate) const ROW_BLOCK: usize = 8;
 
@@ -83,6 +88,16 @@ pub(crate) const ROW_BLOCK: usize = 8;
 /// `half` (< pi/2) around `axis`: the disk cut by the two boundary half-planes.
 #[inline(always)]
 fn visit_cone(grid: &Grid, [sx, sy]: [f64; 2], axis: f64, half: f64, reach: f64, f: &mut impl CellVisitor) {
+    // `within` compares angles by their difference, which a large axis
+    // would swamp: such an axis is brought to (-pi, pi] first, through the
+    // direction its sine and cosine give (exactly reduced, as every other
+    // use of the angle is).
+    let axis = if axis.abs() <= LARGE_ANGLE {
+        axis
+    } else {
+        let (s, c) = axis.sin_cos();
+        s.atan2(c)
+    };
     let r = grid.resolution_m();
     let [ox, oy] = grid.origin_m();
     let cols = grid.cols();
@@ -217,6 +232,21 @@ mod tests {
             assert!(m.insert(i, d).is_none(), "cell {i} visited twice");
         });
         m
+    }
+
+    /// A huge axis covers the cells of the direction its sine and cosine
+    /// give, as the same direction written small does.
+    #[test]
+    fn a_huge_axis_is_the_direction_it_names() {
+        let grid = Grid::new([0.0, 0.0], 0.05, 60, 60).unwrap();
+        let cone = Footprint::Cone { half_angle_rad: 7.5f64.to_radians() };
+        for axis in [2e3, -5e5, 1e12, 1e16, 1e300] {
+            let (s, c) = f64::sin_cos(axis);
+            let small = s.atan2(c);
+            let got = collect(&grid, [1.5, 1.5], axis, 1.0, cone);
+            assert!(got.len() > 50, "{axis}: {} cells", got.len());
+            assert_eq!(got, collect(&grid, [1.5, 1.5], small, 1.0, cone), "{axis}");
+        }
     }
 
     /// The row-interval cone equals a brute-force test of every cell centre.

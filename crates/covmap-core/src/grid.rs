@@ -59,6 +59,13 @@ impl From<Grid> for GridSpec {
     }
 }
 
+/// The finest grid resolution, metres (a micrometre).
+pub const MIN_RESOLUTION_M: f64 = 1e-6;
+
+/// How many cells from zero a grid's corners may lie (2^32): a coordinate
+/// of that size keeps 20 bits within a cell.
+pub const MAX_CELLS_FROM_ZERO: f64 = 4_294_967_296.0;
+
 /// Upper bound on the number of cells of one grid (2^31): keeps every index
 /// and every `cells x bins` product far from overflow.
 pub const MAX_CELLS: usize = 1 << 31;
@@ -68,12 +75,14 @@ impl Grid {
     /// `resolution_m`, `rows` cells along y and `cols` along x.
     ///
     /// Errors ([`CovmapError::InvalidGrid`]) if the resolution is not finite
-    /// and positive, the origin is not finite, a dimension is zero, the grid
-    /// has more than [`MAX_CELLS`], or its far corner is not finite.
+    /// or below [`MIN_RESOLUTION_M`], the origin is not finite, a dimension
+    /// is zero, the grid has more than [`MAX_CELLS`], or a corner lies more
+    /// than [`MAX_CELLS_FROM_ZERO`] cells from zero (where `f64` coordinates
+    /// would no longer tell points within a cell apart).
     pub fn new(origin_m: [f64; 2], resolution_m: f64, rows: usize, cols: usize) -> Result<Self> {
-        if !(resolution_m.is_finite() && resolution_m > 0.0) {
+        if !(resolution_m.is_finite() && resolution_m >= MIN_RESOLUTION_M) {
             return Err(CovmapError::InvalidGrid(format!(
-                "resolution must be finite and positive, got {resolution_m}"
+                "resolution must be finite and at least 1e-6 m, got {resolution_m}"
             )));
         }
         if !(origin_m[0].is_finite() && origin_m[1].is_finite()) {
@@ -91,8 +100,12 @@ impl Grid {
             return Err(CovmapError::InvalidGrid(format!("{rows} x {cols} cells exceed the limit of {MAX_CELLS}")));
         }
         let far = [origin_m[0] + cols as f64 * resolution_m, origin_m[1] + rows as f64 * resolution_m];
-        if !(far[0].is_finite() && far[1].is_finite()) {
-            return Err(CovmapError::InvalidGrid("the grid's extent is not finite".into()));
+        let largest = origin_m.iter().chain(&far).fold(0.0f64, |m, v| m.max(v.abs()));
+        if !(largest <= MAX_CELLS_FROM_ZERO * resolution_m) {
+            return Err(CovmapError::InvalidGrid(format!(
+                "a corner lies {largest} m from zero, more than 2^32 cells of {resolution_m} m: \
+                 coordinates that large cannot resolve a cell"
+            )));
         }
         Ok(Self { origin_m, resolution_m, rows, cols })
     }
@@ -213,6 +226,13 @@ mod tests {
         assert!(Grid::new([0.0, 0.0], 0.1, 3, 0).is_err());
         assert!(Grid::new([f64::NAN, 0.0], 0.1, 3, 3).is_err());
         assert!(Grid::new([0.0, 0.0], 0.1, usize::MAX, 2).is_err());
+        // Cells too small to compute with, or too far out to resolve.
+        assert!(Grid::new([0.0, 0.0], 1e-310, 1, 40).is_err());
+        assert!(Grid::new([0.0, 0.0], 1e-7, 1, 40).is_err());
+        assert!(Grid::new([1e17, 0.0], 0.05, 4, 4).is_err());
+        assert!(Grid::new([-3e8, 0.0], 0.05, 4, 4).is_err());
+        assert!(Grid::new([6e6, 4e6], 0.05, 400, 400).is_ok(), "UTM coordinates");
+        assert!(Grid::new([0.0, 0.0], 1e-6, 1, 40).is_ok());
     }
 
     #[test]

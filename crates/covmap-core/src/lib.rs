@@ -41,7 +41,7 @@ pub mod sensor;
 pub use counting::ScanCounts;
 pub use coverage_map::{CoverageMap, HistoryState, STAGNATION_MEASUREMENTS, STAGNATION_NATS};
 pub use error::{CovmapError, Result};
-pub use grid::{Cell, Grid, MAX_CELLS};
+pub use grid::{Cell, Grid, MAX_CELLS, MAX_CELLS_FROM_ZERO, MIN_RESOLUTION_M};
 pub use occupancy::{OccupancyGrid, OccupancyModel};
 pub use scan::Pose;
 pub use sensor::{Footprint, KernelTable, LaserModel, RangeModel, SensorModel, SonarModel};

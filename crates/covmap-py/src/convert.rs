@@ -17,8 +17,8 @@ use pyo3::prelude::*;
 use crate::errors::{Exception, to_py};
 
 /// The values of a numpy array of `ndim` dimensions and element type `T`, in
-/// row-major order, with its shape. Other dimensions or dtypes are errors:
-/// nothing is converted silently.
+/// row-major order, with its shape. Other dimensions or dtypes, and masked
+/// arrays, are errors: nothing is converted or dropped silently.
 fn numpy_values<T: Element + Copy>(
     array: &Bound<'_, PyUntypedArray>,
     name: &str,
@@ -26,6 +26,13 @@ fn numpy_values<T: Element + Copy>(
     expected: &str,
 ) -> PyResult<(Vec<T>, Vec<usize>)> {
     let py = array.py();
+    // A masked array's mask would be dropped without a word: refuse it.
+    if array.hasattr(pyo3::intern!(py, "mask"))? {
+        return Err(Exception::ArrayDtype.err(
+            py,
+            format!("{name} is a masked array, whose mask covmap would ignore: pass .filled(value) or .compressed()"),
+        ));
+    }
     let shape = array.shape().to_vec();
     if shape.len() != ndim {
         return Err(Exception::ArrayShape
@@ -121,6 +128,28 @@ fn per_cell<T: Element + Copy>(
     Ok((values, shape))
 }
 
+/// A seed for the random generators, from a Python integer (an `int`, a
+/// numpy integer, anything with `__index__`): 0 to 2**64 - 1. Anything else
+/// raises `InvalidTypeError`, an integer out of that range
+/// `InvalidParameterError`.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Seed(pub(crate) u64);
+
+impl<'a, 'py> FromPyObject<'a, 'py> for Seed {
+    type Error = PyErr;
+    fn extract(obj: Borrowed<'a, 'py, PyAny>) -> PyResult<Self> {
+        let py = obj.py();
+        if let Ok(seed) = obj.extract::<u64>() {
+            return Ok(Self(seed));
+        }
+        match obj.call_method0(pyo3::intern!(py, "__index__")) {
+            Ok(value) => Err(Exception::InvalidParameter
+                .err(py, format!("invalid parameter `seed` = {value}: expected an integer from 0 to 2**64 - 1"))),
+            Err(_) => Err(Exception::InvalidType.err(py, format!("seed must be an integer, got {}", obj.get_type()))),
+        }
+    }
+}
+
 /// A bin count from a Python int: `MIN_BINS..=MAX_BINS`.
 pub(crate) fn bins(py: Python<'_>, bins: i64) -> PyResult<usize> {
     let checked = usize::try_from(bins)
@@ -181,6 +210,18 @@ pub(crate) fn poses(obj: &Bound<'_, PyAny>, name: &str) -> PyResult<Vec<Pose>> {
 
 /// A point: any sequence of two numbers `(x, y)`, metres; with `heading_ok`,
 /// also a pose `(x, y, theta)` whose heading is ignored.
+/// Raises `InvalidValueError` for the first point with a coordinate that is
+/// not finite; `name` names the argument.
+pub(crate) fn finite_points(py: Python<'_>, points: &[[f64; 2]], name: &str) -> PyResult<()> {
+    match points.iter().position(|p| !(p[0].is_finite() && p[1].is_finite())) {
+        None => Ok(()),
+        Some(i) => {
+            let [x, y] = points[i];
+            Err(Exception::InvalidValue.err(py, format!("{name}: point {i} ({x}, {y}) is not finite")))
+        }
+    }
+}
+
 pub(crate) fn point(obj: &Bound<'_, PyAny>, name: &str, heading_ok: bool) -> PyResult<[f64; 2]> {
     let py = obj.py();
     let fail = |e: PyErr| {

@@ -3,12 +3,11 @@
 use covmap::histogram::DEFAULT_BINS;
 use covmap::{CoverageMap, HistoryState, STAGNATION_MEASUREMENTS};
 use numpy::{PyArray1, PyArray2, PyArray3};
-use pyo3::exceptions::PyTypeError;
 use pyo3::prelude::*;
 use pyo3::types::{PyTuple, PyType};
 
 use crate::convert::{self, cell_array};
-use crate::errors::OrRaise;
+use crate::errors::{Exception, OrRaise};
 use crate::grid::PyGrid;
 use crate::scan::Scan;
 
@@ -181,9 +180,8 @@ impl PyCoverageMap {
                 Ok(tuple) => format!("a tuple of length {}", tuple.len()),
                 Err(_) => state.get_type().to_string(),
             };
-            return Err(PyTypeError::new_err(format!(
-                "state must be None or a tuple (entropies, counts) of two numpy arrays, got {got}"
-            )));
+            return Err(Exception::InvalidType
+                .err(py, format!("state must be None or a tuple (entropies, counts) of two numpy arrays, got {got}")));
         };
         let grid = *self.0.grid();
         let depth = Some(STAGNATION_MEASUREMENTS + 1);

@@ -38,9 +38,11 @@ pub(crate) enum Exception {
     UnknownWorld,
     /// One element of an input array is unusable (a NaN origin, say).
     InvalidValue,
+    /// An argument of the wrong type (a `TypeError`).
+    InvalidType,
 }
 
-const CLASSES: usize = 18;
+const CLASSES: usize = 19;
 
 impl Exception {
     fn class_name(self) -> &'static str {
@@ -63,6 +65,7 @@ impl Exception {
             Self::FileFormat => "FileFormatError",
             Self::UnknownWorld => "UnknownWorldError",
             Self::InvalidValue => "InvalidValueError",
+            Self::InvalidType => "InvalidTypeError",
         }
     }
 

@@ -5,7 +5,7 @@ use numpy::PyArray2;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
-use crate::convert::{cell_array, poses_array};
+use crate::convert::{Seed, cell_array, poses_array};
 use crate::errors::OrRaise;
 use crate::grid::PyGrid;
 
@@ -30,9 +30,9 @@ fn errors_dict<'py>(py: Python<'py>, e: MapErrors) -> PyResult<Bound<'py, PyDict
 /// ``log_likelihood`` of the truth under the coverage map with
 /// ``log_likelihood_prior`` under the uniform prior. Runs with the GIL released.
 #[pyfunction]
-#[pyo3(signature = (seed=0))]
-pub(crate) fn run_fig3(py: Python<'_>, seed: u64) -> PyResult<Bound<'_, PyDict>> {
-    let r = py.detach(|| experiments::fig3(seed)).or_raise(py)?;
+#[pyo3(signature = (seed=Seed(0)), text_signature = "(seed=0)")]
+pub(crate) fn run_fig3(py: Python<'_>, seed: Seed) -> PyResult<Bound<'_, PyDict>> {
+    let r = py.detach(|| experiments::fig3(seed.0)).or_raise(py)?;
     let grid = r.grid;
     let d = PyDict::new(py);
     d.set_item("grid", PyGrid(grid))?;

@@ -2,10 +2,11 @@
 
 use std::hash::{DefaultHasher, Hash, Hasher};
 
-use covmap::{Cell, CovmapError, Grid};
+use covmap::{CovmapError, Grid};
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyTuple};
 
+use crate::convert;
 use crate::errors::OrRaise;
 
 /// A regular grid of square cells.
@@ -15,7 +16,8 @@ use crate::errors::OrRaise;
 /// number of cells as ``(rows, cols)``. Rows run along y and columns along x:
 /// cell ``(row, col)`` covers ``[ox + col*r, ox + (col+1)*r) x [oy + row*r,
 /// oy + (row+1)*r)``, and every per-cell array of this package is indexed
-/// ``[row, col]``.
+/// ``[row, col]``. A resolution below 1e-6 m, more than 2**31 cells, or a
+/// corner more than 2**32 cells from zero raises ``InvalidGridError``.
 #[pyclass(frozen, eq, name = "Grid", module = "covmap._native")]
 #[derive(Clone, Copy, PartialEq)]
 pub(crate) struct PyGrid(pub(crate) Grid);
@@ -34,7 +36,8 @@ pub(crate) fn hash_f64s(values: impl IntoIterator<Item = f64>, extra: &[usize]) 
 impl PyGrid {
     #[new]
     #[pyo3(signature = (*, origin, resolution, shape))]
-    fn new(py: Python<'_>, origin: [f64; 2], resolution: f64, shape: [i64; 2]) -> PyResult<Self> {
+    fn new(py: Python<'_>, origin: &Bound<'_, PyAny>, resolution: f64, shape: [i64; 2]) -> PyResult<Self> {
+        let origin = convert::point(origin, "origin", false)?;
         let [rows, cols] = shape.map(|n| usize::try_from(n).ok());
         let (Some(rows), Some(cols)) = (rows, cols) else {
             return Err(CovmapError::InvalidGrid(format!(
@@ -98,10 +101,11 @@ impl PyGrid {
         self.0.world_to_cell(x, y).map(|c| (c.row, c.col))
     }
     /// World position ``(x, y)`` of a cell's centre, metres (the cell need not
-    /// lie inside the grid).
-    fn cell_center(&self, row: usize, col: usize) -> (f64, f64) {
-        let [x, y] = self.0.cell_center(Cell { row, col });
-        (x, y)
+    /// lie inside the grid: a negative index counts on past the first row or
+    /// column).
+    fn cell_center(&self, row: i64, col: i64) -> (f64, f64) {
+        let ([ox, oy], r) = (self.0.origin_m(), self.0.resolution_m());
+        (ox + (col as f64 + 0.5) * r, oy + (row as f64 + 0.5) * r)
     }
 
     pub(crate) fn __repr__(&self) -> String {

@@ -52,7 +52,8 @@ impl PyRobot {
 
     /// How far the disc can drive straight from ``start`` towards ``goal``
     /// before it touches an obstacle, metres: the whole length when the way is
-    /// free, 0 when it starts in contact.
+    /// free, 0 when it starts in contact. A coordinate that is not finite
+    /// raises ``InvalidValueError``.
     fn free_travel(
         &self,
         world: &Bound<'_, PyWorld>,
@@ -60,12 +61,15 @@ impl PyRobot {
         goal: &Bound<'_, PyAny>,
     ) -> PyResult<f64> {
         let (a, b) = (convert::point(start, "start", true)?, convert::point(goal, "goal", true)?);
+        convert::finite_points(world.py(), &[a], "start")?;
+        convert::finite_points(world.py(), &[b], "goal")?;
         Ok(self.0.free_travel_m(&world.get().0, a, b))
     }
 
     /// The gap between the disc at each of ``points`` (float64 ``(N, 2)``)
     /// and the nearest obstacle, metres: float64 ``(N,)``, negative where they
-    /// overlap. Runs with the GIL released.
+    /// overlap. A point that is not finite raises ``InvalidValueError``. Runs
+    /// with the GIL released.
     fn clearance<'py>(
         &self,
         py: Python<'py>,
@@ -73,6 +77,7 @@ impl PyRobot {
         points: &Bound<'py, PyAny>,
     ) -> PyResult<Bound<'py, PyArray1<f64>>> {
         let points = convert::rows::<2>(points, "points", "point (x, y)")?;
+        convert::finite_points(py, &points, "points")?;
         let (robot, world) = (self.0, &world.get().0);
         let gaps: Vec<f64> = py.detach(|| points.iter().map(|&p| robot.clearance_m(world, p)).collect());
         Ok(PyArray1::from_vec(py, gaps))

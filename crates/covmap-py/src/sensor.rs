@@ -2,12 +2,11 @@
 
 use covmap::{Footprint, LaserModel, RangeModel, SensorModel, SonarModel};
 use numpy::PyArray1;
-use pyo3::exceptions::PyTypeError;
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyTuple, PyType};
 
 use crate::convert;
-use crate::errors::OrRaise;
+use crate::errors::{Exception, OrRaise};
 use crate::grid::hash_f64s;
 
 /// The keyword arguments shared by both models; `None` keeps the default.
@@ -332,7 +331,8 @@ impl AnyModel {
         } else if let Ok(m) = obj.cast::<PyLaserModel>() {
             Ok(Self::Laser(m.get().0))
         } else {
-            Err(PyTypeError::new_err(format!("model must be a SonarModel or a LaserModel, got {}", obj.get_type())))
+            Err(Exception::InvalidType
+                .err(obj.py(), format!("model must be a SonarModel or a LaserModel, got {}", obj.get_type())))
         }
     }
 }

@@ -3,10 +3,9 @@
 use covmap::sim::{Laser, RangeSensor, SonarRing, World, sim_rng, simulate};
 use numpy::ndarray::Array2;
 use numpy::{IntoPyArray, PyArray1, PyArray2};
-use pyo3::exceptions::PyTypeError;
 use pyo3::prelude::*;
 
-use crate::convert;
+use crate::convert::{self, Seed};
 use crate::errors::{Exception, OrRaise};
 use crate::sensor::PySonarModel;
 use crate::world::PyWorld;
@@ -212,29 +211,29 @@ impl PySonarRing {
     /// from a generator seeded with ``seed``: ``(ranges, bearings)``, float64
     /// ``(n,)`` each, ready for ``CoverageMap.integrate(pose, ranges,
     /// bearings, SonarModel())``. The same seed gives the same readings.
-    #[pyo3(signature = (world, pose, *, seed=0))]
+    #[pyo3(signature = (world, pose, *, seed=Seed(0)), text_signature = "($self, world, pose, *, seed=0)")]
     fn simulate<'py>(
         &self,
         py: Python<'py>,
         world: &Bound<'py, PyWorld>,
         pose: &Bound<'py, PyAny>,
-        seed: u64,
+        seed: Seed,
     ) -> PyResult<Readings<'py>> {
-        scan_one(py, &self.0, world, pose, seed)
+        scan_one(py, &self.0, world, pose, seed.0)
     }
     /// One scan from each pose of ``poses`` (float64 ``(N, 3)``): the ranges
     /// as float64 ``(N, n)``. Scan ``i`` draws from its own stream ``i`` of
     /// ``seed`` (scan 0 equals ``simulate(world, poses[0], seed=seed)``), so
     /// the result depends on the seed alone; scans run in parallel.
-    #[pyo3(signature = (world, poses, *, seed=0))]
+    #[pyo3(signature = (world, poses, *, seed=Seed(0)), text_signature = "($self, world, poses, *, seed=0)")]
     fn simulate_path<'py>(
         &self,
         py: Python<'py>,
         world: &Bound<'py, PyWorld>,
         poses: &Bound<'py, PyAny>,
-        seed: u64,
+        seed: Seed,
     ) -> PyResult<Bound<'py, PyArray2<f64>>> {
-        scan_many(py, &self.0, world, poses, seed)
+        scan_many(py, &self.0, world, poses, seed.0)
     }
 
     fn __repr__(&self) -> String {
@@ -280,7 +279,7 @@ impl PyLaser {
     ) -> PyResult<Self> {
         let mut laser = match bearings_rad {
             Some(_) if beams.is_some() || fov_rad.is_some() => {
-                return Err(PyTypeError::new_err("give either beams and fov_rad or bearings_rad, not both"));
+                return Err(Exception::InvalidType.err(py, "give either beams and fov_rad or bearings_rad, not both"));
             }
             Some(b) => Laser::with_bearings(convert::readings(b, "bearings_rad")?),
             None => {
@@ -330,28 +329,28 @@ impl PyLaser {
     /// from a generator seeded with ``seed``: ``(ranges, bearings)``, float64
     /// ``(n,)`` each, ready for ``CoverageMap.integrate(pose, ranges,
     /// bearings, LaserModel())``. The same seed gives the same readings.
-    #[pyo3(signature = (world, pose, *, seed=0))]
+    #[pyo3(signature = (world, pose, *, seed=Seed(0)), text_signature = "($self, world, pose, *, seed=0)")]
     fn simulate<'py>(
         &self,
         py: Python<'py>,
         world: &Bound<'py, PyWorld>,
         pose: &Bound<'py, PyAny>,
-        seed: u64,
+        seed: Seed,
     ) -> PyResult<Readings<'py>> {
-        scan_one(py, &self.0, world, pose, seed)
+        scan_one(py, &self.0, world, pose, seed.0)
     }
     /// One scan from each pose of ``poses`` (float64 ``(N, 3)``): the ranges
     /// as float64 ``(N, n)``; scan ``i`` draws from stream ``i`` of ``seed``
     /// (see ``SonarRing.simulate_path``).
-    #[pyo3(signature = (world, poses, *, seed=0))]
+    #[pyo3(signature = (world, poses, *, seed=Seed(0)), text_signature = "($self, world, poses, *, seed=0)")]
     fn simulate_path<'py>(
         &self,
         py: Python<'py>,
         world: &Bound<'py, PyWorld>,
         poses: &Bound<'py, PyAny>,
-        seed: u64,
+        seed: Seed,
     ) -> PyResult<Bound<'py, PyArray2<f64>>> {
-        scan_many(py, &self.0, world, poses, seed)
+        scan_many(py, &self.0, world, poses, seed.0)
     }
 
     fn __repr__(&self) -> String {

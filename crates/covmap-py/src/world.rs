@@ -39,14 +39,25 @@ fn extension(path: &std::path::Path) -> String {
 impl PyWorld {
     #[new]
     #[pyo3(signature = (polygons, materials=None))]
-    fn new(py: Python<'_>, polygons: &Bound<'_, PyAny>, materials: Option<Vec<String>>) -> PyResult<Self> {
+    fn new(py: Python<'_>, polygons: &Bound<'_, PyAny>, materials: Option<&Bound<'_, PyAny>>) -> PyResult<Self> {
         let lists: Vec<Bound<'_, PyAny>> =
             polygons.try_iter().and_then(|it| it.collect::<PyResult<_>>()).map_err(|_| {
-                pyo3::exceptions::PyTypeError::new_err(format!(
-                    "polygons must be a list of (N, 2) vertex arrays, got {}",
-                    polygons.get_type()
-                ))
+                Exception::InvalidType
+                    .err(py, format!("polygons must be a list of (N, 2) vertex arrays, got {}", polygons.get_type()))
             })?;
+        // A lone string is a sequence too, of letters: not a list of names.
+        let materials = match materials {
+            Some(m) if m.is_instance_of::<pyo3::types::PyString>() => {
+                return Err(
+                    Exception::InvalidType.err(py, "materials must be a list of names, one per polygon, got a str")
+                );
+            }
+            Some(m) => Some(m.extract::<Vec<String>>().map_err(|_| {
+                Exception::InvalidType
+                    .err(py, format!("materials must be a list of names, one per polygon, got {}", m.get_type()))
+            })?),
+            None => None,
+        };
         let materials = match materials {
             None => vec![Material::Wall; lists.len()],
             Some(names) if names.len() == lists.len() => {
@@ -253,9 +264,11 @@ impl PyWorld {
         self.0.contains_point([x, y])
     }
     /// Distance from ``(x, y)`` to the nearest obstacle, metres: 0 inside
-    /// one, infinite in an empty world.
-    fn distance_to_obstacle(&self, x: f64, y: f64) -> f64 {
-        self.0.distance_to_obstacle_m([x, y])
+    /// one, infinite in an empty world. A coordinate that is not finite
+    /// raises ``InvalidValueError``.
+    fn distance_to_obstacle(&self, py: Python<'_>, x: f64, y: f64) -> PyResult<f64> {
+        convert::finite_points(py, &[[x, y]], "(x, y)")?;
+        Ok(self.0.distance_to_obstacle_m([x, y]))
     }
 
     fn __repr__(&self) -> String {

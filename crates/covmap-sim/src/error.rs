@@ -90,11 +90,19 @@ pub(crate) fn check_param(name: &'static str, value: f64, ok: bool, expected: &'
     if ok && value.is_finite() { Ok(()) } else { Err(SimError::InvalidParameter { name, value, expected }) }
 }
 
-/// Errors unless a sensor has at least one bearing and every bearing is finite;
+/// The most beams one simulated sensor may have (2^16).
+pub const MAX_BEAMS: usize = 1 << 16;
+
+/// Errors unless a sensor has from 1 to [`MAX_BEAMS`] bearings and every
+/// bearing is finite;
 /// `what` names one bearing in the error ("sonar bearing").
 pub(crate) fn check_bearings(bearings_rad: &[f64], what: &'static str) -> Result<()> {
-    if bearings_rad.is_empty() {
-        return Err(SimError::InvalidParameter { name: "bearings_rad", value: 0.0, expected: "at least one bearing" });
+    if bearings_rad.is_empty() || bearings_rad.len() > MAX_BEAMS {
+        return Err(SimError::InvalidParameter {
+            name: "bearings_rad",
+            value: bearings_rad.len() as f64,
+            expected: "from 1 to 65536 bearings",
+        });
     }
     if let Some((index, &value)) = bearings_rad.iter().enumerate().find(|(_, b)| !b.is_finite()) {
         return Err(SimError::InvalidValue { what, index, value });

@@ -44,7 +44,7 @@ impl Laser {
     /// first at `-fov_rad / 2` and the last at `+fov_rad / 2`; maximum range
     /// from [`LaserModel::default`], 1 cm noise.
     pub fn new(beams: usize, fov_rad: f64) -> Result<Self> {
-        check_param("beams", beams as f64, beams >= 2, "at least 2 beams")?;
+        check_param("beams", beams as f64, (2..=crate::MAX_BEAMS).contains(&beams), "from 2 to 65536 beams")?;
         check_param("fov_rad", fov_rad, fov_rad > 0.0 && fov_rad <= 2.0 * PI, "an angle in (0, 2 pi] radians")?;
         let step = fov_rad / (beams - 1) as f64;
         Ok(Self::with_bearings((0..beams).map(|i| -0.5 * fov_rad + i as f64 * step).collect()))

@@ -46,7 +46,7 @@ mod simulate;
 mod sonar;
 mod world;
 
-pub use error::{Result, SimError};
+pub use error::{MAX_BEAMS, Result, SimError};
 pub use laser::Laser;
 pub use load::image::ImageOptions;
 pub use load::write_atomic;

@@ -76,6 +76,18 @@ impl Robot {
         if length == 0.0 {
             return 0.0;
         }
+        // Nothing lies farther than the world's far corner: a longer move
+        // is cast only that far (plus the disc), which keeps the cast's
+        // arithmetic in range however far the goal is.
+        let [x0, y0, x1, y1] = world.bounds_m();
+        let out = (from_m[0] - x0)
+            .abs()
+            .max((x1 - from_m[0]).abs())
+            .hypot((from_m[1] - y0).abs().max((y1 - from_m[1]).abs()))
+            + self.radius_m
+            + 1.0;
+        let cast = length.min(out);
+        let delta = [delta[0] / length * cast, delta[1] / length * cast];
         let ball = Ball::new(self.radius_m);
         let options = ShapeCastOptions { max_time_of_impact: 1.0, ..ShapeCastOptions::default() };
         let hit = query::cast_shapes(
@@ -88,7 +100,7 @@ impl Robot {
             options,
         );
         match hit {
-            Ok(Some(h)) => h.time_of_impact.clamp(0.0, 1.0) * length,
+            Ok(Some(h)) => h.time_of_impact.clamp(0.0, 1.0) * cast,
             Ok(None) => length,
             // parry's dispatcher supports a ball against a polyline (the tests
             // exercise it); were it ever not to, not moving is the safe answer.
@@ -157,6 +169,12 @@ mod tests {
             [([f64::NAN, 1.3], [2.0, 1.3]), ([2.0, 1.3], [f64::NAN, 1.3]), ([0.0, 0.0], [f64::INFINITY, 0.0])]
         {
             assert!(r.move_collides(&empty, from, to), "{from:?} -> {to:?}");
+        }
+        // A goal far beyond the world: the wall still stops the disc, and
+        // with nothing in the way the whole length is free.
+        for far in [1e6, 1e155, 1e300] {
+            assert!((r.free_travel_m(&w, [0.0, 0.0], [far, 0.0]) - 1.5).abs() < 1e-6, "{far}");
+            assert_eq!(r.free_travel_m(&w, [0.0, 1.6], [far, 1.6]), far, "{far}");
         }
     }
 }

@@ -93,8 +93,11 @@ impl Default for SonarRing {
 
 impl SonarRing {
     /// `count` sensors evenly spaced around the robot, the first straight
-    /// ahead, with the default error model.
+    /// ahead, with the default error model. A count of 0 or above
+    /// [`MAX_BEAMS`](crate::MAX_BEAMS) makes a ring that validation rejects
+    /// (and allocates no more than one bearing past the limit).
     pub fn ring(count: usize) -> Self {
+        let count = count.min(crate::MAX_BEAMS + 1);
         let bearings = (0..count).map(|i| i as f64 * TAU / count as f64).collect();
         Self::with_bearings(bearings)
     }

@@ -2,6 +2,7 @@
 
 use super::{RangeModel, kernel_values};
 use crate::error::{CovmapError, Result};
+use crate::grid::MIN_RESOLUTION_M;
 use crate::histogram::MAX_BINS;
 use crate::numeric::x_ln_x;
 
@@ -10,15 +11,16 @@ pub const BAND_SLICES: usize = 32;
 /// Steps the distance `s = min(d_l, d)` is cut into, from 0 to `max_range_m`.
 pub const DISTANCE_STEPS: usize = 256;
 
-/// Errors unless `resolution_m` is a positive, finite cell size.
+/// Errors unless `resolution_m` is a finite cell size a grid may have (at
+/// least [`MIN_RESOLUTION_M`]).
 pub(crate) fn check_resolution(resolution_m: f64) -> Result<()> {
-    if resolution_m.is_finite() && resolution_m > 0.0 {
+    if resolution_m.is_finite() && resolution_m >= MIN_RESOLUTION_M {
         Ok(())
     } else {
         Err(CovmapError::InvalidParameter {
             name: "resolution_m",
             value: resolution_m,
-            expected: "a positive, finite cell size",
+            expected: "a finite cell size of at least 1e-6 m",
         })
     }
 }

@@ -16,9 +16,13 @@ use crate::material::Material;
 use crate::polygon::Polygon;
 use crate::world::World;
 
+/// The thickest wall an ARIA map's segments may be drawn as, metres.
+pub const MAX_WALL_THICKNESS_M: f64 = 100.0;
+
 impl World {
     /// A world from the wall segments of an ARIA `.map` file, each a wall
-    /// `wall_thickness_m` thick (see [the format](crate::load::aria)).
+    /// `wall_thickness_m` thick (see [the format](crate::load::aria)), at most
+    /// [`MAX_WALL_THICKNESS_M`].
     pub fn from_aria_map_file(path: impl AsRef<Path>, wall_thickness_m: f64) -> Result<World> {
         let path = path.as_ref();
         Self::from_aria_map_str(&read_text(path)?, path, wall_thickness_m)
@@ -38,7 +42,12 @@ impl World {
     /// ```
     pub fn from_aria_map_str(text: &str, name: impl AsRef<Path>, wall_thickness_m: f64) -> Result<World> {
         let path = name.as_ref();
-        check_param("wall_thickness_m", wall_thickness_m, wall_thickness_m > 0.0, "a positive wall thickness")?;
+        check_param(
+            "wall_thickness_m",
+            wall_thickness_m,
+            wall_thickness_m > 0.0 && wall_thickness_m <= MAX_WALL_THICKNESS_M,
+            "a positive wall thickness of at most 100 m",
+        )?;
         let mut lines = text.lines().enumerate().map(|(i, l)| (i + 1, l.trim()));
         match lines.next() {
             Some((_, first)) if first.starts_with("2D-Map") => {}
@@ -139,5 +148,10 @@ mod tests {
         // 2 m long plus 5 cm at each end, 10 cm thick.
         assert!((w.polygon_area_m2() - 2.1 * 0.1).abs() < 1e-12);
         assert!(w.contains_point([2.04, 0.0]) && !w.contains_point([2.06, 0.0]));
+        // A thickness no wall has is the parameter's fault, not the file's.
+        for bad in [0.0, -0.1, 1e300, f64::NAN] {
+            let e = World::from_aria_map_str("2D-Map\nLINES\n0 0 2000 0\n", "a.map", bad).unwrap_err();
+            assert!(matches!(e, SimError::InvalidParameter { name: "wall_thickness_m", .. }), "{e}");
+        }
     }
 }
