@@ -14,10 +14,29 @@ if TYPE_CHECKING:
     from collections.abc import Sequence
 
 
+_MAX_SEED = 2**64 - 1
+"""The largest seed: seeds are unsigned 64-bit integers."""
+
+_MAX_COUNT = 1_000_000
+"""The most readings or scans a command takes (more would run for hours)."""
+
+_MAX_LENGTH_M = 1000.0
+"""The largest cell size, pixel size or wall thickness, metres: a kilometre is
+beyond any robot's world, and larger values overflow the areas computed from
+them or exhaust the memory building the world."""
+
+
+def _integer(text: str) -> int:
+    try:
+        return int(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"expected an integer, got {text}") from None
+
+
 def _positive_int(text: str) -> int:
-    value = int(text)
-    if value <= 0:
-        raise argparse.ArgumentTypeError(f"expected a positive integer, got {text}")
+    value = _integer(text)
+    if not 0 < value <= _MAX_COUNT:
+        raise argparse.ArgumentTypeError(f"expected an integer from 1 to {_MAX_COUNT}, got {text}")
     return value
 
 
@@ -28,10 +47,12 @@ def _number(text: str) -> float:
         raise argparse.ArgumentTypeError(f"expected a number, got {text}") from None
 
 
-def _positive_float(text: str) -> float:
+def _length(text: str) -> float:
     value = _number(text)
-    if not value > 0.0 or value == float("inf"):
-        raise argparse.ArgumentTypeError(f"expected a positive number, got {text}")
+    if not 0.0 < value <= _MAX_LENGTH_M:
+        raise argparse.ArgumentTypeError(
+            f"expected a length in metres, more than 0 and at most {_MAX_LENGTH_M:g}, got {text}"
+        )
     return value
 
 
@@ -43,10 +64,20 @@ def _weight(text: str) -> float:
 
 
 def _seed(text: str) -> int:
-    value = int(text)
-    if value < 0:
-        raise argparse.ArgumentTypeError(f"expected a non-negative seed, got {text}")
+    value = _integer(text)
+    if not 0 <= value <= _MAX_SEED:
+        raise argparse.ArgumentTypeError(f"expected a seed from 0 to 2**64 - 1, got {text}")
     return value
+
+
+def _add_out(command: argparse.ArgumentParser, name: str) -> None:
+    """The ``--out`` option of subcommand ``name``, default ``covmap-out/<name>``."""
+    command.add_argument(
+        "--out",
+        type=Path,
+        default=Path("covmap-out", name),
+        help=f"output directory (default covmap-out/{name})",
+    )
 
 
 def parser() -> argparse.ArgumentParser:
@@ -60,21 +91,19 @@ def parser() -> argparse.ArgumentParser:
         "fig1",
         help="reproduce Fig. 1: a partly covered cell, coverage map vs occupancy grid",
         description=(
-            "A wall covering the far 20, 50 and 80 %% of one cell, seen by laser beams "
+            "A wall covering the far 20, 50 and 80 % of one cell, seen by laser beams "
             "from varied positions: prints the coverage map's ML and mean coverage and "
             "the occupancy probability of the cell, writes fig1.png, and exits non-zero "
             "unless the ML coverage lies within one bin of the truth and p(occ) > 0.9."
         ),
     )
-    fig1.add_argument(
-        "--out", type=Path, default=Path("covmap-out/fig1"), help="output directory"
-    )
-    fig1.add_argument("--seed", type=int, default=0, help="random seed (default 0)")
+    _add_out(fig1, "fig1")
+    fig1.add_argument("--seed", type=_seed, default=0, help="random seed, 0 to 2**64 - 1 (default 0)")
     fig1.add_argument(
         "--readings",
         type=_positive_int,
         default=200,
-        help="readings per fraction (default 200)",
+        help="readings per fraction, at most 1000000 (default 200)",
     )
 
     world = sub.add_parser(
@@ -84,25 +113,27 @@ def parser() -> argparse.ArgumentParser:
             "Draw a world's obstacles (NAME-world.png) and its exact coverage on a grid "
             "over its bounds (NAME-coverage.png); print its bounds and obstacle area. "
             "NAME is a built-in world (corridor, office, partial) or a world file "
-            "(.json/.geojson, .map, .yaml; .pgm/.png with --image-resolution)."
+            "(.json/.geojson, .map, .yaml/.yml; .pgm/.png with --image-resolution)."
         ),
     )
     world.add_argument("name", metavar="NAME", help="built-in world or world file")
-    world.add_argument("--out", type=Path, default=Path("covmap-out/world"), help="output directory")
+    _add_out(world, "world")
     world.add_argument(
         "--resolution",
-        type=_positive_float,
+        type=_length,
         default=0.05,
-        help="cell size of the coverage grid, metres (default 0.05)",
+        help="cell size of the coverage grid, metres, at most 1000 (default 0.05)",
     )
     world.add_argument(
         "--wall-thickness",
-        type=_positive_float,
+        type=_length,
         default=0.1,
-        help="thickness of the walls of an ARIA .map file, metres (default 0.1)",
+        help="thickness of the walls of an ARIA .map file, metres, at most 1000 (default 0.1)",
     )
     world.add_argument(
-        "--image-resolution", type=_positive_float, help="metres per pixel of a .pgm/.png world"
+        "--image-resolution",
+        type=_length,
+        help="metres per pixel of a .pgm/.png world, at most 1000",
     )
 
     fig3 = sub.add_parser(
@@ -115,8 +146,8 @@ def parser() -> argparse.ArgumentParser:
             "the truth, and write fig3-truth.png, fig3-ml.png and fig3-occupancy.png."
         ),
     )
-    fig3.add_argument("--out", type=Path, default=Path("covmap-out/fig3"), help="output directory")
-    fig3.add_argument("--seed", type=_seed, default=0, help="random seed (default 0)")
+    _add_out(fig3, "fig3")
+    fig3.add_argument("--seed", type=_seed, default=0, help="random seed, 0 to 2**64 - 1 (default 0)")
 
     gain = sub.add_parser(
         "gain",
@@ -129,9 +160,11 @@ def parser() -> argparse.ArgumentParser:
         ),
     )
     gain.add_argument("--world", default="corridor", help="built-in world (default corridor)")
-    gain.add_argument("--out", type=Path, default=Path("covmap-out/gain"), help="output directory")
-    gain.add_argument("--scans", type=_positive_int, default=3, help="sonar scans (default 3)")
-    gain.add_argument("--seed", type=_seed, default=0, help="random seed (default 0)")
+    _add_out(gain, "gain")
+    gain.add_argument(
+        "--scans", type=_positive_int, default=3, help="sonar scans, at most 1000000 (default 3)"
+    )
+    gain.add_argument("--seed", type=_seed, default=0, help="random seed, 0 to 2**64 - 1 (default 0)")
     gain.add_argument(
         "--alpha",
         type=_weight,
@@ -184,7 +217,8 @@ def _world(args: argparse.Namespace) -> int:
     x0, y0, x1, y1 = world.bounds
     grid = Grid.covering(world.bounds, resolution=args.resolution)
     coverage = world.coverage(grid)
-    union_m2 = float(coverage.sum()) * grid.resolution**2
+    # A product, not ``**``: a float power raises OverflowError where a product gives inf.
+    union_m2 = float(coverage.sum()) * grid.resolution * grid.resolution
     print(f"world {name}: {len(world)} polygons ({world.materials.count('glass')} glass)")
     print(f"bounds: x {x0:.3f} to {x1:.3f} m, y {y0:.3f} to {y1:.3f} m ({x1 - x0:.3f} x {y1 - y0:.3f} m)")
     print(

@@ -168,8 +168,11 @@ def save_figure(fig: Figure, path: str | os.PathLike[str], *, dpi: int = 100) ->
     same figure gives the same bytes. Returns the path."""
     path = Path(path)
     path.parent.mkdir(parents=True, exist_ok=True)
-    tmp = path.with_name(f".{path.name}.{os.getpid()}.{secrets.token_hex(4)}.tmp")
-    # os.open rather than mkstemp: the file gets the umask's permissions (mkstemp's are 0600).
+    # A short name of its own, not one built from path.name: a valid long name
+    # plus a prefix and suffix would exceed the file system's limit (NAME_MAX).
+    tmp = path.with_name(f".covmap-{secrets.token_hex(8)}.tmp")
+    # os.open rather than mkstemp: the file gets the umask's permissions (mkstemp's
+    # are 0600); O_EXCL, so an existing file is never overwritten.
     fd = os.open(tmp, os.O_WRONLY | os.O_CREAT | os.O_EXCL, 0o666)
     try:
         with os.fdopen(fd, "wb") as f:

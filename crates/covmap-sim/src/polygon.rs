@@ -270,7 +270,7 @@ fn clean_ring(ring: Vec<[f64; 2]>) -> std::result::Result<Vec<[f64; 2]>, String>
     let scale = (x1 - x0).max(y1 - y0);
     if !(area.abs() > 1e-12 * scale * scale) {
         return Err(format!(
-            "zero area: {area} m^2, negligible against its {scale} m extent (at most 1e-12 of its square)"
+            "zero area: {area:.3e} m^2, negligible against its {scale:.3e} m extent (at most 1e-12 of its square)"
         ));
     }
     Ok(out)
