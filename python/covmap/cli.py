@@ -20,10 +20,17 @@ _MAX_SEED = 2**64 - 1
 _MAX_COUNT = 1_000_000
 """The most readings or scans a command takes (more would run for hours)."""
 
+_MIN_LENGTH_M = 1e-6
+"""The smallest cell or pixel size, metres: the finest grid covmap builds."""
+
 _MAX_LENGTH_M = 1000.0
-"""The largest cell size, pixel size or wall thickness, metres: a kilometre is
-beyond any robot's world, and larger values overflow the areas computed from
-them or exhaust the memory building the world."""
+"""The largest cell or pixel size, metres: a kilometre is beyond any robot's
+world, and larger values overflow the areas computed from them or exhaust the
+memory building the world."""
+
+_MAX_WALL_THICKNESS_M = 100.0
+"""The thickest wall an ARIA map's segments may be drawn as, metres (the
+library's limit)."""
 
 
 def _integer(text: str) -> int:
@@ -48,10 +55,20 @@ def _number(text: str) -> float:
 
 
 def _length(text: str) -> float:
+    """A cell or pixel size, metres."""
     value = _number(text)
-    if not 0.0 < value <= _MAX_LENGTH_M:
+    if not _MIN_LENGTH_M <= value <= _MAX_LENGTH_M:
         raise argparse.ArgumentTypeError(
-            f"expected a length in metres, more than 0 and at most {_MAX_LENGTH_M:g}, got {text}"
+            f"expected a length in metres from {_MIN_LENGTH_M:g} to {_MAX_LENGTH_M:g}, got {text}"
+        )
+    return value
+
+
+def _wall_thickness(text: str) -> float:
+    value = _number(text)
+    if not 0.0 < value <= _MAX_WALL_THICKNESS_M:
+        raise argparse.ArgumentTypeError(
+            f"expected a thickness in metres, more than 0 and at most {_MAX_WALL_THICKNESS_M:g}, got {text}"
         )
     return value
 
@@ -122,18 +139,18 @@ def parser() -> argparse.ArgumentParser:
         "--resolution",
         type=_length,
         default=0.05,
-        help="cell size of the coverage grid, metres, at most 1000 (default 0.05)",
+        help="cell size of the coverage grid, metres, from 1e-06 to 1000 (default 0.05)",
     )
     world.add_argument(
         "--wall-thickness",
-        type=_length,
+        type=_wall_thickness,
         default=0.1,
-        help="thickness of the walls of an ARIA .map file, metres, at most 1000 (default 0.1)",
+        help="thickness of the walls of an ARIA .map file, metres, at most 100 (default 0.1)",
     )
     world.add_argument(
         "--image-resolution",
         type=_length,
-        help="metres per pixel of a .pgm/.png world, at most 1000",
+        help="metres per pixel of a .pgm/.png world, from 1e-06 to 1000",
     )
 
     fig3 = sub.add_parser(

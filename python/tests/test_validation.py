@@ -239,3 +239,8 @@ def test_masked_arrays_are_refused(grid: covmap.Grid) -> None:
     with pytest.raises(covmap.ArrayDtypeError, match="masked"):
         cmap.integrate(POSE, masked, B, covmap.SonarModel())
     np.testing.assert_array_equal(cmap.histograms, before)
+    # Nothing masked: the data, as a plain array gives it.
+    plain = covmap.CoverageMap(grid)
+    plain.integrate(POSE, R, B, covmap.SonarModel())
+    cmap.integrate(POSE, np.ma.masked_array(R), B, covmap.SonarModel())
+    np.testing.assert_array_equal(cmap.histograms, plain.histograms)

@@ -36,16 +36,15 @@ struct ScanCountsData {
 impl TryFrom<ScanCountsData> for ScanCounts {
     type Error = CovmapError;
     fn try_from(d: ScanCountsData) -> Result<Self> {
-        let empty = match d.discount_beyond_m {
-            Some(m) => Self::with_discount(d.grid, m)?,
-            None => Self::new(d.grid),
-        };
-        if d.counts.len() != empty.counts.len() {
+        if d.counts.len() != d.grid.len() {
             return Err(CovmapError::LengthMismatch {
                 what: "counts and grid cells",
                 left: d.counts.len(),
-                right: empty.counts.len(),
+                right: d.grid.len(),
             });
+        }
+        if let Some(m) = d.discount_beyond_m {
+            check_discount(m)?;
         }
         if let Some(&c) = d.counts.iter().find(|c| !(c.is_finite() && **c >= 0.0)) {
             return Err(CovmapError::InvalidParameter {
@@ -54,7 +53,20 @@ impl TryFrom<ScanCountsData> for ScanCounts {
                 expected: "finite, non-negative counts",
             });
         }
-        Ok(Self { counts: d.counts, ..empty })
+        Ok(Self { grid: d.grid, discount_beyond_m: d.discount_beyond_m, counts: d.counts })
+    }
+}
+
+/// Errors unless `discount_beyond_m` is a positive, finite distance.
+fn check_discount(discount_beyond_m: f64) -> Result<()> {
+    if discount_beyond_m.is_finite() && discount_beyond_m > 0.0 {
+        Ok(())
+    } else {
+        Err(CovmapError::InvalidParameter {
+            name: "discount_beyond_m",
+            value: discount_beyond_m,
+            expected: "a positive, finite distance",
+        })
     }
 }
 
@@ -67,13 +79,7 @@ impl ScanCounts {
     /// Zero counts over `grid`; beams longer than `discount_beyond_m` count
     /// `discount_beyond_m / d`.
     pub fn with_discount(grid: Grid, discount_beyond_m: f64) -> Result<Self> {
-        if !(discount_beyond_m.is_finite() && discount_beyond_m > 0.0) {
-            return Err(CovmapError::InvalidParameter {
-                name: "discount_beyond_m",
-                value: discount_beyond_m,
-                expected: "a positive, finite distance",
-            });
-        }
+        check_discount(discount_beyond_m)?;
         Ok(Self { discount_beyond_m: Some(discount_beyond_m), ..Self::new(grid) })
     }
 

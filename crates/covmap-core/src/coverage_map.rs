@@ -457,16 +457,20 @@ mod tests {
         // Parameters of the right sign whose kernels cannot be computed: a
         // subnormal sigma overflows the density's scale, a huge uniform
         // weight the normalising sum.
-        let breaks: [fn(&mut SonarModel); 4] = [
-            |m| m.range.sigma_min = -1.0,
-            |m| (m.range.sigma_min, m.range.sigma_per_m) = (1e-310, 0.0),
-            |m| m.range.xi_min = 1e308,
-            |m| m.range.xi_per_m = 1e306,
+        // Each error names the parameter at fault.
+        type Break = (fn(&mut SonarModel), &'static str);
+        let breaks: [Break; 5] = [
+            (|m| m.range.sigma_min = -1.0, "sigma_min"),
+            (|m| (m.range.sigma_min, m.range.sigma_per_m) = (1e-310, 0.0), "sigma_min"),
+            (|m| (m.range.xi_min, m.range.xi_per_m) = (2e6, 0.0), "xi_min"),
+            (|m| m.range.xi_min = 1e308, "xi_min"),
+            (|m| m.range.xi_per_m = 1e306, "xi_per_m"),
         ];
-        for brk in breaks {
+        for (brk, at_fault) in breaks {
             let mut bad = sonar;
             brk(&mut bad);
-            assert!(matches!(map.integrate(&p, &[1.0], &[0.0], &bad), Err(CovmapError::InvalidParameter { .. })));
+            let err = map.integrate(&p, &[1.0], &[0.0], &bad).unwrap_err();
+            assert!(matches!(err, CovmapError::InvalidParameter { name, .. } if name == at_fault), "{err}");
             assert_eq!(map.histograms(), &before[..]);
         }
     }

@@ -162,10 +162,11 @@ impl Grid {
         let [ox, oy] = self.origin_m;
         [ox, oy, ox + self.cols as f64 * self.resolution_m, oy + self.rows as f64 * self.resolution_m]
     }
-    /// Whether the world point lies inside the grid (the upper edges
-    /// excluded): exactly when [`Self::world_to_cell`] finds its cell, so a
-    /// point a rounding error below an upper edge is inside only if it falls
-    /// in the last cell.
+    /// Whether the world point lies inside the grid: exactly when
+    /// [`Self::world_to_cell`] finds its cell. Up to the rounding of
+    /// `(x - x_min) / resolution`, that is the rectangle with its upper edges
+    /// excluded: a point a rounding error below an upper edge may fall
+    /// outside, and one on it may round into the last cell.
     pub fn contains(&self, x: f64, y: f64) -> bool {
         self.world_to_cell(x, y).is_some()
     }

@@ -77,15 +77,15 @@ struct OccupancyGridData {
 impl TryFrom<OccupancyGridData> for OccupancyGrid {
     type Error = CovmapError;
     fn try_from(d: OccupancyGridData) -> Result<Self> {
-        let empty = Self::with_model(d.model, d.counts)?;
-        if d.log_odds.len() != empty.log_odds.len() {
+        if d.log_odds.len() != d.counts.grid().len() {
             return Err(CovmapError::LengthMismatch {
                 what: "log-odds and grid cells",
                 left: d.log_odds.len(),
-                right: empty.log_odds.len(),
+                right: d.counts.grid().len(),
             });
         }
-        let limit = empty.model.log_odds_limit as f32;
+        d.model.validate()?;
+        let limit = d.model.log_odds_limit as f32;
         if let Some(&l) = d.log_odds.iter().find(|l| !(l.abs() <= limit)) {
             return Err(CovmapError::InvalidParameter {
                 name: "log_odds",
@@ -93,12 +93,15 @@ impl TryFrom<OccupancyGridData> for OccupancyGrid {
                 expected: "log-odds within the model's limit",
             });
         }
-        Ok(Self { log_odds: d.log_odds, ..empty })
+        Ok(Self { model: d.model, log_odds: d.log_odds, counts: d.counts })
     }
 }
 
 impl OccupancyGrid {
     /// An unknown (p = 0.5) grid with the default model and undiscounted counts.
+    ///
+    /// # Panics
+    /// If its 8 bytes a cell cannot be allocated.
     pub fn new(grid: Grid) -> Self {
         Self { model: OccupancyModel::default(), log_odds: vec![0.0; grid.len()], counts: ScanCounts::new(grid) }
     }

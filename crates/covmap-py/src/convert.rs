@@ -18,7 +18,8 @@ use crate::errors::{Exception, to_py};
 
 /// The values of a numpy array of `ndim` dimensions and element type `T`, in
 /// row-major order, with its shape. Other dimensions or dtypes, and masked
-/// arrays, are errors: nothing is converted or dropped silently.
+/// arrays with masked values, are errors: nothing is converted or dropped
+/// silently.
 fn numpy_values<T: Element + Copy>(
     array: &Bound<'_, PyUntypedArray>,
     name: &str,
@@ -26,11 +27,17 @@ fn numpy_values<T: Element + Copy>(
     expected: &str,
 ) -> PyResult<(Vec<T>, Vec<usize>)> {
     let py = array.py();
-    // A masked array's mask would be dropped without a word: refuse it.
-    if array.hasattr(pyo3::intern!(py, "mask"))? {
+    // A masked array with masked values would lose its mask without a word:
+    // refuse it (one with nothing masked is its data).
+    if array.hasattr(pyo3::intern!(py, "mask"))?
+        && py
+            .import(pyo3::intern!(py, "numpy.ma"))?
+            .call_method1(pyo3::intern!(py, "is_masked"), (array,))?
+            .is_truthy()?
+    {
         return Err(Exception::ArrayDtype.err(
             py,
-            format!("{name} is a masked array, whose mask covmap would ignore: pass .filled(value) or .compressed()"),
+            format!("{name} has masked values, which covmap would ignore: pass .filled(value) or .compressed()"),
         ));
     }
     let shape = array.shape().to_vec();

@@ -91,7 +91,9 @@ impl PyGrid {
         (a, b, c, d)
     }
 
-    /// Whether the world point lies inside the grid (upper edges excluded).
+    /// Whether the world point lies in a cell of the grid: the rectangle with
+    /// its upper edges excluded, up to rounding (a point on an upper edge may
+    /// round into the last cell).
     fn contains(&self, x: f64, y: f64) -> bool {
         self.0.contains(x, y)
     }

@@ -24,7 +24,8 @@ use wide::f64x4;
 
 use crate::material::Material;
 
-/// The longest piece of an edge the ray caster tests as one leaf, metres.
+/// The longest piece of an edge the ray caster tests as one leaf, metres
+/// (for edges of up to [`MAX_PIECES`] such pieces).
 pub(crate) const RAY_PIECE_M: f64 = 2.0;
 /// The most pieces one edge is cut into (2 km of edge at [`RAY_PIECE_M`]).
 pub(crate) const MAX_PIECES: usize = 1024;

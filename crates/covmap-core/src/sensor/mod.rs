@@ -70,7 +70,8 @@ pub struct RangeModel {
 }
 
 /// The smallest `sigma_min`: a standard deviation of coverage (which spans
-/// 0 to 1) below it only makes the density's scale overflow.
+/// 0 to 1) a millionth wide is already a spike between the bins; far below
+/// it (near 1e-308) the density's scale would overflow.
 const MIN_SIGMA: f64 = 1e-6;
 /// The largest uniform weight `xi` anywhere up to the maximum range: beyond
 /// it the kernel is uniform to far below `f32` precision anyway, and the sum
@@ -96,14 +97,13 @@ impl RangeModel {
             "a standard deviation of at least 1e-6 (coverage)",
         )?;
         check("sigma_per_m", self.sigma_per_m, self.sigma_per_m >= 0.0, "a non-negative growth")?;
-        check("xi_min", self.xi_min, self.xi_min > 0.0, "a positive weight")?;
+        check("xi_min", self.xi_min, self.xi_min > 0.0 && self.xi_min <= MAX_XI, "a positive weight of at most 1e6")?;
         check("xi_per_m", self.xi_per_m, self.xi_per_m >= 0.0, "a non-negative growth")?;
-        let heaviest = self.xi(self.max_range_m);
         check(
             "xi_per_m",
             self.xi_per_m,
-            heaviest <= MAX_XI,
-            "a growth that keeps the uniform weight at most 1e6 out to the maximum range",
+            self.xi(self.max_range_m) <= MAX_XI,
+            "a growth that keeps xi_min + xi_per_m * max_range_m at most 1e6",
         )?;
         let widest = self.sigma(self.max_range_m);
         check(
@@ -136,9 +136,9 @@ impl RangeModel {
     /// precomputed table the update uses (built anew on every call: for
     /// looking at kernels, not for loops).
     ///
-    /// Errors if the model is invalid, the resolution is not positive and
-    /// finite, the bin count is not supported, or a distance is NaN,
-    /// infinite or negative.
+    /// Errors if the model is invalid, the resolution is not finite or below
+    /// [`crate::MIN_RESOLUTION_M`], the bin count is not supported, or a
+    /// distance is NaN, infinite or negative.
     pub fn kernel(
         &self,
         cell_distance_m: f64,

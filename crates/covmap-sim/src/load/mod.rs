@@ -37,25 +37,20 @@ pub(crate) fn parse_error(path: &Path, place: impl Into<String>, reason: impl In
 }
 
 /// Write `bytes` to `path` atomically: a temporary file in the same directory,
-/// then a rename, so a reader never sees half a file. Every call writes its
-/// own temporary file (named by the process and a count of the calls), so
-/// writes of one path from several threads or processes at once each land
-/// whole; the last rename wins.
+/// then a rename, so a reader never sees half a file. Every call creates a
+/// temporary file of its own, with a short name (so that the longest valid
+/// file name still has room) that no existing file has: writes of one path
+/// from several threads or processes at once each land whole (the last
+/// rename wins), and a temporary file left over by a crash is stepped
+/// around, never reused.
 pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<()> {
-    use std::sync::atomic::{AtomicU64, Ordering};
-    static CALLS: AtomicU64 = AtomicU64::new(0);
     let io = |source| SimError::Io { path: path.to_path_buf(), source };
-    let name = path
-        .file_name()
-        .ok_or_else(|| io(std::io::Error::new(std::io::ErrorKind::InvalidInput, "the path names no file")))?;
-    let mut tmp_name = std::ffi::OsString::from(".");
-    tmp_name.push(name);
-    tmp_name.push(format!(".tmp{}-{}", std::process::id(), CALLS.fetch_add(1, Ordering::Relaxed)));
-    let tmp = path.with_file_name(tmp_name);
+    if path.file_name().is_none() {
+        return Err(io(std::io::Error::new(std::io::ErrorKind::InvalidInput, "the path names no file")));
+    }
+    let (tmp, mut f) = create_temporary(path).map_err(io)?;
     let result = (|| {
         use std::io::Write;
-        // Never another writer's file: a name left over by a crash is an error.
-        let mut f = std::fs::File::options().write(true).create_new(true).open(&tmp)?;
         f.write_all(bytes)?;
         f.sync_all()?;
         std::fs::rename(&tmp, path)
@@ -64,6 +59,32 @@ pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<()> {
         let _ = std::fs::remove_file(&tmp);
     }
     result.map_err(io)
+}
+
+/// A new file beside `path`, `.covmap-<16 hex digits>.tmp`, created where
+/// no file of that name exists. The digits mix the process, a count of the
+/// calls and the clock, and a name that is taken is skipped for the next.
+fn create_temporary(path: &Path) -> std::io::Result<(std::path::PathBuf, std::fs::File)> {
+    use std::hash::{BuildHasher, Hasher};
+    use std::sync::atomic::{AtomicU64, Ordering};
+    static CALLS: AtomicU64 = AtomicU64::new(0);
+    let mut last = None;
+    for _ in 0..64 {
+        // A randomly keyed hasher (the standard library's), so that processes
+        // that share a directory and a pid (in two containers, say) still
+        // draw different names.
+        let mut h = std::collections::hash_map::RandomState::new().build_hasher();
+        h.write_u32(std::process::id());
+        h.write_u64(CALLS.fetch_add(1, Ordering::Relaxed));
+        h.write_u128(std::time::SystemTime::now().duration_since(std::time::UNIX_EPOCH).map_or(0, |d| d.as_nanos()));
+        let tmp = path.with_file_name(format!(".covmap-{:016x}.tmp", h.finish()));
+        match std::fs::File::options().write(true).create_new(true).open(&tmp) {
+            Ok(f) => return Ok((tmp, f)),
+            Err(e) if e.kind() == std::io::ErrorKind::AlreadyExists => last = Some(e),
+            Err(e) => return Err(e),
+        }
+    }
+    Err(last.unwrap_or_else(|| std::io::Error::other("no free temporary name")))
 }
 
 #[cfg(test)]
@@ -97,6 +118,23 @@ mod tests {
         }
         let left: Vec<_> = std::fs::read_dir(&dir).unwrap().map(|e| e.unwrap().file_name()).collect();
         assert_eq!(left, [std::ffi::OsString::from("out.bin")], "temporary files left behind");
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+
+    /// The longest valid file name can be written, and temporary files left
+    /// by an earlier crash neither block a write nor are overwritten.
+    #[test]
+    fn long_names_and_leftovers_do_not_stop_a_write() {
+        let dir = std::env::temp_dir().join(format!("covmap-sim-write-leftover-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let long = dir.join("a".repeat(255));
+        write_atomic(&long, b"long").unwrap();
+        assert_eq!(std::fs::read(&long).unwrap(), b"long");
+        let (stale, _) = create_temporary(&dir.join("out.json")).unwrap();
+        std::fs::write(&stale, b"left by a crash").unwrap();
+        write_atomic(&dir.join("out.json"), b"{}").unwrap();
+        assert_eq!(std::fs::read(dir.join("out.json")).unwrap(), b"{}");
+        assert_eq!(std::fs::read(&stale).unwrap(), b"left by a crash");
         std::fs::remove_dir_all(&dir).unwrap();
     }
 }
