@@ -72,7 +72,7 @@ use crate::error::{CovmapError, Result};
 use crate::footprint::{CellVisitor, ROW_BLOCK, visit};
 use crate::grid::Grid;
 use crate::numeric::{ln_normal, x_ln_x, x_ln_x_of_f32};
-use crate::scan::{Pose, check_bearings};
+use crate::scan::{Pose, check_bearings, check_pose};
 use crate::sensor::{Footprint, KernelTable, RangeModel, ReadingLookup, SensorModel};
 
 /// Which evaluator computes the expected gain.
@@ -160,10 +160,7 @@ pub fn reading_distribution(
             right: grid.len(),
         });
     }
-    if !(origin[0].is_finite() && origin[1].is_finite() && angle_rad.is_finite()) {
-        return Err(CovmapError::InvalidPose { x: origin[0], y: origin[1], theta: angle_rad });
-    }
-    grid.check_inside(origin[0], origin[1])?;
+    check_pose(grid, &Pose::new(origin[0], origin[1], angle_rad))?;
     range.validate()?;
     check_step(step_m, grid.resolution_m())?;
     Ok(trace_readings(grid, stop, origin, angle_rad, range, step_m))
@@ -454,15 +451,15 @@ impl<'a> GainEvaluator<'a> {
     }
 
     fn validate(&self, poses: &[Pose], bearings: &[f64]) -> Result<()> {
+        if poses.is_empty() {
+            // No direction to form: the bearings themselves.
+            return check_bearings(0.0, bearings);
+        }
         for pose in poses {
-            if !(pose.x_m.is_finite() && pose.y_m.is_finite() && pose.theta_rad.is_finite()) {
-                return Err(CovmapError::InvalidPose { x: pose.x_m, y: pose.y_m, theta: pose.theta_rad });
-            }
-            self.map.grid().check_inside(pose.x_m, pose.y_m)?;
+            check_pose(self.map.grid(), pose)?;
             check_bearings(pose.theta_rad, bearings)?;
         }
-        // With no pose, the bearings themselves.
-        check_bearings(0.0, bearings)
+        Ok(())
     }
 
     fn distribution(&self, origin: [f64; 2], angle: f64) -> ReadingDistribution {

@@ -39,7 +39,7 @@ use crate::coverage_map::CoverageMap;
 use crate::error::{CovmapError, Result};
 use crate::gain::{GainEvaluator, GainMethod, GainOptions};
 use crate::grid::{Cell, Grid};
-use crate::scan::Pose;
+use crate::scan::{Pose, check_pose};
 use crate::sensor::SensorModel;
 
 /// Settings of the planner. See the [module documentation](self).
@@ -370,7 +370,7 @@ impl Planner {
     /// [`Self::free_space`], and shortest paths from `pose` over it and the
     /// unblocked cells the robot's disc at `pose` overlaps.
     fn free_and_reachable(&self, map: &CoverageMap, pose: &Pose) -> Result<(Vec<bool>, Reachability)> {
-        let start = self.start_cell(map, pose)?;
+        let start = check_pose(map.grid(), pose)?;
         let grid = map.grid();
         let (free, blocked) = self.free_and_blocked(map);
         let start_index = grid.index(start)?;
@@ -383,13 +383,6 @@ impl Planner {
         }
         let reach = shortest_paths(grid, &passable, start)?;
         Ok((free, reach))
-    }
-
-    fn start_cell(&self, map: &CoverageMap, pose: &Pose) -> Result<Cell> {
-        if !(pose.x_m.is_finite() && pose.y_m.is_finite() && pose.theta_rad.is_finite()) {
-            return Err(CovmapError::InvalidPose { x: pose.x_m, y: pose.y_m, theta: pose.theta_rad });
-        }
-        map.grid().check_inside(pose.x_m, pose.y_m)
     }
 
     /// Choose the next viewpoint for a robot at `pose` scanning with beams at
@@ -470,7 +463,7 @@ impl Planner {
     /// # Errors
     /// As [`Self::reachability`].
     pub fn status(&self, map: &CoverageMap, pose: &Pose) -> Result<ExplorationStatus> {
-        let start = self.start_cell(map, pose)?;
+        let start = check_pose(map.grid(), pose)?;
         let mut passable: Vec<bool> = self.blocked(map, false).iter().map(|b| !b).collect();
         passable[map.grid().index(start)?] = true;
         let reach = shortest_paths(map.grid(), &passable, start)?;

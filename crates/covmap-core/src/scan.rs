@@ -3,7 +3,7 @@
 use serde::{Deserialize, Serialize};
 
 use crate::error::{CovmapError, Result};
-use crate::grid::Grid;
+use crate::grid::{Cell, Grid};
 
 /// A robot pose in the plane: position in metres, heading in radians.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
@@ -33,10 +33,7 @@ impl From<[f64; 3]> for Pose {
 /// finite non-negative ranges, finite bearings whose beam directions (heading
 /// plus bearing) are finite too.
 pub(crate) fn validate_scan(grid: &Grid, pose: &Pose, ranges: &[f64], bearings: &[f64]) -> Result<()> {
-    if !(pose.x_m.is_finite() && pose.y_m.is_finite() && pose.theta_rad.is_finite()) {
-        return Err(CovmapError::InvalidPose { x: pose.x_m, y: pose.y_m, theta: pose.theta_rad });
-    }
-    grid.check_inside(pose.x_m, pose.y_m)?;
+    check_pose(grid, pose)?;
     if ranges.len() != bearings.len() {
         return Err(CovmapError::LengthMismatch {
             what: "ranges and bearings",
@@ -48,6 +45,16 @@ pub(crate) fn validate_scan(grid: &Grid, pose: &Pose, ranges: &[f64], bearings: 
         return Err(CovmapError::InvalidRange { index, value });
     }
     check_bearings(pose.theta_rad, bearings)
+}
+
+/// The cell of `pose` on `grid`: an error if a component is not finite
+/// ([`CovmapError::InvalidPose`]) or the position lies in no cell
+/// ([`CovmapError::PoseOutsideMap`]).
+pub(crate) fn check_pose(grid: &Grid, pose: &Pose) -> Result<Cell> {
+    if !(pose.x_m.is_finite() && pose.y_m.is_finite() && pose.theta_rad.is_finite()) {
+        return Err(CovmapError::InvalidPose { x: pose.x_m, y: pose.y_m, theta: pose.theta_rad });
+    }
+    grid.check_inside(pose.x_m, pose.y_m)
 }
 
 /// Errors on the first bearing that is not finite or whose beam direction,

@@ -28,8 +28,10 @@ fn numpy_values<T: Element + Copy>(
 ) -> PyResult<(Vec<T>, Vec<usize>)> {
     let py = array.py();
     // A masked array with masked values would lose its mask without a word:
-    // refuse it (one with nothing masked is its data).
-    if array.hasattr(pyo3::intern!(py, "mask"))?
+    // refuse it (one with nothing masked is its data). A plain ndarray, the
+    // common case, is not asked for a mask it cannot have.
+    if !array.is_exact_instance_of::<PyUntypedArray>()
+        && array.hasattr(pyo3::intern!(py, "mask"))?
         && py
             .import(pyo3::intern!(py, "numpy.ma"))?
             .call_method1(pyo3::intern!(py, "is_masked"), (array,))?

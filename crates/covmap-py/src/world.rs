@@ -45,19 +45,15 @@ impl PyWorld {
                 Exception::InvalidType
                     .err(py, format!("polygons must be a list of (N, 2) vertex arrays, got {}", polygons.get_type()))
             })?;
-        // A lone string is a sequence too, of letters: not a list of names.
-        let materials = match materials {
-            Some(m) if m.is_instance_of::<pyo3::types::PyString>() => {
-                return Err(
-                    Exception::InvalidType.err(py, "materials must be a list of names, one per polygon, got a str")
-                );
-            }
-            Some(m) => Some(m.extract::<Vec<String>>().map_err(|_| {
-                Exception::InvalidType
-                    .err(py, format!("materials must be a list of names, one per polygon, got {}", m.get_type()))
-            })?),
-            None => None,
-        };
+        // PyO3 refuses a lone string here (a sequence of letters, not names).
+        let materials = materials
+            .map(|m| {
+                m.extract::<Vec<String>>().map_err(|_| {
+                    Exception::InvalidType
+                        .err(py, format!("materials must be a list of names, one per polygon, got {}", m.get_type()))
+                })
+            })
+            .transpose()?;
         let materials = match materials {
             None => vec![Material::Wall; lists.len()],
             Some(names) if names.len() == lists.len() => {

@@ -121,8 +121,9 @@ mod tests {
         std::fs::remove_dir_all(&dir).unwrap();
     }
 
-    /// The longest valid file name can be written, and temporary files left
-    /// by an earlier crash neither block a write nor are overwritten.
+    /// The longest valid file name can be written (the temporary name does
+    /// not grow with it), and a temporary file left by an earlier crash is
+    /// left alone.
     #[test]
     fn long_names_and_leftovers_do_not_stop_a_write() {
         let dir = std::env::temp_dir().join(format!("covmap-sim-write-leftover-{}", std::process::id()));
