@@ -22,9 +22,11 @@ pub(crate) trait CellVisitor {
     /// Visit the cells `first .. first + n` of one row of a cone, at
     /// distances `d[..n]` (which are also where the cone reaches them), those
     /// within `reach_m` only (`d[n..]` lie past the row's end: finite, but no
-    /// cells'). A visitor may take the block at once.
+    /// cells'). `near` and `far` are the least and the greatest of `d[..n]`.
+    /// A visitor may take the block at once.
     #[inline(always)]
-    fn row_block(&mut self, first: usize, d: &[f64; ROW_BLOCK], n: usize, reach_m: f64) {
+    fn row_block(&mut self, first: usize, d: &[f64; ROW_BLOCK], n: usize, [near, far]: [f64; 2], reach_m: f64) {
+        let _ = (near, far);
         for (k, &d) in d[..n].iter().enumerate() {
             if d <= reach_m {
                 self.cell(first + k, d, d);
@@ -154,23 +156,37 @@ fn visit_cone(grid: &Grid, [sx, sy]: [f64; 2], axis: f64, half: f64, reach: f64,
         };
         let base = row * cols;
         let py2 = py * py;
-        let mut px = ox + (col_lo as f64 + 0.5) * r - sx;
         // The distances of a block of cells first (vector square roots), then
         // the visits.
         let mut col = col_lo;
+        let mut next = ox + (col_lo as f64 + 0.5) * r - sx;
         while col <= col_hi {
             let n = (col_hi + 1 - col).min(ROW_BLOCK);
+            let mut px = [0.0f64; ROW_BLOCK];
+            for x in px.iter_mut() {
+                *x = next;
+                next += r;
+            }
             let mut d = [0.0f64; ROW_BLOCK];
-            for x in d.iter_mut() {
-                *x = px;
-                px += r;
+            for (d, &x) in d.iter_mut().zip(&px) {
+                *d = (x * x + py2).sqrt();
             }
-            for x in d.iter_mut() {
-                *x = (*x * *x + py2).sqrt();
-            }
-            f.row_block(base + col, &d, n, reach);
-            // Only the row's last block is short, so `px` runs past the
-            // row's end only when the row is done.
+            // The distance falls towards the sensor's column and grows away
+            // from it (every step rounds monotonically), so the extremes lie
+            // at the block's ends unless the block spans that column.
+            let (first, last) = (px[0], px[n - 1]);
+            let far = d[0].max(d[n - 1]);
+            let near = if first >= 0.0 {
+                d[0]
+            } else if last <= 0.0 {
+                d[n - 1]
+            } else {
+                d[..n].iter().fold(f64::INFINITY, |lo, &x| if x < lo { x } else { lo })
+            };
+            f.row_block(base + col, &d, n, [near, far], reach);
+            // Only the row's last block is short, so `next` runs past the
+            // row's end only when the row is done; past it, `px` and `d` are
+            // finite but name no cells.
             col += n;
         }
     }
@@ -280,6 +296,32 @@ mod tests {
                 assert!((d - want[k]).abs() < 1e-9);
             }
         }
+    }
+
+    /// A row block's `near` and `far` are the least and the greatest of its
+    /// distances, on cones of every direction, inside the map and at its
+    /// edges.
+    #[test]
+    fn row_block_bounds_are_the_extremes() {
+        struct Check(usize);
+        impl CellVisitor for Check {
+            fn cell(&mut self, _: usize, _: f64, _: f64) {}
+            fn row_block(&mut self, _: usize, d: &[f64; ROW_BLOCK], n: usize, [near, far]: [f64; 2], _: f64) {
+                let lo = d[..n].iter().copied().fold(f64::INFINITY, f64::min);
+                let hi = d[..n].iter().copied().fold(0.0, f64::max);
+                assert_eq!((near, far), (lo, hi), "{:?}", &d[..n]);
+                self.0 += 1;
+            }
+        }
+        let grid = Grid::new([-1.0, 0.5], 0.05, 90, 70).unwrap();
+        let mut check = Check(0);
+        for k in 0..720 {
+            let axis = k as f64 * 0.5f64.to_radians() + 0.003;
+            let origin = [-1.0 + 0.0117 * (k % 300) as f64, 0.5 + 0.0093 * (k % 370) as f64];
+            let cone = Footprint::Cone { half_angle_rad: (5.0 + (k % 40) as f64).to_radians() };
+            visit(&grid, origin, axis, 1.0 + (k % 5) as f64, cone, &mut check);
+        }
+        assert!(check.0 > 10_000, "{} blocks", check.0);
     }
 
     /// Every cell the ray visits intersects the segment, they are contiguous,

@@ -46,10 +46,14 @@
 //!   updated histogram costs three dot products and one logarithm:
 //!   `H(h k / Z) = ln Z - A / Z`, `Z = sum h k`, `A = sum k (h ln h) + h (k ln k)`;
 //! - the gains are computed in batches, the logarithms of a batch together as
-//!   vector code, with AVX2 and FMA where the processor has them (detected at
-//!   run time; the two paths agree to rounding); the cache lines a queued gain
-//!   will read are requested when it is queued, so that they have arrived
-//!   when the batch is computed;
+//!   vector code; the whole walk of a beam is compiled for the widest
+//!   arithmetic the processor has (detected at run time): AVX-512, where
+//!   eight gains go through the sums, the logarithm and the weighting
+//!   together (a 16-bin row in two registers), or AVX2 and FMA, or the
+//!   target's baseline; every path agrees with the others to rounding and is
+//!   tested against the exact evaluator; the cache lines a queued gain will
+//!   read are requested when it is queued, so that they have arrived when the
+//!   batch is computed;
 //! - a cone is walked in blocks of a row's neighbouring cells, and a block
 //!   that lies wholly in front of the nearest echo it could meet (most of
 //!   them) queues its free-space gains at once, without testing echoes cell
@@ -71,6 +75,8 @@ use crate::coverage_map::CoverageMap;
 use crate::error::{CovmapError, Result};
 use crate::footprint::{CellVisitor, ROW_BLOCK, visit};
 use crate::grid::Grid;
+#[cfg(target_arch = "x86_64")]
+use crate::numeric::ln_normal_zmm;
 use crate::numeric::{ln_normal, x_ln_x, x_ln_x_of_f32};
 use crate::scan::{Pose, check_bearings, check_pose};
 use crate::sensor::{Footprint, KernelTable, RangeModel, ReadingLookup, SensorModel};
@@ -331,8 +337,8 @@ pub struct GainEvaluator<'a> {
     stop: Vec<f32>,
     step_m: f64,
     cache: std::sync::OnceLock<LogCache>,
-    /// Whether the gain arithmetic may use AVX2 and FMA (detected at run time).
-    wide: bool,
+    /// The widest arithmetic the processor offers (detected at run time).
+    arith: Arith,
 }
 
 impl<'a> GainEvaluator<'a> {
@@ -361,7 +367,7 @@ impl<'a> GainEvaluator<'a> {
             stop,
             step_m,
             cache: std::sync::OnceLock::new(),
-            wide: wide_arithmetic(),
+            arith: Arith::detect(),
         })
     }
 
@@ -383,12 +389,12 @@ impl<'a> GainEvaluator<'a> {
         if method == GainMethod::Fast {
             self.cache.get_or_init(|| LogCache::new(self.map, &self.table));
         }
-        let beam = |pose: &Pose, b: f64| -> f64 {
+        let beam = |pose: &Pose, b: f64, queue: &mut Queue| -> f64 {
             let origin = [pose.x_m, pose.y_m];
             let angle = pose.theta_rad + b;
             match method {
                 GainMethod::Exact => self.exact_beam(origin, angle),
-                GainMethod::Fast => self.fast_beam(origin, angle),
+                GainMethod::Fast => self.fast_beam(origin, angle, queue),
             }
         };
         // Candidates are taken in groups of neighbours (in Z order over the
@@ -414,8 +420,10 @@ impl<'a> GainEvaluator<'a> {
             }
             beams.sort_by(|x, y| x.0.total_cmp(&y.0).then(x.1.cmp(&y.1)));
             let mut totals: Vec<(usize, f64)> = members.iter().map(|&(_, k)| (k, 0.0)).collect();
+            // One queue of gains for the group's beams (each beam leaves it empty).
+            let mut queue = Queue::new();
             for (_, slot, b) in beams {
-                totals[slot].1 += beam(&poses[totals[slot].0], b);
+                totals[slot].1 += beam(&poses[totals[slot].0], b, &mut queue);
             }
             totals
         };
@@ -493,7 +501,7 @@ impl<'a> GainEvaluator<'a> {
         total + dist.no_echo * self.exact_reading(origin, angle, self.range.max_range_m)
     }
 
-    fn fast_beam(&self, origin: [f64; 2], angle: f64) -> f64 {
+    fn fast_beam(&self, origin: [f64; 2], angle: f64, queue: &mut Queue) -> f64 {
         let Some(cache) = self.cache.get() else { return f64::NAN };
         let dist = self.distribution(origin, angle);
         let (none_reach, _) = self.range.reach(self.range.max_range_m);
@@ -534,27 +542,78 @@ impl<'a> GainEvaluator<'a> {
             no_echo: dist.no_echo,
             none_lookup: self.table.reading(self.range.max_range_m, false),
             none_reach,
-            wide: self.wide,
         };
         // Fix the bin count at compile time for the common sizes, so that the
         // per-cell gain is straight vector code.
         match self.map.bins() {
-            8 => self.run::<8>(&beam, origin, angle, reach),
-            16 => self.run::<16>(&beam, origin, angle, reach),
-            32 => self.run::<32>(&beam, origin, angle, reach),
-            _ => self.run::<0>(&beam, origin, angle, reach),
+            8 => self.run::<8>(&beam, origin, angle, reach, queue),
+            16 => self.run::<16>(&beam, origin, angle, reach, queue),
+            32 => self.run::<32>(&beam, origin, angle, reach, queue),
+            _ => self.run::<0>(&beam, origin, angle, reach, queue),
         }
     }
 
-    fn run<const N: usize>(&self, beam: &Beam<'_>, origin: [f64; 2], angle: f64, reach: f64) -> f64 {
-        let rows = Rows {
-            h: rows(self.map.histograms()),
-            h_ln_h: rows(&beam.cache.h_ln_h),
-            entropy: &beam.cache.entropy,
-            k: rows(self.table.values_f64()),
-            k_ln_k: rows(self.table.k_ln_k()),
-        };
-        let mut sweep = FastBeam::<N> { beam, rows, total: 0.0, jobs: [(0, 0, 0.0); SLOTS], queued: 0 };
+    /// One beam's sum with `N` bins, the whole walk compiled for the widest
+    /// arithmetic the processor has.
+    fn run<const N: usize>(&self, beam: &Beam<'_>, origin: [f64; 2], angle: f64, reach: f64, queue: &mut Queue) -> f64 {
+        #[cfg(target_arch = "x86_64")]
+        match self.arith {
+            // SAFETY: `arith` is `Avx512` or `Avx2` only where the processor
+            // has those instructions (`Arith::detect`).
+            Arith::Avx512 => return unsafe { self.run_avx512::<N>(beam, origin, angle, reach, queue) },
+            Arith::Avx2 => return unsafe { self.run_avx2::<N>(beam, origin, angle, reach, queue) },
+            Arith::Baseline => {}
+        }
+        self.run_with::<N, BASELINE>(beam, origin, angle, reach, queue)
+    }
+
+    /// [`Self::run_with`] compiled for AVX-512 (F, DQ, VL), AVX2 and FMA.
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx512f,avx512dq,avx512vl,avx2,fma,bmi1,bmi2,lzcnt,popcnt")]
+    fn run_avx512<const N: usize>(
+        &self,
+        beam: &Beam<'_>,
+        origin: [f64; 2],
+        angle: f64,
+        reach: f64,
+        queue: &mut Queue,
+    ) -> f64 {
+        self.run_with::<N, AVX512>(beam, origin, angle, reach, queue)
+    }
+
+    /// [`Self::run_with`] compiled for AVX2 and FMA.
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2,fma,bmi1,bmi2,lzcnt,popcnt")]
+    fn run_avx2<const N: usize>(
+        &self,
+        beam: &Beam<'_>,
+        origin: [f64; 2],
+        angle: f64,
+        reach: f64,
+        queue: &mut Queue,
+    ) -> f64 {
+        self.run_with::<N, AVX2>(beam, origin, angle, reach, queue)
+    }
+
+    /// One beam's sum with `N` bins and the arithmetic `A`.
+    #[inline(always)]
+    fn run_with<const N: usize, const A: u8>(
+        &self,
+        beam: &Beam<'_>,
+        origin: [f64; 2],
+        angle: f64,
+        reach: f64,
+        queue: &mut Queue,
+    ) -> f64 {
+        let rows = Rows::new(
+            self.map.histograms(),
+            &beam.cache.h_ln_h,
+            &beam.cache.entropy,
+            self.table.values_f64(),
+            self.table.k_ln_k(),
+        );
+        debug_assert_eq!(queue.len, 0);
+        let mut sweep = FastBeam::<N, A> { beam, rows, total: 0.0, queue };
         visit(self.map.grid(), origin, angle, reach, self.footprint, &mut sweep);
         sweep.flush();
         sweep.total
@@ -620,8 +679,6 @@ struct Beam<'a> {
     no_echo: f64,
     none_lookup: ReadingLookup,
     none_reach: f64,
-    /// Whether AVX2 and FMA may be used.
-    wide: bool,
 }
 
 impl Beam<'_> {
@@ -635,16 +692,35 @@ impl Beam<'_> {
 
 /// The fast evaluator's work for one beam, with `N` bins per histogram (0: any
 /// number).
-struct FastBeam<'a, const N: usize> {
+struct FastBeam<'a, const N: usize, const A: u8> {
     beam: &'a Beam<'a>,
     rows: Rows<'a, N>,
     total: f64,
-    /// Gains waiting to be computed, `jobs[..queued]`. Computing them in
-    /// batches lets the processor overlap the independent cells instead of
-    /// waiting on each one's logarithm. Fewer than [`BATCH`] wait between
-    /// calls, so a row block always finds room for its [`ROW_BLOCK`].
-    jobs: [Job; SLOTS],
-    queued: usize,
+    /// Gains waiting to be computed. Computing them in batches lets the
+    /// processor overlap the independent cells instead of waiting on each
+    /// one's logarithm. Fewer than [`BATCH`] wait between calls, so a row
+    /// block always finds room for its [`ROW_BLOCK`]. Empty between beams.
+    queue: &'a mut Queue,
+}
+
+/// Gains waiting to be computed, the first `len` of each array: cell
+/// `cell[j]`'s gain under the kernel at table offset `offset[j]`, weighted by
+/// `weight[j]`. Arrays side by side, not one of tuples, so that vector code
+/// reads eight weights (or entropies) at once.
+struct Queue {
+    cell: [usize; SLOTS],
+    offset: [usize; SLOTS],
+    weight: [f64; SLOTS],
+    /// `H(h)` of each job's cell, read when it is queued (neighbouring cells
+    /// of a row block at once), so that a batch needs no gather.
+    entropy: [f64; SLOTS],
+    len: usize,
+}
+
+impl Queue {
+    fn new() -> Self {
+        Self { cell: [0; SLOTS], offset: [0; SLOTS], weight: [0.0; SLOTS], entropy: [0.0; SLOTS], len: 0 }
+    }
 }
 
 /// What one gain reads, cut into rows of `N` bins (empty for `N = 0`), so
@@ -660,6 +736,22 @@ struct Rows<'a, const N: usize> {
     k: &'a [[f64; N]],
     /// `k ln k`, per table entry.
     k_ln_k: &'a [[f64; N]],
+}
+
+impl<'a, const N: usize> Rows<'a, N> {
+    /// The rows of histograms `h` and their `h ln h`, and of kernels `k` and
+    /// their `k ln k`.
+    ///
+    /// # Panics
+    /// If `h_ln_h` is not as long as `h`, `entropy` does not hold one value
+    /// per histogram, or `k_ln_k` is not as long as `k`: the unchecked reads
+    /// of [`row_sums_zmm`] rely on it.
+    fn new(h: &'a [f32], h_ln_h: &'a [f64], entropy: &'a [f64], k: &'a [f64], k_ln_k: &'a [f64]) -> Self {
+        assert!(h.len() == h_ln_h.len() && k.len() == k_ln_k.len(), "rows of unequal lengths");
+        let rows = Self { h: rows(h), h_ln_h: rows(h_ln_h), entropy, k: rows(k), k_ln_k: rows(k_ln_k) };
+        assert!(N == 0 || rows.h.len() == entropy.len(), "one entropy per histogram");
+        rows
+    }
 }
 
 /// `values` cut into rows of `N` (none for `N = 0`).
@@ -687,74 +779,113 @@ fn z_order(x: u32, y: u32) -> u64 {
 const BATCH: usize = 64;
 /// Room for the jobs of a batch: one row block may overfill it.
 const SLOTS: usize = BATCH + ROW_BLOCK;
+const _: () = assert!(SLOTS.is_multiple_of(8));
 
-impl<const N: usize> FastBeam<'_, N> {
+impl<const N: usize, const A: u8> FastBeam<'_, N, A> {
     /// Compute the waiting gains, in the order they were queued.
     fn flush(&mut self) {
-        if self.queued == 0 {
+        if self.queue.len == 0 {
             return;
         }
-        let jobs = &self.jobs[..self.queued];
-        self.total +=
-            if N == 0 { weighted_gains_any(self.beam, jobs) } else { weighted_gains(&self.rows, self.beam.wide, jobs) };
-        self.queued = 0;
+        let q = &self.queue;
+        self.total += if N == 0 { weighted_gains_any(self.beam, q) } else { weighted_gains::<N, A>(&self.rows, q) };
+        self.queue.len = 0;
     }
 }
 
-/// A gain waiting to be computed: `(cell, kernel offset, weight)`.
-type Job = (usize, usize, f64);
+/// The arithmetic the fast evaluator is compiled for: what [`Arith::detect`]
+/// finds decides which one runs. Each wider one includes the narrower.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[repr(u8)]
+enum Arith {
+    /// The target's baseline (SSE2 on x86-64).
+    Baseline = BASELINE,
+    /// AVX2 and FMA.
+    Avx2 = AVX2,
+    /// AVX-512 (F, DQ, VL) with AVX2 and FMA: a 16-bin row in two registers.
+    Avx512 = AVX512,
+}
 
-/// Whether this processor has AVX2 and FMA.
-fn wide_arithmetic() -> bool {
-    #[cfg(target_arch = "x86_64")]
-    {
-        std::arch::is_x86_feature_detected!("avx2") && std::arch::is_x86_feature_detected!("fma")
+/// [`Arith`] as the const parameter of the compiled paths.
+const BASELINE: u8 = 0;
+const AVX2: u8 = 1;
+const AVX512: u8 = 2;
+
+impl Arith {
+    /// The widest arithmetic this processor has.
+    fn detect() -> Self {
+        #[cfg(target_arch = "x86_64")]
+        {
+            use std::arch::is_x86_feature_detected as has;
+            let avx2 = has!("avx2") && has!("fma") && has!("bmi1") && has!("bmi2") && has!("lzcnt") && has!("popcnt");
+            if avx2 && has!("avx512f") && has!("avx512dq") && has!("avx512vl") {
+                return Self::Avx512;
+            }
+            if avx2 {
+                return Self::Avx2;
+            }
+        }
+        Self::Baseline
     }
-    #[cfg(not(target_arch = "x86_64"))]
-    {
-        false
+
+    /// Every arithmetic this processor can run, widest first (for tests).
+    #[cfg(test)]
+    fn available() -> Vec<Self> {
+        let widest = Self::detect() as u8;
+        [Self::Avx512, Self::Avx2, Self::Baseline].into_iter().filter(|&a| a as u8 <= widest).collect()
     }
 }
 
-/// `sum w I(h_i | k)` over at most [`SLOTS`] jobs, in order, with the
-/// processor's widest arithmetic (`N > 0`).
-fn weighted_gains<const N: usize>(rows: &Rows<'_, N>, wide: bool, jobs: &[Job]) -> f64 {
+/// [`weighted_gains_with`] compiled for the arithmetic `A` (`N > 0`).
+fn weighted_gains<const N: usize, const A: u8>(rows: &Rows<'_, N>, jobs: &Queue) -> f64 {
     #[cfg(target_arch = "x86_64")]
-    if wide {
-        // SAFETY: `wide` is set only when the processor supports AVX2 and FMA
-        // (`wide_arithmetic`).
-        return unsafe { weighted_gains_avx2_fma::<N>(rows, jobs) };
+    {
+        // SAFETY: `A` names AVX-512 or AVX2 only in code compiled for it
+        // (`run_avx512`, `run_avx2`), which runs only where the processor has
+        // those instructions (`Arith::detect`).
+        if A == AVX512 {
+            return unsafe { weighted_gains_avx512::<N>(rows, jobs) };
+        }
+        if A == AVX2 {
+            return unsafe { weighted_gains_avx2::<N>(rows, jobs) };
+        }
     }
-    #[cfg(not(target_arch = "x86_64"))]
-    let _ = wide;
-    weighted_gains_with::<N, false>(rows, jobs)
+    weighted_gains_with::<N, BASELINE>(rows, jobs)
+}
+
+/// [`weighted_gains_with`] compiled for AVX-512.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx512f,avx512dq,avx512vl,avx2,fma")]
+fn weighted_gains_avx512<const N: usize>(rows: &Rows<'_, N>, jobs: &Queue) -> f64 {
+    if N.is_multiple_of(8) { weighted_gains_zmm::<N>(rows, jobs) } else { weighted_gains_with::<N, AVX2>(rows, jobs) }
 }
 
 /// [`weighted_gains_with`] compiled for AVX2 and FMA.
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx2,fma")]
-fn weighted_gains_avx2_fma<const N: usize>(rows: &Rows<'_, N>, jobs: &[Job]) -> f64 {
-    weighted_gains_with::<N, true>(rows, jobs)
+fn weighted_gains_avx2<const N: usize>(rows: &Rows<'_, N>, jobs: &Queue) -> f64 {
+    weighted_gains_with::<N, AVX2>(rows, jobs)
 }
 
-/// `sum w I(h_i | k)` over at most [`SLOTS`] jobs, each gain
+/// `sum w I(h_i | k)` over the queued jobs, each gain
 /// `I = H(h) - H(h k / Z) = H(h) - ln Z + A / Z` with `Z = sum h k` and
 /// `A = sum h k ln(h k) = sum k (h ln h) + h (k ln k)`: three dot products and
 /// one logarithm. The logarithms of the batch are taken together, as vector
-/// code. `AVX2`: compute the sums with [`sums_avx2`] (only inside
-/// [`weighted_gains_avx2_fma`]).
+/// code. `A` names the arithmetic the caller is compiled for: with [`AVX2`]
+/// (or wider) the sums are formed in AVX2 registers ([`sums_avx2`]), else in
+/// plain code ([`sums`]).
 #[inline(always)]
-fn weighted_gains_with<const N: usize, const AVX2: bool>(rows: &Rows<'_, N>, jobs: &[Job]) -> f64 {
-    let jobs = &jobs[..jobs.len().min(SLOTS)];
+fn weighted_gains_with<const N: usize, const A: u8>(rows: &Rows<'_, N>, q: &Queue) -> f64 {
+    let n = q.len.min(SLOTS);
     // Unused slots hold Z = 1, A = 0.
     let mut z = [1.0f64; SLOTS];
     let mut a = [0.0f64; SLOTS];
-    for (j, &(i, offset, _)) in jobs.iter().enumerate() {
-        let e = offset / N;
+    for j in 0..n {
+        let (i, e) = (q.cell[j], q.offset[j] / N);
         #[cfg(target_arch = "x86_64")]
-        if AVX2 {
-            // SAFETY: `AVX2` is set only inside `weighted_gains_avx2_fma`,
-            // which runs only where the processor has AVX2 and FMA.
+        if A >= AVX2 {
+            // SAFETY: `A` is `AVX2` or wider only in code compiled for AVX2
+            // and FMA, which runs only where the processor has them.
             (z[j], a[j]) = unsafe { sums_avx2::<N>(&rows.h[i], &rows.h_ln_h[i], &rows.k[e], &rows.k_ln_k[e]) };
             continue;
         }
@@ -766,12 +897,184 @@ fn weighted_gains_with<const N: usize, const AVX2: bool>(rows: &Rows<'_, N>, job
         posterior[j] = ln_normal(z[j]) - a[j] / z[j];
     }
     let mut total = 0.0;
-    for (j, &(i, _, w)) in jobs.iter().enumerate() {
+    for j in 0..n {
         // The fast logarithm holds for normal numbers only.
         let h_post = if z[j].is_normal() { posterior[j] } else { z[j].ln() - a[j] / z[j] };
-        total += w * (rows.entropy[i] - h_post);
+        total += q.weight[j] * (q.entropy[j] - h_post);
     }
     total
+}
+
+/// [`weighted_gains_with`] in AVX-512 registers, eight gains at a time from
+/// the sums to the weighted total (`N` a multiple of 8): each job's products
+/// fill eight lanes ([`row_sums_zmm`]), the eight jobs' lanes are summed
+/// together by a transposing tree ([`transpose_sum8`]), and the logarithm
+/// ([`ln_normal_zmm`], the same operations as [`ln_normal`]), the division
+/// and the weighting each take one instruction for all eight. The weighted
+/// gains go into eight running sums, added pairwise at the end. Each job's
+/// gain is formed in the same order whatever its neighbours, and each beam's
+/// total in an order fixed by its own queue.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx512f,avx512dq,avx512vl,avx2,fma")]
+fn weighted_gains_zmm<const N: usize>(rows: &Rows<'_, N>, q: &Queue) -> f64 {
+    use std::arch::x86_64::*;
+    const GROUPS: usize = SLOTS.div_ceil(8);
+    let n = q.len.min(SLOTS);
+    let groups = n.div_ceil(8);
+    // In three passes over the groups of eight, so that the long chains of
+    // one group's logarithm and divisions overlap those of the others.
+    let mut z = [_mm512_set1_pd(1.0); GROUPS];
+    let mut a = [_mm512_setzero_pd(); GROUPS];
+    for g in 0..groups {
+        let lanes = (n - 8 * g).min(8);
+        // Lanes past the last job repeat it; they weigh 0. The jobs' sums
+        // are folded in as they come (see `sum_pairs`), so that few vectors
+        // wait at a time. (No closures: they would not inherit the target
+        // features, and the intrinsics would become calls.)
+        let mut j = [0usize; 8];
+        for (l, j) in j.iter_mut().enumerate() {
+            *j = 8 * g + l.min(lanes - 1);
+        }
+        let (za, aa) = row_sums_zmm::<N>(rows, q.cell[j[0]], q.offset[j[0]] / N);
+        let (zb, ab) = row_sums_zmm::<N>(rows, q.cell[j[1]], q.offset[j[1]] / N);
+        let (z01, a01) = (sum_pairs(za, zb), sum_pairs(aa, ab));
+        let (za, aa) = row_sums_zmm::<N>(rows, q.cell[j[2]], q.offset[j[2]] / N);
+        let (zb, ab) = row_sums_zmm::<N>(rows, q.cell[j[3]], q.offset[j[3]] / N);
+        let (z23, a23) = (sum_pairs(za, zb), sum_pairs(aa, ab));
+        let (z0, a0) = (sum_quads(z01, z23), sum_quads(a01, a23));
+        let (za, aa) = row_sums_zmm::<N>(rows, q.cell[j[4]], q.offset[j[4]] / N);
+        let (zb, ab) = row_sums_zmm::<N>(rows, q.cell[j[5]], q.offset[j[5]] / N);
+        let (z45, a45) = (sum_pairs(za, zb), sum_pairs(aa, ab));
+        let (za, aa) = row_sums_zmm::<N>(rows, q.cell[j[6]], q.offset[j[6]] / N);
+        let (zb, ab) = row_sums_zmm::<N>(rows, q.cell[j[7]], q.offset[j[7]] / N);
+        let (z67, a67) = (sum_pairs(za, zb), sum_pairs(aa, ab));
+        let (z1, a1) = (sum_quads(z45, z67), sum_quads(a45, a67));
+        (z[g], a[g]) = (sum_quads(z0, z1), sum_quads(a0, a1));
+    }
+    let mut posterior = [_mm512_setzero_pd(); GROUPS];
+    let mut normal = 0xffu8;
+    for g in 0..groups {
+        posterior[g] = _mm512_sub_pd(ln_normal_zmm(z[g]), _mm512_div_pd(a[g], z[g]));
+        // The fast logarithm holds for normal (positive) numbers only.
+        normal &= _mm512_cmp_pd_mask::<_CMP_GE_OQ>(z[g], _mm512_set1_pd(f64::MIN_POSITIVE))
+            & _mm512_cmp_pd_mask::<_CMP_LE_OQ>(z[g], _mm512_set1_pd(f64::MAX));
+    }
+    if normal != 0xff {
+        // Rare: the library's logarithm for the lanes that need it.
+        for g in 0..groups {
+            let (mut zs, mut ps, mut as_) = ([0.0f64; 8], [0.0f64; 8], [0.0f64; 8]);
+            // SAFETY: each array holds eight values.
+            unsafe {
+                _mm512_storeu_pd(zs.as_mut_ptr(), z[g]);
+                _mm512_storeu_pd(as_.as_mut_ptr(), a[g]);
+                _mm512_storeu_pd(ps.as_mut_ptr(), posterior[g]);
+            }
+            for l in 0..8 {
+                if !zs[l].is_normal() {
+                    ps[l] = zs[l].ln() - as_[l] / zs[l];
+                }
+            }
+            // SAFETY: `ps` holds eight values.
+            posterior[g] = unsafe { _mm512_loadu_pd(ps.as_ptr()) };
+        }
+    }
+    let mut acc = _mm512_setzero_pd();
+    for (g, &posterior) in posterior.iter().enumerate().take(groups) {
+        let lanes = (n - 8 * g).min(8);
+        let used: __mmask8 = if lanes == 8 { 0xff } else { (1u8 << lanes) - 1 };
+        // SAFETY: `8 g + 8 <= SLOTS` (`SLOTS` is a multiple of 8), so eight
+        // weights and entropies lie in the queue.
+        let (w, entropy) = unsafe {
+            (
+                _mm512_maskz_loadu_pd(used, q.weight.as_ptr().add(8 * g)),
+                _mm512_maskz_loadu_pd(used, q.entropy.as_ptr().add(8 * g)),
+            )
+        };
+        acc = _mm512_fmadd_pd(w, _mm512_sub_pd(entropy, posterior), acc);
+    }
+    let mut lanes = [0.0f64; 8];
+    // SAFETY: `lanes` holds eight values.
+    unsafe { _mm512_storeu_pd(lanes.as_mut_ptr(), acc) };
+    pairwise_sum(&lanes)
+}
+
+/// `Z` and `A` of cell `i` under kernel `e`, each as eight lane sums (`N` a
+/// multiple of 8).
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx512f")]
+#[inline]
+fn row_sums_zmm<const N: usize>(
+    rows: &Rows<'_, N>,
+    i: usize,
+    e: usize,
+) -> (std::arch::x86_64::__m512d, std::arch::x86_64::__m512d) {
+    use std::arch::x86_64::*;
+    assert!(i < rows.h.len() && e < rows.k.len(), "cell or kernel out of range");
+    // SAFETY: `Rows::new` made `h_ln_h` as long as `h` and `k_ln_k` as long
+    // as `k`, and the two indices were checked against those.
+    let (h, u, k, m) = unsafe {
+        (rows.h.get_unchecked(i), rows.h_ln_h.get_unchecked(i), rows.k.get_unchecked(e), rows.k_ln_k.get_unchecked(e))
+    };
+    // Each chunk of eight bins on its own, then the chunks added pairwise:
+    // short chains of dependent operations let many jobs be in flight.
+    let mut z = [_mm512_setzero_pd(); 4];
+    let mut a = [_mm512_setzero_pd(); 4];
+    for c in 0..N / 8 {
+        // SAFETY: `8 c + 7 < N`, the length of every row.
+        let (hv, uv, kv, mv) = unsafe {
+            (
+                _mm512_cvtps_pd(_mm256_loadu_ps(h.as_ptr().add(8 * c))),
+                _mm512_loadu_pd(u.as_ptr().add(8 * c)),
+                _mm512_loadu_pd(k.as_ptr().add(8 * c)),
+                _mm512_loadu_pd(m.as_ptr().add(8 * c)),
+            )
+        };
+        let (zc, ac) = (_mm512_mul_pd(hv, kv), _mm512_fmadd_pd(uv, kv, _mm512_mul_pd(hv, mv)));
+        if c < 4 {
+            (z[c], a[c]) = (zc, ac);
+        } else {
+            (z[c % 4], a[c % 4]) = (_mm512_add_pd(z[c % 4], zc), _mm512_add_pd(a[c % 4], ac));
+        }
+    }
+    (fold4::<N>(z), fold4::<N>(a))
+}
+
+/// The sum of the first `N / 8` (at most four) vectors of `v`, pairwise.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx512f")]
+#[inline]
+fn fold4<const N: usize>(v: [std::arch::x86_64::__m512d; 4]) -> std::arch::x86_64::__m512d {
+    use std::arch::x86_64::*;
+    match N / 8 {
+        1 => v[0],
+        2 => _mm512_add_pd(v[0], v[1]),
+        3 => _mm512_add_pd(_mm512_add_pd(v[0], v[1]), v[2]),
+        _ => _mm512_add_pd(_mm512_add_pd(v[0], v[1]), _mm512_add_pd(v[2], v[3])),
+    }
+}
+
+/// The first step of summing eight vectors' lanes into one vector (lane `j`
+/// the sum of vector `j`'s lanes), for two of them:
+/// `[x(0+1), y(0+1), x(2+3), y(2+3), x(4+5), y(4+5), x(6+7), y(6+7)]`.
+/// [`sum_quads`] of two such gives four vectors' sums by halves, and of two
+/// of those the eight sums in order: lane `j` adds vector `j`'s lanes in
+/// neighbouring pairs, then pairs of pairs, then halves.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx512f")]
+#[inline]
+fn sum_pairs(x: std::arch::x86_64::__m512d, y: std::arch::x86_64::__m512d) -> std::arch::x86_64::__m512d {
+    use std::arch::x86_64::*;
+    _mm512_add_pd(_mm512_unpacklo_pd(x, y), _mm512_unpackhi_pd(x, y))
+}
+
+/// 128-bit chunks 0 and 2 of each argument plus chunks 1 and 3 (see
+/// [`sum_pairs`]).
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx512f")]
+#[inline]
+fn sum_quads(x: std::arch::x86_64::__m512d, y: std::arch::x86_64::__m512d) -> std::arch::x86_64::__m512d {
+    use std::arch::x86_64::*;
+    _mm512_add_pd(_mm512_shuffle_f64x2::<0b10_00_10_00>(x, y), _mm512_shuffle_f64x2::<0b11_01_11_01>(x, y))
 }
 
 /// `Z = sum h k` and `A = sum k (h ln h) + h (k ln k)` for `N` bins (a
@@ -820,11 +1123,11 @@ fn sums_avx2<const N: usize>(h: &[f32; N], u: &[f64; N], k: &[f64; N], m: &[f64;
 }
 
 /// [`weighted_gains`] for any bin count, plainly.
-fn weighted_gains_any(beam: &Beam<'_>, jobs: &[Job]) -> f64 {
+fn weighted_gains_any(beam: &Beam<'_>, q: &Queue) -> f64 {
     let bins = beam.map.bins();
     let (k, m) = (beam.table.values_f64(), beam.table.k_ln_k());
     let mut total = 0.0;
-    for &(i, offset, w) in jobs {
+    for ((&i, &offset), &w) in q.cell.iter().zip(&q.offset).zip(&q.weight).take(q.len) {
         let cell = i * bins..(i + 1) * bins;
         let (h, u) = (&beam.map.histograms()[cell.clone()], &beam.cache.h_ln_h[cell]);
         let kernel = offset..offset + bins;
@@ -846,7 +1149,7 @@ fn plain_gain(h_u: impl Iterator<Item = (f64, f64)>, entropy: f64, k: &[f64], m:
     entropy - (z.ln() - a / z)
 }
 
-impl<const N: usize> FastBeam<'_, N> {
+impl<const N: usize, const A: u8> FastBeam<'_, N, A> {
     /// Ask for the cache lines of cell `i`'s histogram and `h ln h`: its gains
     /// are computed at the next flush, by when they have arrived.
     #[inline(always)]
@@ -871,14 +1174,13 @@ impl<const N: usize> FastBeam<'_, N> {
     }
 
     /// The weight of the free kernel, if it is the only one every cell of a
-    /// cone's row block (at distances `d`) gets: every cell within `reach_m`,
+    /// cone's row block (at distances from `near` to `far`) gets: every cell within `reach_m`,
     /// the echoes that end before the block reaching none of it, the next
     /// leaving all of it in free space, and either every cell or none within
     /// the reach of no echo. The same weight [`CellVisitor::cell`] gives each.
     #[inline(always)]
-    fn block_weight(&self, d: &[f64], reach_m: f64) -> Option<f64> {
+    fn block_weight(&self, [near, far]: [f64; 2], reach_m: f64) -> Option<f64> {
         let beam = self.beam;
-        let (near, far) = d.iter().fold((f64::INFINITY, 0.0f64), |(lo, hi), &x| (lo.min(x), hi.max(x)));
         if !(far <= reach_m) {
             return None;
         }
@@ -912,23 +1214,25 @@ impl<const N: usize> FastBeam<'_, N> {
         if prior {
             self.total += w * self.beam.cache.prior_gain[self.kernel_index(offset)];
         } else {
-            self.push((i, offset, w));
+            self.push(i, offset, w);
         }
     }
 
     /// Queue one gain; compute the batch when it is full.
     #[inline(always)]
-    fn push(&mut self, job: Job) {
-        debug_assert!(self.queued < BATCH);
-        self.jobs[self.queued] = job;
-        self.queued += 1;
-        if self.queued >= BATCH {
+    fn push(&mut self, i: usize, offset: usize, w: f64) {
+        debug_assert!(self.queue.len < BATCH);
+        let j = self.queue.len.min(BATCH);
+        let q = &mut self.queue;
+        (q.cell[j], q.offset[j], q.weight[j], q.entropy[j]) = (i, offset, w, self.rows.entropy[i]);
+        self.queue.len = j + 1;
+        if self.queue.len >= BATCH {
             self.flush();
         }
     }
 }
 
-impl<const N: usize> CellVisitor for FastBeam<'_, N> {
+impl<const N: usize, const A: u8> CellVisitor for FastBeam<'_, N, A> {
     #[inline(always)]
     fn cell(&mut self, i: usize, d_l: f64, enter: f64) {
         let beam = self.beam;
@@ -964,8 +1268,8 @@ impl<const N: usize> CellVisitor for FastBeam<'_, N> {
     }
 
     #[inline(always)]
-    fn row_block(&mut self, first: usize, d: &[f64; ROW_BLOCK], n: usize, reach_m: f64) {
-        if let Some(w) = self.block_weight(&d[..n], reach_m) {
+    fn row_block(&mut self, first: usize, d: &[f64; ROW_BLOCK], n: usize, bounds: [f64; 2], reach_m: f64) {
+        if let Some(w) = self.block_weight(bounds, reach_m) {
             // Every cell of the block gets the free kernel with weight `w`:
             // what `cell` would do for each, done for the block at once.
             if w <= 0.0 {
@@ -995,7 +1299,7 @@ impl<const N: usize> CellVisitor for FastBeam<'_, N> {
                         g[k] = self.beam.cache.prior_gain[free.free_step(d[k])];
                     } else {
                         self.prefetch(first + k);
-                        self.push((first + k, free.free_offset(d[k]), w));
+                        self.push(first + k, free.free_offset(d[k]), w);
                     }
                 }
                 self.total += w * pairwise_sum(&g);
@@ -1003,15 +1307,23 @@ impl<const N: usize> CellVisitor for FastBeam<'_, N> {
             }
             // Fewer than `BATCH` wait, so the block fits; the `min` only
             // tells the compiler so.
-            let queued = self.queued.min(BATCH);
-            for (k, (job, &d)) in self.jobs[queued..queued + ROW_BLOCK].iter_mut().zip(d).enumerate() {
-                *job = (first + k, free.free_offset(d), w);
+            let q = &mut self.queue;
+            let at = q.len.min(BATCH);
+            let slots = at..at + ROW_BLOCK;
+            for (k, ((cell, offset), weight)) in
+                q.cell[slots.clone()].iter_mut().zip(&mut q.offset[slots.clone()]).zip(&mut q.weight[slots]).enumerate()
+            {
+                (*cell, *offset, *weight) = (first + k, free.free_offset(d[k]), w);
             }
+            match self.rows.entropy.get(first..first + ROW_BLOCK) {
+                Some(e) => q.entropy[at..at + ROW_BLOCK].copy_from_slice(e),
+                None => q.entropy[at..at + n].copy_from_slice(&self.rows.entropy[first..first + n]),
+            }
+            q.len = at + n;
             for k in 0..n {
                 self.prefetch(first + k);
             }
-            self.queued = queued + n;
-            if self.queued >= BATCH {
+            if self.queue.len >= BATCH {
                 self.flush();
             }
             return;
@@ -1099,13 +1411,73 @@ mod tests {
                 let poses: Vec<Pose> =
                     (0..6).map(|k| Pose::new(0.4 + 1.1 * k as f64, 1.0 + 0.6 * k as f64, k as f64)).collect();
                 let exact = eval.evaluate(&poses, &bearings, GainMethod::Exact).unwrap();
-                // The processor's widest arithmetic and the baseline one.
-                for wide in [wide_arithmetic(), false] {
-                    eval.wide = wide;
+                // Every arithmetic the processor can run.
+                for arith in Arith::available() {
+                    eval.arith = arith;
                     let fast = eval.evaluate(&poses, &bearings, GainMethod::Fast).unwrap();
                     for (f, e) in fast.iter().zip(&exact) {
                         assert!(*e > 0.0);
-                        assert!((f - e).abs() <= 1e-6 * e.abs(), "{stop_coverage:?}, wide {wide}: fast {f} exact {e}");
+                        assert!((f - e).abs() <= 1e-6 * e.abs(), "{stop_coverage:?}, {arith:?}: fast {f} exact {e}");
+                    }
+                }
+            }
+        }
+    }
+
+    /// Every arithmetic the processor can run, for every bin count with a
+    /// path of its own (8, 16, 32) and one without (12), equals the exact
+    /// evaluator on seeded random maps: cells from nearly uniform to nearly
+    /// certain, some at the prior, some with bins rounded to subnormal
+    /// `f32` values or to zero.
+    #[test]
+    fn every_arithmetic_equals_exact_on_random_maps() {
+        let mut state = 0x243f_6a88_85a3_08d3u64;
+        let mut next = move || {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            (state >> 11) as f64 / (1u64 << 53) as f64
+        };
+        let grid = Grid::new([0.0, 0.0], 0.1, 24, 28).unwrap();
+        for case in 0..24 {
+            let bins = [8, 16, 32, 12][case % 4];
+            let mut data = Vec::with_capacity(grid.len() * bins);
+            for _ in 0..grid.len() {
+                let kind = next();
+                if kind < 0.2 {
+                    data.extend(std::iter::repeat_n(1.0 / bins as f32, bins));
+                    continue;
+                }
+                let sharpness = (1.0 + 40.0 * next()) as i32;
+                let mut h: Vec<f32> = (0..bins).map(|_| next().powi(sharpness) as f32).collect();
+                if kind > 0.9 {
+                    // Bins far below the rest: subnormal or zero in `f32`.
+                    h.iter_mut().step_by(3).for_each(|v| *v *= 1e-40);
+                }
+                h[case % bins] += 1e-3;
+                let sum: f32 = h.iter().sum();
+                data.extend(h.iter().map(|v| v / sum));
+            }
+            let map = CoverageMap::from_histograms(grid, bins, data).unwrap();
+            let mut sonar = SonarModel::default();
+            sonar.range.max_range_m = 1.0 + 1.5 * next();
+            sonar.opening_angle_rad = 0.1 + 0.8 * next();
+            let mut laser = LaserModel::default();
+            laser.range.max_range_m = 1.0 + 1.5 * next();
+            let models: [&dyn SensorModel; 2] = [&sonar, &laser];
+            let poses: Vec<Pose> =
+                (0..3).map(|_| Pose::new(0.05 + 2.7 * next(), 0.05 + 2.3 * next(), 6.0 * next() - 3.0)).collect();
+            let bearings: Vec<f64> = (0..4).map(|_| 6.4 * next() - 3.2).collect();
+            let stop_coverage = if case % 3 == 0 { StopCoverage::Mean } else { StopCoverage::MaximumLikelihood };
+            for model in models {
+                let options = GainOptions { range_step_m: None, stop_coverage };
+                let mut eval = GainEvaluator::new(&map, model, options).unwrap();
+                let exact = eval.evaluate(&poses, &bearings, GainMethod::Exact).unwrap();
+                for arith in Arith::available() {
+                    eval.arith = arith;
+                    let fast = eval.evaluate(&poses, &bearings, GainMethod::Fast).unwrap();
+                    for (f, e) in fast.iter().zip(&exact) {
+                        assert!((f - e).abs() <= 1e-6 * e.abs().max(1e-12), "case {case}, {arith:?}: {f} vs {e}");
                     }
                 }
             }

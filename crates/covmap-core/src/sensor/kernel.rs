@@ -1,6 +1,7 @@
 //! The precomputed kernel table: the update loop evaluates no `exp` or `log`.
 
 use super::{RangeModel, kernel_values};
+use crate::aligned::Aligned;
 use crate::error::{CovmapError, Result};
 use crate::grid::MIN_RESOLUTION_M;
 use crate::histogram::MAX_BINS;
@@ -50,9 +51,10 @@ pub struct KernelTable {
     /// `[region][s][bin]`, each kernel normalised to sum 1.
     values: Vec<f32>,
     /// Every value `k` in `f64`, and `k ln k`, for the entropies of updated
-    /// histograms ([`crate::gain`]).
-    values_f64: Vec<f64>,
-    k_ln_k: Vec<f64>,
+    /// histograms ([`crate::gain`]), from the start of a cache line (so that
+    /// a 16-bin kernel's eight-value halves never straddle two).
+    values_f64: Aligned<f64>,
+    k_ln_k: Aligned<f64>,
 }
 
 impl KernelTable {
@@ -80,7 +82,8 @@ impl KernelTable {
             }
         }
         let values_f64: Vec<f64> = values.iter().map(|&v| f64::from(v)).collect();
-        let k_ln_k = values_f64.iter().map(|&v| x_ln_x(v)).collect();
+        let k_ln_k: Vec<f64> = values_f64.iter().map(|&v| x_ln_x(v)).collect();
+        let (values_f64, k_ln_k) = (Aligned::from_slice(&values_f64), Aligned::from_slice(&k_ln_k));
         Ok(Self {
             model: *model,
             resolution_m,
@@ -202,7 +205,13 @@ impl ReadingLookup {
     /// `DISTANCE_STEPS + 1`).
     #[inline(always)]
     pub(crate) fn free_step(&self, d_l: f64) -> usize {
-        (d_l.max(0.0).min(self.d) * self.inv_step_s + 0.5).min(DISTANCE_STEPS as f64) as i32 as usize
+        // Clamped by comparisons (which become plain vector min and max; a
+        // NaN distance, which valid input never gives, reads as `self.d`).
+        let s = if d_l < self.d { d_l } else { self.d };
+        let s = if s > 0.0 { s } else { 0.0 };
+        let step = s * self.inv_step_s + 0.5;
+        let steps = DISTANCE_STEPS as f64;
+        (if step < steps { step } else { steps }) as i32 as usize
     }
 }
 
