@@ -531,6 +531,9 @@ impl<'a> GainEvaluator<'a> {
             echo_buckets(&possible, bucket_m, reach, self.map.grid().resolution_m())
         };
         let beam = Beam {
+            origin,
+            angle,
+            reach,
             map: self.map,
             cache,
             table: &self.table,
@@ -546,65 +549,44 @@ impl<'a> GainEvaluator<'a> {
         // Fix the bin count at compile time for the common sizes, so that the
         // per-cell gain is straight vector code.
         match self.map.bins() {
-            8 => self.run::<8>(&beam, origin, angle, reach, queue),
-            16 => self.run::<16>(&beam, origin, angle, reach, queue),
-            32 => self.run::<32>(&beam, origin, angle, reach, queue),
-            _ => self.run::<0>(&beam, origin, angle, reach, queue),
+            8 => self.run::<8>(&beam, queue),
+            16 => self.run::<16>(&beam, queue),
+            32 => self.run::<32>(&beam, queue),
+            _ => self.run::<0>(&beam, queue),
         }
     }
 
     /// One beam's sum with `N` bins, the whole walk compiled for the widest
     /// arithmetic the processor has.
-    fn run<const N: usize>(&self, beam: &Beam<'_>, origin: [f64; 2], angle: f64, reach: f64, queue: &mut Queue) -> f64 {
+    fn run<const N: usize>(&self, beam: &Beam<'_>, queue: &mut Queue) -> f64 {
         #[cfg(target_arch = "x86_64")]
         match self.arith {
             // SAFETY: `arith` is `Avx512` or `Avx2` only where the processor
             // has those instructions (`Arith::detect`).
-            Arith::Avx512 => return unsafe { self.run_avx512::<N>(beam, origin, angle, reach, queue) },
-            Arith::Avx2 => return unsafe { self.run_avx2::<N>(beam, origin, angle, reach, queue) },
+            Arith::Avx512 => return unsafe { self.run_avx512::<N>(beam, queue) },
+            Arith::Avx2 => return unsafe { self.run_avx2::<N>(beam, queue) },
             Arith::Baseline => {}
         }
-        self.run_with::<N, BASELINE>(beam, origin, angle, reach, queue)
+        self.run_with::<N, BASELINE>(beam, queue)
     }
 
     /// [`Self::run_with`] compiled for AVX-512 (F, DQ, VL), AVX2 and FMA.
     #[cfg(target_arch = "x86_64")]
     #[target_feature(enable = "avx512f,avx512dq,avx512vl,avx2,fma,bmi1,bmi2,lzcnt,popcnt")]
-    fn run_avx512<const N: usize>(
-        &self,
-        beam: &Beam<'_>,
-        origin: [f64; 2],
-        angle: f64,
-        reach: f64,
-        queue: &mut Queue,
-    ) -> f64 {
-        self.run_with::<N, AVX512>(beam, origin, angle, reach, queue)
+    fn run_avx512<const N: usize>(&self, beam: &Beam<'_>, queue: &mut Queue) -> f64 {
+        self.run_with::<N, AVX512>(beam, queue)
     }
 
     /// [`Self::run_with`] compiled for AVX2 and FMA.
     #[cfg(target_arch = "x86_64")]
     #[target_feature(enable = "avx2,fma,bmi1,bmi2,lzcnt,popcnt")]
-    fn run_avx2<const N: usize>(
-        &self,
-        beam: &Beam<'_>,
-        origin: [f64; 2],
-        angle: f64,
-        reach: f64,
-        queue: &mut Queue,
-    ) -> f64 {
-        self.run_with::<N, AVX2>(beam, origin, angle, reach, queue)
+    fn run_avx2<const N: usize>(&self, beam: &Beam<'_>, queue: &mut Queue) -> f64 {
+        self.run_with::<N, AVX2>(beam, queue)
     }
 
     /// One beam's sum with `N` bins and the arithmetic `A`.
     #[inline(always)]
-    fn run_with<const N: usize, const A: u8>(
-        &self,
-        beam: &Beam<'_>,
-        origin: [f64; 2],
-        angle: f64,
-        reach: f64,
-        queue: &mut Queue,
-    ) -> f64 {
+    fn run_with<const N: usize, const A: u8>(&self, beam: &Beam<'_>, queue: &mut Queue) -> f64 {
         let rows = Rows::new(
             self.map.histograms(),
             &beam.cache.h_ln_h,
@@ -614,7 +596,7 @@ impl<'a> GainEvaluator<'a> {
         );
         debug_assert_eq!(queue.len, 0);
         let mut sweep = FastBeam::<N, A> { beam, rows, total: 0.0, queue };
-        visit(self.map.grid(), origin, angle, reach, self.footprint, &mut sweep);
+        visit(self.map.grid(), beam.origin, beam.angle, beam.reach, self.footprint, &mut sweep);
         sweep.flush();
         sweep.total
     }
@@ -661,6 +643,12 @@ struct Hypothesis {
 
 /// What every cell of one beam's widest footprint needs to know.
 struct Beam<'a> {
+    /// Where the beam starts, metres.
+    origin: [f64; 2],
+    /// Its direction, radians.
+    angle: f64,
+    /// How far its footprint is walked, metres.
+    reach: f64,
     map: &'a CoverageMap,
     cache: &'a LogCache,
     table: &'a KernelTable,
