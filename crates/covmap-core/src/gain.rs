@@ -1003,8 +1003,7 @@ fn row_sums_zmm<const N: usize>(
     let (h, u, k, m) = unsafe {
         (rows.h.get_unchecked(i), rows.h_ln_h.get_unchecked(i), rows.k.get_unchecked(e), rows.k_ln_k.get_unchecked(e))
     };
-    // Each chunk of eight bins on its own, then the chunks added pairwise:
-    // short chains of dependent operations let many jobs be in flight.
+    // Each chunk of eight bins on its own, then the chunks added pairwise.
     let mut z = [_mm512_setzero_pd(); 4];
     let mut a = [_mm512_setzero_pd(); 4];
     for c in 0..N / 8 {
