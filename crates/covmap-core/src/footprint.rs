@@ -25,8 +25,7 @@ pub(crate) trait CellVisitor {
     /// cells'). `near` and `far` are the least and the greatest of `d[..n]`.
     /// A visitor may take the block at once.
     #[inline(always)]
-    fn row_block(&mut self, first: usize, d: &[f64; ROW_BLOCK], n: usize, [near, far]: [f64; 2], reach_m: f64) {
-        let _ = (near, far);
+    fn row_block(&mut self, first: usize, d: &[f64; ROW_BLOCK], n: usize, _bounds: [f64; 2], reach_m: f64) {
         for (k, &d) in d[..n].iter().enumerate() {
             if d <= reach_m {
                 self.cell(first + k, d, d);
@@ -303,25 +302,30 @@ mod tests {
     /// edges.
     #[test]
     fn row_block_bounds_are_the_extremes() {
-        struct Check(usize);
+        /// Blocks seen, short ones, and ones whose nearest cell is inside.
+        #[derive(Default)]
+        struct Check([usize; 3]);
         impl CellVisitor for Check {
             fn cell(&mut self, _: usize, _: f64, _: f64) {}
             fn row_block(&mut self, _: usize, d: &[f64; ROW_BLOCK], n: usize, [near, far]: [f64; 2], _: f64) {
                 let lo = d[..n].iter().copied().fold(f64::INFINITY, f64::min);
                 let hi = d[..n].iter().copied().fold(0.0, f64::max);
                 assert_eq!((near, far), (lo, hi), "{:?}", &d[..n]);
-                self.0 += 1;
+                self.0[0] += 1;
+                self.0[1] += usize::from(n < ROW_BLOCK);
+                self.0[2] += usize::from(lo < d[0] && lo < d[n - 1]);
             }
         }
         let grid = Grid::new([-1.0, 0.5], 0.05, 90, 70).unwrap();
-        let mut check = Check(0);
+        let mut check = Check::default();
         for k in 0..720 {
             let axis = k as f64 * 0.5f64.to_radians() + 0.003;
             let origin = [-1.0 + 0.0117 * (k % 300) as f64, 0.5 + 0.0093 * (k % 370) as f64];
             let cone = Footprint::Cone { half_angle_rad: (5.0 + (k % 40) as f64).to_radians() };
             visit(&grid, origin, axis, 1.0 + (k % 5) as f64, cone, &mut check);
         }
-        assert!(check.0 > 10_000, "{} blocks", check.0);
+        let [blocks, short, inside] = check.0;
+        assert!(blocks > 10_000 && short > 1_000 && inside > 1_000, "{blocks} blocks, {short} short, {inside} inside");
     }
 
     /// Every cell the ray visits intersects the segment, they are contiguous,

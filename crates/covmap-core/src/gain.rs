@@ -567,26 +567,35 @@ impl<'a> GainEvaluator<'a> {
             Arith::Avx2 => return unsafe { self.run_avx2::<N>(beam, queue) },
             Arith::Baseline => {}
         }
-        self.run_with::<N, BASELINE>(beam, queue)
+        #[cfg(not(target_arch = "x86_64"))]
+        let _ = self.arith;
+        self.run_with::<N, BASELINE>(Has::baseline(), beam, queue)
     }
 
     /// [`Self::run_with`] compiled for AVX-512 (F, DQ, VL), AVX2 and FMA.
     #[cfg(target_arch = "x86_64")]
-    #[target_feature(enable = "avx512f,avx512dq,avx512vl,avx2,fma,bmi1,bmi2,lzcnt,popcnt")]
+    #[target_feature(enable = "avx512f,avx512dq,avx512vl,avx2,fma")]
     fn run_avx512<const N: usize>(&self, beam: &Beam<'_>, queue: &mut Queue) -> f64 {
-        self.run_with::<N, AVX512>(beam, queue)
+        // SAFETY: this function is compiled for AVX-512, so it may only be
+        // called where the processor has it.
+        let has = unsafe { Has::<AVX512>::new() };
+        self.run_with::<N, AVX512>(has, beam, queue)
     }
 
     /// [`Self::run_with`] compiled for AVX2 and FMA.
     #[cfg(target_arch = "x86_64")]
-    #[target_feature(enable = "avx2,fma,bmi1,bmi2,lzcnt,popcnt")]
+    #[target_feature(enable = "avx2,fma")]
     fn run_avx2<const N: usize>(&self, beam: &Beam<'_>, queue: &mut Queue) -> f64 {
-        self.run_with::<N, AVX2>(beam, queue)
+        // SAFETY: this function is compiled for AVX2 and FMA, so it may only
+        // be called where the processor has them.
+        let has = unsafe { Has::<AVX2>::new() };
+        self.run_with::<N, AVX2>(has, beam, queue)
     }
 
-    /// One beam's sum with `N` bins and the arithmetic `A`.
+    /// One beam's sum with `N` bins and the arithmetic `A`, which `has`
+    /// shows the processor to have.
     #[inline(always)]
-    fn run_with<const N: usize, const A: u8>(&self, beam: &Beam<'_>, queue: &mut Queue) -> f64 {
+    fn run_with<const N: usize, const A: u8>(&self, has: Has<A>, beam: &Beam<'_>, queue: &mut Queue) -> f64 {
         let rows = Rows::new(
             self.map.histograms(),
             &beam.cache.h_ln_h,
@@ -595,7 +604,7 @@ impl<'a> GainEvaluator<'a> {
             self.table.k_ln_k(),
         );
         debug_assert_eq!(queue.len, 0);
-        let mut sweep = FastBeam::<N, A> { beam, rows, total: 0.0, queue };
+        let mut sweep = FastBeam::<N, A> { has, beam, rows, total: 0.0, queue };
         visit(self.map.grid(), beam.origin, beam.angle, beam.reach, self.footprint, &mut sweep);
         sweep.flush();
         sweep.total
@@ -681,6 +690,8 @@ impl Beam<'_> {
 /// The fast evaluator's work for one beam, with `N` bins per histogram (0: any
 /// number).
 struct FastBeam<'a, const N: usize, const A: u8> {
+    /// That the processor has the arithmetic `A` the gains are computed with.
+    has: Has<A>,
     beam: &'a Beam<'a>,
     rows: Rows<'a, N>,
     total: f64,
@@ -731,9 +742,9 @@ impl<'a, const N: usize> Rows<'a, N> {
     /// their `k ln k`.
     ///
     /// # Panics
-    /// If `h_ln_h` is not as long as `h`, `entropy` does not hold one value
-    /// per histogram, or `k_ln_k` is not as long as `k`: the unchecked reads
-    /// of [`row_sums_zmm`] rely on it.
+    /// If `h_ln_h` is not as long as `h` or `k_ln_k` not as long as `k` (the
+    /// unchecked reads of [`row_sums_zmm`] rely on both), or `entropy` does
+    /// not hold one value per histogram.
     fn new(h: &'a [f32], h_ln_h: &'a [f64], entropy: &'a [f64], k: &'a [f64], k_ln_k: &'a [f64]) -> Self {
         assert!(h.len() == h_ln_h.len() && k.len() == k_ln_k.len(), "rows of unequal lengths");
         let rows = Self { h: rows(h), h_ln_h: rows(h_ln_h), entropy, k: rows(k), k_ln_k: rows(k_ln_k) };
@@ -776,7 +787,8 @@ impl<const N: usize, const A: u8> FastBeam<'_, N, A> {
             return;
         }
         let q = &self.queue;
-        self.total += if N == 0 { weighted_gains_any(self.beam, q) } else { weighted_gains::<N, A>(&self.rows, q) };
+        self.total +=
+            if N == 0 { weighted_gains_any(self.beam, q) } else { weighted_gains::<N, A>(self.has, &self.rows, q) };
         self.queue.len = 0;
     }
 }
@@ -799,13 +811,37 @@ const BASELINE: u8 = 0;
 const AVX2: u8 = 1;
 const AVX512: u8 = 2;
 
+mod evidence {
+    /// Evidence that the processor has the instructions the arithmetic `A`
+    /// ([`super::Arith`]) names: the paths compiled for them run only with
+    /// one in hand. Only the baseline's is made without `unsafe`.
+    #[derive(Clone, Copy)]
+    pub(super) struct Has<const A: u8>(());
+
+    impl<const A: u8> Has<A> {
+        /// # Safety
+        /// The processor must have the instructions `A` names.
+        pub(super) unsafe fn new() -> Self {
+            Self(())
+        }
+    }
+
+    impl Has<{ super::BASELINE }> {
+        /// Every processor has the target's baseline.
+        pub(super) fn baseline() -> Self {
+            Self(())
+        }
+    }
+}
+use evidence::Has;
+
 impl Arith {
     /// The widest arithmetic this processor has.
     fn detect() -> Self {
         #[cfg(target_arch = "x86_64")]
         {
             use std::arch::is_x86_feature_detected as has;
-            let avx2 = has!("avx2") && has!("fma") && has!("bmi1") && has!("bmi2") && has!("lzcnt") && has!("popcnt");
+            let avx2 = has!("avx2") && has!("fma");
             if avx2 && has!("avx512f") && has!("avx512dq") && has!("avx512vl") {
                 return Self::Avx512;
             }
@@ -824,13 +860,13 @@ impl Arith {
     }
 }
 
-/// [`weighted_gains_with`] compiled for the arithmetic `A` (`N > 0`).
-fn weighted_gains<const N: usize, const A: u8>(rows: &Rows<'_, N>, jobs: &Queue) -> f64 {
+/// [`weighted_gains_with`] compiled for the arithmetic `A` (`N > 0`), which
+/// `has` shows the processor to have.
+fn weighted_gains<const N: usize, const A: u8>(has: Has<A>, rows: &Rows<'_, N>, jobs: &Queue) -> f64 {
     #[cfg(target_arch = "x86_64")]
     {
-        // SAFETY: `A` names AVX-512 or AVX2 only in code compiled for it
-        // (`run_avx512`, `run_avx2`), which runs only where the processor has
-        // those instructions (`Arith::detect`).
+        // SAFETY: `has` shows that the processor has the instructions `A`
+        // names.
         if A == AVX512 {
             return unsafe { weighted_gains_avx512::<N>(rows, jobs) };
         }
@@ -838,32 +874,43 @@ fn weighted_gains<const N: usize, const A: u8>(rows: &Rows<'_, N>, jobs: &Queue)
             return unsafe { weighted_gains_avx2::<N>(rows, jobs) };
         }
     }
-    weighted_gains_with::<N, BASELINE>(rows, jobs)
+    let _ = has;
+    weighted_gains_with::<N, BASELINE>(Has::baseline(), rows, jobs)
 }
 
-/// [`weighted_gains_with`] compiled for AVX-512.
+/// [`weighted_gains_zmm`] (or, for a bin count that is not a multiple of 8,
+/// [`weighted_gains_with`]) compiled for AVX-512.
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx512f,avx512dq,avx512vl,avx2,fma")]
 fn weighted_gains_avx512<const N: usize>(rows: &Rows<'_, N>, jobs: &Queue) -> f64 {
-    if N.is_multiple_of(8) { weighted_gains_zmm::<N>(rows, jobs) } else { weighted_gains_with::<N, AVX2>(rows, jobs) }
+    if N > 0 && N.is_multiple_of(8) {
+        weighted_gains_zmm::<N>(rows, jobs)
+    } else {
+        // SAFETY: this function is compiled for AVX-512, AVX2 and FMA, so it
+        // may only be called where the processor has them.
+        weighted_gains_with::<N, AVX2>(unsafe { Has::new() }, rows, jobs)
+    }
 }
 
 /// [`weighted_gains_with`] compiled for AVX2 and FMA.
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx2,fma")]
 fn weighted_gains_avx2<const N: usize>(rows: &Rows<'_, N>, jobs: &Queue) -> f64 {
-    weighted_gains_with::<N, AVX2>(rows, jobs)
+    // SAFETY: this function is compiled for AVX2 and FMA, so it may only be
+    // called where the processor has them.
+    weighted_gains_with::<N, AVX2>(unsafe { Has::new() }, rows, jobs)
 }
 
 /// `sum w I(h_i | k)` over the queued jobs, each gain
 /// `I = H(h) - H(h k / Z) = H(h) - ln Z + A / Z` with `Z = sum h k` and
 /// `A = sum h k ln(h k) = sum k (h ln h) + h (k ln k)`: three dot products and
 /// one logarithm. The logarithms of the batch are taken together, as vector
-/// code. `A` names the arithmetic the caller is compiled for: with [`AVX2`]
-/// (or wider) the sums are formed in AVX2 registers ([`sums_avx2`]), else in
-/// plain code ([`sums`]).
+/// code. `A` names the arithmetic the caller is compiled for, which `has`
+/// shows the processor to have: with [`AVX2`] (or wider) the sums are formed
+/// in AVX2 registers ([`sums_avx2`]), else in plain code ([`sums`]).
 #[inline(always)]
-fn weighted_gains_with<const N: usize, const A: u8>(rows: &Rows<'_, N>, q: &Queue) -> f64 {
+fn weighted_gains_with<const N: usize, const A: u8>(has: Has<A>, rows: &Rows<'_, N>, q: &Queue) -> f64 {
+    let _ = has;
     let n = q.len.min(SLOTS);
     // Unused slots hold Z = 1, A = 0.
     let mut z = [1.0f64; SLOTS];
@@ -872,8 +919,7 @@ fn weighted_gains_with<const N: usize, const A: u8>(rows: &Rows<'_, N>, q: &Queu
         let (i, e) = (q.cell[j], q.offset[j] / N);
         #[cfg(target_arch = "x86_64")]
         if A >= AVX2 {
-            // SAFETY: `A` is `AVX2` or wider only in code compiled for AVX2
-            // and FMA, which runs only where the processor has them.
+            // SAFETY: `has` shows that the processor has AVX2 and FMA.
             (z[j], a[j]) = unsafe { sums_avx2::<N>(&rows.h[i], &rows.h_ln_h[i], &rows.k[e], &rows.k_ln_k[e]) };
             continue;
         }
@@ -896,9 +942,10 @@ fn weighted_gains_with<const N: usize, const A: u8>(rows: &Rows<'_, N>, q: &Queu
 /// [`weighted_gains_with`] in AVX-512 registers, eight gains at a time from
 /// the sums to the weighted total (`N` a multiple of 8): each job's products
 /// fill eight lanes ([`row_sums_zmm`]), the eight jobs' lanes are summed
-/// together by a transposing tree ([`transpose_sum8`]), and the logarithm
-/// ([`ln_normal_zmm`], the same operations as [`ln_normal`]), the division
-/// and the weighting each take one instruction for all eight. The weighted
+/// together by a transposing tree ([`sum_pairs`], [`sum_quads`]), and the
+/// logarithm ([`ln_normal_zmm`], the same operations as [`ln_normal`]), the
+/// two divisions and the weighting take the same instructions for all eight
+/// as for one. The weighted
 /// gains go into eight running sums, added pairwise at the end. Each job's
 /// gain is formed in the same order whatever its neighbours, and each beam's
 /// total in an order fixed by its own queue.
@@ -917,8 +964,8 @@ fn weighted_gains_zmm<const N: usize>(rows: &Rows<'_, N>, q: &Queue) -> f64 {
         let lanes = (n - 8 * g).min(8);
         // Lanes past the last job repeat it; they weigh 0. The jobs' sums
         // are folded in as they come (see `sum_pairs`), so that few vectors
-        // wait at a time. (No closures: they would not inherit the target
-        // features, and the intrinsics would become calls.)
+        // wait at a time. (Written out: with closures, a scratch build of this
+        // loop called them out of line.)
         let mut j = [0usize; 8];
         for (l, j) in j.iter_mut().enumerate() {
             *j = 8 * g + l.min(lanes - 1);
@@ -978,7 +1025,8 @@ fn weighted_gains_zmm<const N: usize>(rows: &Rows<'_, N>, q: &Queue) -> f64 {
                 _mm512_maskz_loadu_pd(used, q.entropy.as_ptr().add(8 * g)),
             )
         };
-        acc = _mm512_fmadd_pd(w, _mm512_sub_pd(entropy, posterior), acc);
+        // Unused lanes keep `acc` as it is (whatever their posterior).
+        acc = _mm512_mask3_fmadd_pd(w, _mm512_sub_pd(entropy, posterior), acc, used);
     }
     let mut lanes = [0.0f64; 8];
     // SAFETY: `lanes` holds eight values.
@@ -1114,12 +1162,12 @@ fn weighted_gains_any(beam: &Beam<'_>, q: &Queue) -> f64 {
     let bins = beam.map.bins();
     let (k, m) = (beam.table.values_f64(), beam.table.k_ln_k());
     let mut total = 0.0;
-    for ((&i, &offset), &w) in q.cell.iter().zip(&q.offset).zip(&q.weight).take(q.len) {
+    for (((&i, &offset), &w), &entropy) in q.cell.iter().zip(&q.offset).zip(&q.weight).zip(&q.entropy).take(q.len) {
         let cell = i * bins..(i + 1) * bins;
         let (h, u) = (&beam.map.histograms()[cell.clone()], &beam.cache.h_ln_h[cell]);
         let kernel = offset..offset + bins;
         let h_u = h.iter().map(|&v| f64::from(v)).zip(u.iter().copied());
-        total += w * plain_gain(h_u, beam.cache.entropy[i], &k[kernel.clone()], &m[kernel]);
+        total += w * plain_gain(h_u, entropy, &k[kernel.clone()], &m[kernel]);
     }
     total
 }
@@ -1414,8 +1462,8 @@ mod tests {
     /// Every arithmetic the processor can run, for every bin count with a
     /// path of its own (8, 16, 32) and one without (12), equals the exact
     /// evaluator on seeded random maps: cells from nearly uniform to nearly
-    /// certain, some at the prior, some with bins rounded to subnormal
-    /// `f32` values or to zero.
+    /// certain, some at the prior, some with bins far below the rest (which
+    /// the map raises to its floor, 1e-30).
     #[test]
     fn every_arithmetic_equals_exact_on_random_maps() {
         let mut state = 0x243f_6a88_85a3_08d3u64;
@@ -1438,7 +1486,7 @@ mod tests {
                 let sharpness = (1.0 + 40.0 * next()) as i32;
                 let mut h: Vec<f32> = (0..bins).map(|_| next().powi(sharpness) as f32).collect();
                 if kind > 0.9 {
-                    // Bins far below the rest: subnormal or zero in `f32`.
+                    // Bins far below the rest (raised to the map's floor).
                     h.iter_mut().step_by(3).for_each(|v| *v *= 1e-40);
                 }
                 h[case % bins] += 1e-3;
@@ -1469,6 +1517,75 @@ mod tests {
                 }
             }
         }
+    }
+
+    /// The AVX-512 batch gives the plain batch's sum, for every bin count it
+    /// serves and every queue length, with cells whose normaliser `Z` is
+    /// subnormal (which the fast logarithm cannot take) among them.
+    #[cfg(target_arch = "x86_64")]
+    #[test]
+    fn the_avx512_batch_is_the_plain_one() {
+        if Arith::detect() != Arith::Avx512 {
+            return;
+        }
+        fn check<const N: usize>() {
+            let mut state = 0x9e37_79b9_7f4a_7c15u64;
+            let mut next = move || {
+                state ^= state << 13;
+                state ^= state >> 7;
+                state ^= state << 17;
+                (state >> 11) as f64 / (1u64 << 53) as f64
+            };
+            // 40 cells; the last one's mass lies in the last bin.
+            let cells = 40;
+            let mut h = vec![0.0f32; cells * N];
+            for c in 0..cells {
+                let row = &mut h[c * N..(c + 1) * N];
+                if c == cells - 1 {
+                    row[N - 1] = 1.0;
+                    continue;
+                }
+                row.iter_mut().for_each(|v| *v = (next() as f32).powi(3) + 1e-6);
+                let sum: f32 = row.iter().sum();
+                row.iter_mut().for_each(|v| *v /= sum);
+            }
+            let u: Vec<f64> = h.iter().map(|&v| x_ln_x(f64::from(v))).collect();
+            let entropy: Vec<f64> = u.chunks(N).map(|r| -r.iter().sum::<f64>()).collect();
+            let kernels = 6;
+            let mut k = vec![0.0f64; kernels * N];
+            for (e, row) in k.chunks_mut(N).enumerate() {
+                row.iter_mut().for_each(|v| *v = next() + 0.01);
+                let sum: f64 = row.iter().sum();
+                row.iter_mut().for_each(|v| *v /= sum);
+                // Kernel 0's last bin is subnormal: the last cell's `Z`.
+                if e == 0 {
+                    row[N - 1] = 1e-310;
+                }
+            }
+            let m: Vec<f64> = k.iter().map(|&v| x_ln_x(v)).collect();
+            let (h, u, k, m) =
+                (Aligned::from_slice(&h), Aligned::from_slice(&u), Aligned::from_slice(&k), Aligned::from_slice(&m));
+            let rows = Rows::<N>::new(&h, &u, &entropy, &k, &m);
+            for len in 1..=SLOTS {
+                for with_empty in [false, true] {
+                    let mut q = Queue::new();
+                    for j in 0..len {
+                        let i = if with_empty && j % 5 == 2 { cells - 1 } else { (j * 7) % (cells - 1) };
+                        let e = if with_empty { j % kernels } else { 1 + j % (kernels - 1) };
+                        (q.cell[j], q.offset[j], q.weight[j], q.entropy[j]) = (i, e * N, next(), entropy[i]);
+                    }
+                    q.len = len;
+                    let plain = weighted_gains_with::<N, BASELINE>(Has::baseline(), &rows, &q);
+                    // SAFETY: AVX-512 was detected above.
+                    let wide = weighted_gains::<N, AVX512>(unsafe { Has::new() }, &rows, &q);
+                    assert!(plain.is_finite(), "{N} bins, {len}: {plain}");
+                    assert!((wide - plain).abs() <= 1e-12 * plain.abs().max(1.0), "{N} bins, {len}: {wide} {plain}");
+                }
+            }
+        }
+        check::<8>();
+        check::<16>();
+        check::<32>();
     }
 
     #[test]
