@@ -945,10 +945,9 @@ fn weighted_gains_with<const N: usize, const A: u8>(has: Has<A>, rows: &Rows<'_,
 /// together by a transposing tree ([`sum_pairs`], [`sum_quads`]), and the
 /// logarithm ([`ln_normal_zmm`], the same operations as [`ln_normal`]), the
 /// two divisions and the weighting take the same instructions for all eight
-/// as for one. The weighted
-/// gains go into eight running sums, added pairwise at the end. Each job's
-/// gain is formed in the same order whatever its neighbours, and each beam's
-/// total in an order fixed by its own queue.
+/// as for one. The weighted gains go into eight running sums, added pairwise
+/// at the end. Each job's gain is formed in the same order whatever its
+/// neighbours, and each beam's total in an order fixed by its own queue.
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx512f,avx512dq,avx512vl,avx2,fma")]
 fn weighted_gains_zmm<const N: usize>(rows: &Rows<'_, N>, q: &Queue) -> f64 {
@@ -956,8 +955,8 @@ fn weighted_gains_zmm<const N: usize>(rows: &Rows<'_, N>, q: &Queue) -> f64 {
     const GROUPS: usize = SLOTS.div_ceil(8);
     let n = q.len.min(SLOTS);
     let groups = n.div_ceil(8);
-    // In three passes over the groups of eight, so that the long chains of
-    // one group's logarithm and divisions overlap those of the others.
+    // Three passes over the groups of eight: the sums, the logarithms, the
+    // weighted total.
     let mut z = [_mm512_set1_pd(1.0); GROUPS];
     let mut a = [_mm512_setzero_pd(); GROUPS];
     for g in 0..groups {
@@ -1209,10 +1208,11 @@ impl<const N: usize, const A: u8> FastBeam<'_, N, A> {
     }
 
     /// The weight of the free kernel, if it is the only one every cell of a
-    /// cone's row block (at distances from `near` to `far`) gets: every cell within `reach_m`,
-    /// the echoes that end before the block reaching none of it, the next
-    /// leaving all of it in free space, and either every cell or none within
-    /// the reach of no echo. The same weight [`CellVisitor::cell`] gives each.
+    /// cone's row block (at distances from `near` to `far`) gets: every cell
+    /// within `reach_m`, the echoes that end before the block reaching none
+    /// of it, the next leaving all of it in free space, and either every cell
+    /// or none within the reach of no echo. The same weight
+    /// [`CellVisitor::cell`] gives each.
     #[inline(always)]
     fn block_weight(&self, [near, far]: [f64; 2], reach_m: f64) -> Option<f64> {
         let beam = self.beam;
