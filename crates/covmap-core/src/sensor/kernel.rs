@@ -81,9 +81,11 @@ impl KernelTable {
                 values.extend(kernel_values(mu, sigma, model.xi(s), bins).into_iter().map(|v| v as f32));
             }
         }
-        let values_f64: Vec<f64> = values.iter().map(|&v| f64::from(v)).collect();
-        let k_ln_k: Vec<f64> = values_f64.iter().map(|&v| x_ln_x(v)).collect();
-        let (values_f64, k_ln_k) = (Aligned::from_slice(&values_f64), Aligned::from_slice(&k_ln_k));
+        let (mut values_f64, mut k_ln_k) = (Aligned::zeroed(values.len()), Aligned::zeroed(values.len()));
+        for ((k, m), &v) in values_f64.iter_mut().zip(k_ln_k.iter_mut()).zip(&values) {
+            *k = f64::from(v);
+            *m = x_ln_x(*k);
+        }
         Ok(Self {
             model: *model,
             resolution_m,
