@@ -39,9 +39,17 @@ fn explored_map(sonar: &SonarModel, bearings: &[f64], scans: usize) -> CoverageM
     let mut map = empty_map();
     let mut rng = ChaCha8Rng::seed_from_u64(5);
     for _ in 0..scans {
-        let pose = Pose::new(rng.random_range(2.0..18.0), rng.random_range(2.0..18.0), rng.random_range(-3.1..3.1));
-        let ranges: Vec<f64> = bearings.iter().map(|_| rng.random_range(0.5..6.0)).collect();
-        map.integrate(&pose, &ranges, bearings, sonar).expect("valid scan");
+        let pose = Pose::new(
+            rng.random_range(2.0..18.0),
+            rng.random_range(2.0..18.0),
+            rng.random_range(-3.1..3.1),
+        );
+        let ranges: Vec<f64> = bearings
+            .iter()
+            .map(|_| rng.random_range(0.5..6.0))
+            .collect();
+        map.integrate(&pose, &ranges, bearings, sonar)
+            .expect("valid scan");
     }
     map
 }
@@ -55,7 +63,11 @@ fn office_map(sonar: &SonarModel, scans: usize) -> CoverageMap {
     let mut rng = ChaCha8Rng::seed_from_u64(11);
     let mut poses = Vec::with_capacity(scans);
     while poses.len() < scans {
-        let pose = Pose::new(rng.random_range(1.0..19.0), rng.random_range(1.0..19.0), rng.random_range(-3.1..3.1));
+        let pose = Pose::new(
+            rng.random_range(1.0..19.0),
+            rng.random_range(1.0..19.0),
+            rng.random_range(-3.1..3.1),
+        );
         if !robot.collides(&world, &pose) {
             poses.push(pose);
         }
@@ -63,38 +75,68 @@ fn office_map(sonar: &SonarModel, scans: usize) -> CoverageMap {
     let ring = SonarRing::ring(24).with_model(sonar);
     let mut map = empty_map();
     for scan in simulate(&ring, &world, &poses, 11).expect("valid poses") {
-        map.integrate(&scan.pose, &scan.ranges_m, &scan.bearings_rad, sonar).expect("valid scan");
+        map.integrate(&scan.pose, &scan.ranges_m, &scan.bearings_rad, sonar)
+            .expect("valid scan");
     }
     map
 }
 
 fn candidates() -> Vec<Pose> {
-    (0..1000).map(|k| Pose::new(0.5 + 0.6 * (k % 32) as f64, 0.5 + 0.6 * (k / 32) as f64, 0.1 * k as f64)).collect()
+    (0..1000)
+        .map(|k| {
+            Pose::new(
+                0.5 + 0.6 * (k % 32) as f64,
+                0.5 + 0.6 * (k / 32) as f64,
+                0.1 * k as f64,
+            )
+        })
+        .collect()
 }
 
 fn gain(c: &mut Criterion) {
     let sonar = SonarModel::default();
-    let bearings: Vec<f64> = (0..24).map(|i| i as f64 * std::f64::consts::TAU / 24.0).collect();
+    let bearings: Vec<f64> = (0..24)
+        .map(|i| i as f64 * std::f64::consts::TAU / 24.0)
+        .collect();
     let map = explored_map(&sonar, &bearings, 60);
     let eval = GainEvaluator::new(&map, &sonar, GainOptions::default()).expect("valid options");
     let poses = candidates();
     let pairs = eval.pairs(&poses, &bearings).expect("valid poses");
     // Early in an exploration: the same candidates (so the same pairs) after 6 scans.
     let early = explored_map(&sonar, &bearings, 6);
-    let early_eval = GainEvaluator::new(&early, &sonar, GainOptions::default()).expect("valid options");
+    let early_eval =
+        GainEvaluator::new(&early, &sonar, GainOptions::default()).expect("valid options");
     // A building: the same candidates on the office world after 60 scans.
     let office = office_map(&sonar, 60);
-    let office_eval = GainEvaluator::new(&office, &sonar, GainOptions::default()).expect("valid options");
-    for (name, m) in [("60 scans", &map), ("6 scans", &early), ("60 scans of the office", &office)] {
-        let prior =
-            m.histograms().chunks_exact(m.bins()).filter(|h| h.iter().all(|&v| v == 1.0 / m.bins() as f32)).count();
-        eprintln!("map after {name}: {:.1} % of its cells at the prior", 100.0 * prior as f64 / m.grid().len() as f64);
+    let office_eval =
+        GainEvaluator::new(&office, &sonar, GainOptions::default()).expect("valid options");
+    for (name, m) in [
+        ("60 scans", &map),
+        ("6 scans", &early),
+        ("60 scans of the office", &office),
+    ] {
+        let prior = m
+            .histograms()
+            .chunks_exact(m.bins())
+            .filter(|h| h.iter().all(|&v| v == 1.0 / m.bins() as f32))
+            .count();
+        eprintln!(
+            "map after {name}: {:.1} % of its cells at the prior",
+            100.0 * prior as f64 / m.grid().len() as f64
+        );
     }
 
     let mut group = c.benchmark_group("gain_1000_candidates_24_sonars");
-    group.sample_size(10).measurement_time(std::time::Duration::from_secs(10));
+    group
+        .sample_size(10)
+        .measurement_time(std::time::Duration::from_secs(10));
     group.throughput(Throughput::Elements(pairs));
-    let pool = |threads| rayon::ThreadPoolBuilder::new().num_threads(threads).build().expect("thread pool");
+    let pool = |threads| {
+        rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .expect("thread pool")
+    };
     let (one, two) = (pool(1), pool(2));
     for (name, pool, eval) in [
         ("fast_1_threads", &one, &eval),
@@ -103,39 +145,65 @@ fn gain(c: &mut Criterion) {
         ("fast_1_thread_office", &one, &office_eval),
     ] {
         group.bench_function(name, |b| {
-            b.iter(|| pool.install(|| eval.evaluate(&poses, &bearings, GainMethod::Fast).expect("valid")))
+            b.iter(|| {
+                pool.install(|| {
+                    eval.evaluate(&poses, &bearings, GainMethod::Fast)
+                        .expect("valid")
+                })
+            })
         });
     }
     // The cones alone, each cell visited and nothing computed: the part of
     // the per-pair cost that walking the footprints takes.
-    group.bench_function("cone_walk_only", |b| b.iter(|| eval.pairs(&poses, &bearings).expect("valid")));
+    group.bench_function("cone_walk_only", |b| {
+        b.iter(|| eval.pairs(&poses, &bearings).expect("valid"))
+    });
     group.finish();
 
     let few: Vec<Pose> = poses.iter().step_by(250).copied().collect();
     let few = &few[..];
     let mut group = c.benchmark_group("gain_4_candidates_24_sonars");
-    group.sample_size(10).measurement_time(std::time::Duration::from_secs(20));
-    for (name, method) in [("exact_1_thread", GainMethod::Exact), ("fast_1_thread", GainMethod::Fast)] {
-        group
-            .bench_function(name, |b| b.iter(|| one.install(|| eval.evaluate(few, &bearings, method).expect("valid"))));
+    group
+        .sample_size(10)
+        .measurement_time(std::time::Duration::from_secs(20));
+    for (name, method) in [
+        ("exact_1_thread", GainMethod::Exact),
+        ("fast_1_thread", GainMethod::Fast),
+    ] {
+        group.bench_function(name, |b| {
+            b.iter(|| one.install(|| eval.evaluate(few, &bearings, method).expect("valid")))
+        });
     }
     group.finish();
 
     let mut group = c.benchmark_group("planning_step");
-    group.sample_size(10).measurement_time(std::time::Duration::from_secs(10));
+    group
+        .sample_size(10)
+        .measurement_time(std::time::Duration::from_secs(10));
     // Evaluating no candidate still builds everything they would share.
     group.bench_function("evaluator_build", |b| {
         b.iter(|| {
-            let eval = GainEvaluator::new(&map, &sonar, GainOptions::default()).expect("valid options");
-            eval.evaluate(&[], &bearings, GainMethod::Fast).expect("valid")
+            let eval =
+                GainEvaluator::new(&map, &sonar, GainOptions::default()).expect("valid options");
+            eval.evaluate(&[], &bearings, GainMethod::Fast)
+                .expect("valid")
         })
     });
     let planner = Planner::new(PlannerConfig::default()).expect("valid config");
     let robot = Pose::new(10.0, 10.0, 0.0);
-    let plan = planner.next_viewpoint(&map, &robot, &bearings, &sonar).expect("valid plan");
-    eprintln!("planning_step/next_viewpoint: {} candidates", plan.candidates.gains.len());
+    let plan = planner
+        .next_viewpoint(&map, &robot, &bearings, &sonar)
+        .expect("valid plan");
+    eprintln!(
+        "planning_step/next_viewpoint: {} candidates",
+        plan.candidates.gains.len()
+    );
     group.bench_function("next_viewpoint", |b| {
-        b.iter(|| planner.next_viewpoint(&map, &robot, &bearings, &sonar).expect("valid plan"))
+        b.iter(|| {
+            planner
+                .next_viewpoint(&map, &robot, &bearings, &sonar)
+                .expect("valid plan")
+        })
     });
     group.finish();
 }

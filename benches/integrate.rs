@@ -19,7 +19,9 @@ struct Scan {
 
 fn scans(beams: usize, fov_rad: f64, max_range_m: f64, seed: u64) -> Vec<Scan> {
     let mut rng = ChaCha8Rng::seed_from_u64(seed);
-    let bearings: Vec<f64> = (0..beams).map(|i| -0.5 * fov_rad + fov_rad * i as f64 / beams as f64).collect();
+    let bearings: Vec<f64> = (0..beams)
+        .map(|i| -0.5 * fov_rad + fov_rad * i as f64 / beams as f64)
+        .collect();
     (0..64)
         .map(|_| Scan {
             pose: Pose::new(
@@ -27,7 +29,9 @@ fn scans(beams: usize, fov_rad: f64, max_range_m: f64, seed: u64) -> Vec<Scan> {
                 rng.random_range(1.0..19.0),
                 rng.random_range(-std::f64::consts::PI..std::f64::consts::PI),
             ),
-            ranges: (0..beams).map(|_| rng.random_range(0.3..max_range_m)).collect(),
+            ranges: (0..beams)
+                .map(|_| rng.random_range(0.3..max_range_m))
+                .collect(),
             bearings: bearings.clone(),
         })
         .collect()
@@ -37,17 +41,29 @@ fn grid() -> Grid {
     Grid::new([0.0, 0.0], 0.05, 400, 400).expect("valid grid")
 }
 
-fn bench_model(c: &mut Criterion, name: &str, model: &dyn SensorModel, scans: &[Scan], bins: &[usize]) {
+fn bench_model(
+    c: &mut Criterion,
+    name: &str,
+    model: &dyn SensorModel,
+    scans: &[Scan],
+    bins: &[usize],
+) {
     let mut group = c.benchmark_group(name);
     for &b in bins {
         let mut map = CoverageMap::with_bins(grid(), b).expect("valid bins");
-        let updates: usize =
-            scans.iter().map(|s| map.integrate(&s.pose, &s.ranges, &s.bearings, model).expect("valid scan")).sum();
+        let updates: usize = scans
+            .iter()
+            .map(|s| {
+                map.integrate(&s.pose, &s.ranges, &s.bearings, model)
+                    .expect("valid scan")
+            })
+            .sum();
         group.throughput(Throughput::Elements(updates as u64));
         group.bench_function(format!("coverage_{b}_bins"), |bench| {
             bench.iter(|| {
                 for s in scans {
-                    map.integrate(&s.pose, &s.ranges, &s.bearings, model).expect("valid scan");
+                    map.integrate(&s.pose, &s.ranges, &s.bearings, model)
+                        .expect("valid scan");
                 }
             })
         });
@@ -56,7 +72,8 @@ fn bench_model(c: &mut Criterion, name: &str, model: &dyn SensorModel, scans: &[
     group.bench_function("occupancy_baseline", |bench| {
         bench.iter(|| {
             for s in scans {
-                occ.integrate(&s.pose, &s.ranges, &s.bearings, model).expect("valid scan");
+                occ.integrate(&s.pose, &s.ranges, &s.bearings, model)
+                    .expect("valid scan");
             }
         })
     });
@@ -81,13 +98,19 @@ fn integrate_small(c: &mut Criterion) {
         .collect();
     let mut group = c.benchmark_group("sonar_24_small_map");
     let mut map = CoverageMap::new(small);
-    let updates: usize =
-        scans.iter().map(|s| map.integrate(&s.pose, &s.ranges, &s.bearings, &sonar).expect("valid scan")).sum();
+    let updates: usize = scans
+        .iter()
+        .map(|s| {
+            map.integrate(&s.pose, &s.ranges, &s.bearings, &sonar)
+                .expect("valid scan")
+        })
+        .sum();
     group.throughput(Throughput::Elements(updates as u64));
     group.bench_function("coverage_16_bins", |bench| {
         bench.iter(|| {
             for s in &scans {
-                map.integrate(&s.pose, &s.ranges, &s.bearings, &sonar).expect("valid scan");
+                map.integrate(&s.pose, &s.ranges, &s.bearings, &sonar)
+                    .expect("valid scan");
             }
         })
     });

@@ -17,12 +17,17 @@ fn rays(world: &World, n: usize, seed: u64) -> (Vec<[f64; 2]>, Vec<f64>) {
     let [x0, y0, x1, y1] = world.bounds_m();
     let mut origins = Vec::with_capacity(n);
     while origins.len() < n {
-        let p = [x0 + (x1 - x0) * rng.random::<f64>(), y0 + (y1 - y0) * rng.random::<f64>()];
+        let p = [
+            x0 + (x1 - x0) * rng.random::<f64>(),
+            y0 + (y1 - y0) * rng.random::<f64>(),
+        ];
         if world.distance_to_obstacle_m(p) > 0.05 {
             origins.push(p);
         }
     }
-    let angles = (0..n).map(|_| rng.random::<f64>() * std::f64::consts::TAU).collect();
+    let angles = (0..n)
+        .map(|_| rng.random::<f64>() * std::f64::consts::TAU)
+        .collect();
     (origins, angles)
 }
 
@@ -34,12 +39,16 @@ fn raycast(c: &mut Criterion) {
     group.throughput(Throughput::Elements(n as u64));
     group.sample_size(20);
     for max_range_m in [5.0, 30.0] {
-        group.bench_with_input(BenchmarkId::new("sequential", max_range_m), &max_range_m, |b, &m| {
-            b.iter(|| black_box(world.cast_batch_sequential(&origins, &angles, m)))
-        });
-        group.bench_with_input(BenchmarkId::new("parallel", max_range_m), &max_range_m, |b, &m| {
-            b.iter(|| black_box(world.cast_batch(&origins, &angles, m)))
-        });
+        group.bench_with_input(
+            BenchmarkId::new("sequential", max_range_m),
+            &max_range_m,
+            |b, &m| b.iter(|| black_box(world.cast_batch_sequential(&origins, &angles, m))),
+        );
+        group.bench_with_input(
+            BenchmarkId::new("parallel", max_range_m),
+            &max_range_m,
+            |b, &m| b.iter(|| black_box(world.cast_batch(&origins, &angles, m))),
+        );
     }
     group.finish();
 }
@@ -51,7 +60,9 @@ fn ground_truth(c: &mut Criterion) {
     let mut group = c.benchmark_group("coverage_office_5cm");
     group.throughput(Throughput::Elements(grid.len() as u64));
     group.sample_size(10);
-    group.bench_function("sequential", |b| b.iter(|| black_box(world.coverage_sequential(&grid))));
+    group.bench_function("sequential", |b| {
+        b.iter(|| black_box(world.coverage_sequential(&grid)))
+    });
     group.bench_function("parallel", |b| b.iter(|| black_box(world.coverage(&grid))));
     group.finish();
 }

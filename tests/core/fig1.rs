@@ -45,7 +45,10 @@ fn laser_run(fraction: f64, readings: usize, seed: u64) -> Outcome {
         occ.integrate(&pose, &range, &[0.0], &laser).unwrap();
     }
     let i = g.index(TARGET).unwrap();
-    Outcome { ml: map.ml()[i], occupancy: occ.probabilities()[i] }
+    Outcome {
+        ml: map.ml()[i],
+        occupancy: occ.probabilities()[i],
+    }
 }
 
 /// The same with a sonar facing the wall head-on from varied distances.
@@ -65,31 +68,48 @@ fn sonar_run(fraction: f64, readings: usize, seed: u64) -> Outcome {
         occ.integrate(&pose, &range, &[0.0], &sonar).unwrap();
     }
     let i = g.index(TARGET).unwrap();
-    Outcome { ml: map.ml()[i], occupancy: occ.probabilities()[i] }
+    Outcome {
+        ml: map.ml()[i],
+        occupancy: occ.probabilities()[i],
+    }
 }
 
 #[test]
 fn partly_covered_cell_laser() {
-    for (fraction, seed) in [0.2, 0.5, 0.8].into_iter().flat_map(|f| (0..5).map(move |s| (f, s))) {
+    for (fraction, seed) in [0.2, 0.5, 0.8]
+        .into_iter()
+        .flat_map(|f| (0..5).map(move |s| (f, s)))
+    {
         let o = laser_run(fraction, 200, seed);
         assert!(
             (o.ml as f64 - fraction).abs() <= 1.0 / 15.0 + 1e-6,
             "laser, fraction {fraction}, seed {seed}: ML coverage {}",
             o.ml
         );
-        assert!(o.occupancy > 0.9, "laser, fraction {fraction}: occupancy {}", o.occupancy);
+        assert!(
+            o.occupancy > 0.9,
+            "laser, fraction {fraction}: occupancy {}",
+            o.occupancy
+        );
     }
 }
 
 #[test]
 fn partly_covered_cell_sonar() {
-    for (fraction, seed) in [0.2, 0.5, 0.8].into_iter().flat_map(|f| (0..5).map(move |s| (f, s))) {
+    for (fraction, seed) in [0.2, 0.5, 0.8]
+        .into_iter()
+        .flat_map(|f| (0..5).map(move |s| (f, s)))
+    {
         let o = sonar_run(fraction, 200, seed);
         assert!(
             (o.ml as f64 - fraction).abs() <= 1.0 / 15.0 + 1e-6,
             "sonar, fraction {fraction}, seed {seed}: ML coverage {}",
             o.ml
         );
-        assert!(o.occupancy > 0.9, "sonar, fraction {fraction}: occupancy {}", o.occupancy);
+        assert!(
+            o.occupancy > 0.9,
+            "sonar, fraction {fraction}: occupancy {}",
+            o.occupancy
+        );
     }
 }

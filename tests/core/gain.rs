@@ -22,7 +22,9 @@ fn random_map(bins: usize, weights: &[f32], sharpness: &[u8]) -> CoverageMap {
             data.extend(std::iter::repeat_n(1.0 / bins as f32, bins));
             continue;
         }
-        let mut h: Vec<f32> = (0..bins).map(|b| weights[(c * bins + b) % weights.len()].powi(s) + 1e-6).collect();
+        let mut h: Vec<f32> = (0..bins)
+            .map(|b| weights[(c * bins + b) % weights.len()].powi(s) + 1e-6)
+            .collect();
         let sum: f32 = h.iter().sum();
         h.iter_mut().for_each(|v| *v /= sum);
         data.extend(h);
@@ -77,7 +79,9 @@ proptest! {
 }
 
 fn ring() -> Vec<f64> {
-    (0..24).map(|i| i as f64 * std::f64::consts::TAU / 24.0).collect()
+    (0..24)
+        .map(|i| i as f64 * std::f64::consts::TAU / 24.0)
+        .collect()
 }
 
 #[test]
@@ -94,7 +98,9 @@ fn certain_map_has_no_gain() {
     let map = CoverageMap::from_histograms(g, bins, data).unwrap();
     let sonar = SonarModel::default();
     let eval = GainEvaluator::new(&map, &sonar, GainOptions::default()).unwrap();
-    let poses: Vec<Pose> = (0..12).map(|k| Pose::new(0.15 + 0.15 * k as f64, 0.3 + 0.2 * k as f64, 0.0)).collect();
+    let poses: Vec<Pose> = (0..12)
+        .map(|k| Pose::new(0.15 + 0.15 * k as f64, 0.3 + 0.2 * k as f64, 0.0))
+        .collect();
     let gains = eval.evaluate(&poses, &ring(), GainMethod::Fast).unwrap();
     let pairs = eval.pairs(&poses, &ring()).unwrap() as f64;
     let prior = CoverageMap::new(g);
@@ -113,11 +119,28 @@ fn prior_map_gains_everywhere() {
     let map = CoverageMap::new(grid());
     for sensor in [model(0, 2.0, 0.0), model(1, 2.0, 0.3)] {
         for stop_coverage in [StopCoverage::MaximumLikelihood, StopCoverage::Mean] {
-            let eval =
-                GainEvaluator::new(&map, sensor.as_ref(), GainOptions { range_step_m: None, stop_coverage }).unwrap();
-            let poses: Vec<Pose> =
-                (0..30).map(|k| Pose::new(0.05 + 0.12 * k as f64, 0.05 + 0.1 * k as f64, 0.7 * k as f64)).collect();
-            for (pose, g) in poses.iter().zip(eval.evaluate(&poses, &[0.0, 2.0], GainMethod::Fast).unwrap()) {
+            let eval = GainEvaluator::new(
+                &map,
+                sensor.as_ref(),
+                GainOptions {
+                    range_step_m: None,
+                    stop_coverage,
+                },
+            )
+            .unwrap();
+            let poses: Vec<Pose> = (0..30)
+                .map(|k| {
+                    Pose::new(
+                        0.05 + 0.12 * k as f64,
+                        0.05 + 0.1 * k as f64,
+                        0.7 * k as f64,
+                    )
+                })
+                .collect();
+            for (pose, g) in poses.iter().zip(
+                eval.evaluate(&poses, &[0.0, 2.0], GainMethod::Fast)
+                    .unwrap(),
+            ) {
                 assert!(g > 0.0, "{pose:?}: gain {g}");
             }
         }
@@ -131,15 +154,27 @@ fn unexplored_space_is_worth_more() {
     let mut map = CoverageMap::new(g);
     let sonar = SonarModel::default();
     for k in 0..20 {
-        let pose = Pose::new(0.6 + 0.2 * (k % 5) as f64, 1.0 + 0.25 * (k / 5) as f64, 0.3 * k as f64);
+        let pose = Pose::new(
+            0.6 + 0.2 * (k % 5) as f64,
+            1.0 + 0.25 * (k / 5) as f64,
+            0.3 * k as f64,
+        );
         // Walls at x = 0, y = 0 and y = 6; open space to the right (no echo).
         let ranges: Vec<f64> = ring()
             .iter()
             .map(|b| {
                 let a = pose.theta_rad + b;
                 let (c, s) = (a.cos(), a.sin());
-                let tx = if c < 0.0 { -pose.x_m / c } else { f64::INFINITY };
-                let ty = if s < 0.0 { -pose.y_m / s } else { (6.0 - pose.y_m) / s };
+                let tx = if c < 0.0 {
+                    -pose.x_m / c
+                } else {
+                    f64::INFINITY
+                };
+                let ty = if s < 0.0 {
+                    -pose.y_m / s
+                } else {
+                    (6.0 - pose.y_m) / s
+                };
                 tx.min(ty).min(10.0)
             })
             .collect();
@@ -148,6 +183,13 @@ fn unexplored_space_is_worth_more() {
     let eval = GainEvaluator::new(&map, &sonar, GainOptions::default()).unwrap();
     let explored = Pose::new(1.0, 1.5, 0.0);
     let facing_unknown = Pose::new(6.0, 3.0, 0.0);
-    let gains = eval.evaluate(&[explored, facing_unknown], &ring(), GainMethod::Fast).unwrap();
-    assert!(gains[1] > 2.0 * gains[0], "explored {} vs frontier {}", gains[0], gains[1]);
+    let gains = eval
+        .evaluate(&[explored, facing_unknown], &ring(), GainMethod::Fast)
+        .unwrap();
+    assert!(
+        gains[1] > 2.0 * gains[0],
+        "explored {} vs frontier {}",
+        gains[0],
+        gains[1]
+    );
 }

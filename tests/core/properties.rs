@@ -10,7 +10,10 @@ fn grid() -> Grid {
 /// A scan: pose inside the grid, up to 12 beams with ranges up to beyond the
 /// sonar's maximum (no-echo readings included).
 fn scan() -> impl Strategy<Value = (Pose, Vec<(f64, f64)>)> {
-    ((-1.0f64..1.39, -1.0f64..0.99, -7.0f64..7.0), prop::collection::vec((0.0f64..6.0, -3.2f64..3.2), 1..12))
+    (
+        (-1.0f64..1.39, -1.0f64..0.99, -7.0f64..7.0),
+        prop::collection::vec((0.0f64..6.0, -3.2f64..3.2), 1..12),
+    )
         .prop_map(|((x, y, t), beams)| (Pose::new(x, y, t), beams))
 }
 

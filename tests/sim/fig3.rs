@@ -19,7 +19,12 @@ fn coverage_map_beats_the_occupancy_grid_against_ground_truth() {
         // cells a wall face cuts, ML 0.45-0.46 against occupancy 0.58; the
         // ground truth's log-likelihood -70 985 / -70 041 against the prior's
         // -74 516 / -74 317 for seeds 0 / 1.
-        assert!(r.mae_ml.all < r.mae_occupancy.all, "seed {seed}: {:?} vs {:?}", r.mae_ml, r.mae_occupancy);
+        assert!(
+            r.mae_ml.all < r.mae_occupancy.all,
+            "seed {seed}: {:?} vs {:?}",
+            r.mae_ml,
+            r.mae_occupancy
+        );
         assert!(r.mae_mean.all < r.mae_occupancy.all, "seed {seed}");
         assert!(r.mae_ml.partial < r.mae_occupancy.partial, "seed {seed}");
         assert!(
@@ -31,7 +36,11 @@ fn coverage_map_beats_the_occupancy_grid_against_ground_truth() {
 
 #[test]
 fn fig3_is_reproducible_and_writes_pictures() {
-    let c = Fig3Config { seed: 5, resolution_m: 0.1, ..Fig3Config::default() };
+    let c = Fig3Config {
+        seed: 5,
+        resolution_m: 0.1,
+        ..Fig3Config::default()
+    };
     let a = fig3_with(&c).unwrap();
     let b = fig3_with(&c).unwrap();
     assert_eq!(a.ml, b.ml);
@@ -43,7 +52,8 @@ fn fig3_is_reproducible_and_writes_pictures() {
     let bytes = std::fs::read(&truth).unwrap();
     assert!(bytes.starts_with(b"\x89PNG"));
     // The picture is the grid: read it back as an occupancy image.
-    let world = covmap::sim::World::from_image_file(&truth, &covmap::sim::ImageOptions::new(0.1)).unwrap();
+    let world =
+        covmap::sim::World::from_image_file(&truth, &covmap::sim::ImageOptions::new(0.1)).unwrap();
     assert!(!world.is_empty());
     std::fs::remove_dir_all(&dir).unwrap();
 }

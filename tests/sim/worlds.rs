@@ -25,14 +25,23 @@ fn aria_office_walls_match_its_own_scan_points() {
         .skip_while(|l| l.trim() != "DATA")
         .skip(1)
         .filter_map(|l| {
-            let v: Vec<f64> = l.split_whitespace().filter_map(|t| t.parse().ok()).collect();
+            let v: Vec<f64> = l
+                .split_whitespace()
+                .filter_map(|t| t.parse().ok())
+                .collect();
             (v.len() == 2).then(|| [v[0] / 1000.0, v[1] / 1000.0])
         })
         .collect();
     assert!(points.len() > 20_000, "{}", points.len());
-    let near = points.iter().filter(|&&p| world.distance_to_obstacle_m(p) < 0.1).count();
+    let near = points
+        .iter()
+        .filter(|&&p| world.distance_to_obstacle_m(p) < 0.1)
+        .count();
     let share = near as f64 / points.len() as f64;
-    assert!(share > 0.8, "only {share:.3} of the scan points lie within 10 cm of a wall");
+    assert!(
+        share > 0.8,
+        "only {share:.3} of the scan points lie within 10 cm of a wall"
+    );
     // Errors name the file.
     let e = World::from_aria_map_file(dir.join("missing.map"), 0.1).unwrap_err();
     assert!(e.to_string().contains("missing.map"), "{e}");
@@ -66,18 +75,27 @@ fn willow_garage_coverage_reproduces_the_occupied_pixels() {
     };
     let pixels = &bytes[header_end..];
     assert_eq!(pixels.len(), 540 * 587);
-    let occupied = pixels.iter().filter(|&&v| (255.0 - v as f64) / 255.0 > 0.65).count();
+    let occupied = pixels
+        .iter()
+        .filter(|&&v| (255.0 - v as f64) / 255.0 > 0.65)
+        .count();
     assert!(occupied > 4000, "{occupied}");
     // On the pixel lattice the exact coverage is the image itself.
     let grid = Grid::new([0.0, 0.0], 0.1, 587, 540).unwrap();
     let cov = world.coverage(&grid);
     let total: f64 = cov.iter().sum();
-    assert!((total - occupied as f64).abs() < 1e-6 * occupied as f64, "{total} vs {occupied}");
+    assert!(
+        (total - occupied as f64).abs() < 1e-6 * occupied as f64,
+        "{total} vs {occupied}"
+    );
     for (i, &v) in cov.iter().enumerate() {
         let (row, col) = (i / 540, i % 540);
         let v_px = pixels[(586 - row) * 540 + col];
         let dark = (255.0 - v_px as f64) / 255.0 > 0.65;
-        assert!((v - if dark { 1.0 } else { 0.0 }).abs() < 1e-9, "cell ({row}, {col})");
+        assert!(
+            (v - if dark { 1.0 } else { 0.0 }).abs() < 1e-9,
+            "cell ({row}, {col})"
+        );
     }
     // Merged runs: far fewer rectangles than occupied pixels.
     assert!(world.len() < occupied / 2, "{} rectangles", world.len());
@@ -91,8 +109,16 @@ fn stata_basement_yaml_places_the_rotated_image() {
     // the image lies to the lower left of the origin.
     let (w, h) = (1730.0 * 0.0504, 1300.0 * 0.0504);
     let [x0, y0, x1, y1] = world.bounds_m();
-    assert!(x1 <= 25.9 + 0.2 && x0 >= 25.9 - w - 0.2, "{:?}", world.bounds_m());
-    assert!(y1 <= 48.5 + 0.2 && y0 >= 48.5 - h - 0.2, "{:?}", world.bounds_m());
+    assert!(
+        x1 <= 25.9 + 0.2 && x0 >= 25.9 - w - 0.2,
+        "{:?}",
+        world.bounds_m()
+    );
+    assert!(
+        y1 <= 48.5 + 0.2 && y0 >= 48.5 - h - 0.2,
+        "{:?}",
+        world.bounds_m()
+    );
     // The rectangles are disjoint, so the exact coverage adds up to their areas.
     let grid = Grid::covering(x0 - 0.1, y0 - 0.1, x1 + 0.1, y1 + 0.1, 0.1).unwrap();
     let covered: f64 = world.coverage(&grid).iter().sum::<f64>() * 0.01;
@@ -100,7 +126,11 @@ fn stata_basement_yaml_places_the_rotated_image() {
     assert!((covered - area).abs() < 1e-9 * area, "{covered} vs {area}");
     // Errors name the file and line.
     let bad = std::env::temp_dir().join(format!("covmap-bad-{}.yaml", std::process::id()));
-    std::fs::write(&bad, "image: stata_basement.png\nresolution: fine\norigin: [0, 0, 0]\n").unwrap();
+    std::fs::write(
+        &bad,
+        "image: stata_basement.png\nresolution: fine\norigin: [0, 0, 0]\n",
+    )
+    .unwrap();
     let e = World::from_ros_map_yaml(&bad).unwrap_err();
     std::fs::remove_file(&bad).unwrap();
     assert!(e.to_string().contains(".yaml, line 2"), "{e}");

@@ -45,7 +45,11 @@ impl<T: Plain> Aligned<T> {
         let mut storage = Vec::new();
         storage.try_reserve_exact(lines).ok()?;
         storage.resize(lines, Line::default());
-        let mut buffer = Self { lines: storage, len, _element: PhantomData };
+        let mut buffer = Self {
+            lines: storage,
+            len,
+            _element: PhantomData,
+        };
         buffer.fill(value);
         Some(buffer)
     }
@@ -59,8 +63,14 @@ impl<T: Plain> Aligned<T> {
 
     /// `len` elements whose bits are all zero (`0.0`).
     pub(crate) fn zeroed(len: usize) -> Self {
-        let bytes = len.checked_mul(size_of::<T>()).expect("buffer size overflows");
-        Self { lines: vec![Line::default(); bytes.div_ceil(LINE)], len, _element: PhantomData }
+        let bytes = len
+            .checked_mul(size_of::<T>())
+            .expect("buffer size overflows");
+        Self {
+            lines: vec![Line::default(); bytes.div_ceil(LINE)],
+            len,
+            _element: PhantomData,
+        }
     }
 }
 
@@ -94,8 +104,14 @@ mod tests {
     /// A buffer no address space holds is refused, not aborted on.
     #[test]
     fn try_filled_refuses_what_cannot_be_allocated() {
-        assert!(Aligned::try_filled(0.0f32, usize::MAX / 2).is_none(), "size overflows");
-        assert!(Aligned::try_filled(0.0f64, isize::MAX as usize / 8).is_none(), "beyond the address space");
+        assert!(
+            Aligned::try_filled(0.0f32, usize::MAX / 2).is_none(),
+            "size overflows"
+        );
+        assert!(
+            Aligned::try_filled(0.0f64, isize::MAX as usize / 8).is_none(),
+            "beyond the address space"
+        );
         let a = Aligned::try_filled(0.25f32, 17).unwrap();
         assert_eq!(a.as_ptr() as usize % LINE, 0);
         assert!(a.iter().all(|&v| v == 0.25) && a.len() == 17);

@@ -53,7 +53,11 @@ impl TryFrom<ScanCountsData> for ScanCounts {
                 expected: "finite, non-negative counts",
             });
         }
-        Ok(Self { grid: d.grid, discount_beyond_m: d.discount_beyond_m, counts: d.counts })
+        Ok(Self {
+            grid: d.grid,
+            discount_beyond_m: d.discount_beyond_m,
+            counts: d.counts,
+        })
     }
 }
 
@@ -73,14 +77,21 @@ fn check_discount(discount_beyond_m: f64) -> Result<()> {
 impl ScanCounts {
     /// Zero counts over `grid`, every beam counting 1.
     pub fn new(grid: Grid) -> Self {
-        Self { grid, discount_beyond_m: None, counts: vec![0.0; grid.len()] }
+        Self {
+            grid,
+            discount_beyond_m: None,
+            counts: vec![0.0; grid.len()],
+        }
     }
 
     /// Zero counts over `grid`; beams longer than `discount_beyond_m` count
     /// `discount_beyond_m / d`.
     pub fn with_discount(grid: Grid, discount_beyond_m: f64) -> Result<Self> {
         check_discount(discount_beyond_m)?;
-        Ok(Self { discount_beyond_m: Some(discount_beyond_m), ..Self::new(grid) })
+        Ok(Self {
+            discount_beyond_m: Some(discount_beyond_m),
+            ..Self::new(grid)
+        })
     }
 
     /// The grid.
@@ -119,16 +130,31 @@ impl ScanCounts {
     }
 
     /// Count a scan already validated.
-    pub(crate) fn count<M: SensorModel + ?Sized>(&mut self, pose: &Pose, ranges: &[f64], bearings: &[f64], model: &M) {
+    pub(crate) fn count<M: SensorModel + ?Sized>(
+        &mut self,
+        pose: &Pose,
+        ranges: &[f64],
+        bearings: &[f64],
+        model: &M,
+    ) {
         let range = model.range_model();
         let half = 0.5 * self.grid.resolution_m();
         for (&r, &bearing) in ranges.iter().zip(bearings) {
-            let reach = if r >= range.max_range_m { range.max_range_m } else { r + half };
+            let reach = if r >= range.max_range_m {
+                range.max_range_m
+            } else {
+                r + half
+            };
             let w = self.weight(r.min(range.max_range_m));
             let counts = &mut self.counts;
-            visit(&self.grid, [pose.x_m, pose.y_m], pose.theta_rad + bearing, reach, model.footprint(), &mut |i, _| {
-                counts[i] += w
-            });
+            visit(
+                &self.grid,
+                [pose.x_m, pose.y_m],
+                pose.theta_rad + bearing,
+                reach,
+                model.footprint(),
+                &mut |i, _| counts[i] += w,
+            );
         }
     }
 }
@@ -144,7 +170,14 @@ mod tests {
     fn serde_validates() {
         let grid = Grid::new([0.0, 0.0], 0.1, 10, 10).unwrap();
         let mut counts = ScanCounts::with_discount(grid, 2.0).unwrap();
-        counts.integrate(&Pose::new(0.5, 0.5, 0.0), &[0.3], &[0.0], &LaserModel::default()).unwrap();
+        counts
+            .integrate(
+                &Pose::new(0.5, 0.5, 0.0),
+                &[0.3],
+                &[0.0],
+                &LaserModel::default(),
+            )
+            .unwrap();
         let s = serde_json::to_string(&counts).unwrap();
         assert_eq!(serde_json::from_str::<ScanCounts>(&s).unwrap(), counts);
         let zeros = serde_json::to_string(&vec![0.0f32; 100]).unwrap();

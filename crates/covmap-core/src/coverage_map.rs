@@ -106,7 +106,8 @@ impl CoverageMap {
     /// If the histograms (64 bytes a cell) cannot be allocated;
     /// [`Self::with_bins`] returns an error instead.
     pub fn new(grid: Grid) -> Self {
-        Self::with_bins(grid, DEFAULT_BINS).expect("the default bin count is valid and the map fits in memory")
+        Self::with_bins(grid, DEFAULT_BINS)
+            .expect("the default bin count is valid and the map fits in memory")
     }
 
     /// A map at the uniform prior with `bins` bins per cell (2 to 256).
@@ -124,7 +125,14 @@ impl CoverageMap {
                 grid.len() as u128 * bins as u128 * 4
             ))
         })?;
-        Ok(Self { grid, bins, floor: histogram::bin_floor(bins), data, table: None, history: None })
+        Ok(Self {
+            grid,
+            bins,
+            floor: histogram::bin_floor(bins),
+            data,
+            table: None,
+            history: None,
+        })
     }
 
     /// A map from stored histograms (`grid.len() * bins` values, cell-major).
@@ -157,7 +165,14 @@ impl CoverageMap {
                 histogram::update(h, &uniform, floor);
             }
         }
-        Ok(Self { grid, bins, floor, data: Aligned::from_slice(&data), table: None, history: None })
+        Ok(Self {
+            grid,
+            bins,
+            floor,
+            data: Aligned::from_slice(&data),
+            table: None,
+            history: None,
+        })
     }
 
     /// The kernel table of the last model integrated, if any.
@@ -175,7 +190,9 @@ impl CoverageMap {
     }
     /// The coverage value of each bin, `b / (bins - 1)`.
     pub fn bin_values(&self) -> Vec<f64> {
-        (0..self.bins).map(|b| histogram::bin_value(b, self.bins)).collect()
+        (0..self.bins)
+            .map(|b| histogram::bin_value(b, self.bins))
+            .collect()
     }
     /// All histograms, cell-major (`grid.len() * bins` values).
     pub fn histograms(&self) -> &[f32] {
@@ -194,15 +211,24 @@ impl CoverageMap {
     /// cells from empty ones.
     pub fn ml(&self) -> Vec<f32> {
         let scale = 1.0 / (self.bins - 1) as f32;
-        self.data.chunks_exact(self.bins).map(|h| histogram::argmax(h) as f32 * scale).collect()
+        self.data
+            .chunks_exact(self.bins)
+            .map(|h| histogram::argmax(h) as f32 * scale)
+            .collect()
     }
     /// The mean map: each cell's expected coverage.
     pub fn mean(&self) -> Vec<f32> {
-        self.data.chunks_exact(self.bins).map(histogram::mean).collect()
+        self.data
+            .chunks_exact(self.bins)
+            .map(histogram::mean)
+            .collect()
     }
     /// The entropy map, nats: `ln(bins)` at the prior, 0 when certain.
     pub fn entropy(&self) -> Vec<f32> {
-        self.data.chunks_exact(self.bins).map(histogram::entropy).collect()
+        self.data
+            .chunks_exact(self.bins)
+            .map(histogram::entropy)
+            .collect()
     }
 
     /// Integrate one scan taken from `pose`: reading `ranges[i]` (metres) along
@@ -223,7 +249,11 @@ impl CoverageMap {
         validate_scan(&self.grid, pose, ranges, bearings)?;
         let range = model.range_model();
         let resolution = self.grid.resolution_m();
-        if !self.table.as_ref().is_some_and(|t| t.serves(range, resolution, self.bins)) {
+        if !self
+            .table
+            .as_ref()
+            .is_some_and(|t| t.serves(range, resolution, self.bins))
+        {
             self.table = Some(Box::new(KernelTable::new(range, resolution, self.bins)?));
         }
         // Pick the update once per scan, so the per-cell loop is straight code.
@@ -269,16 +299,19 @@ impl CoverageMap {
 
     /// Measurements of every cell since the history was turned on, row-major.
     pub fn measurement_counts(&self) -> Vec<u32> {
-        self.history.as_ref().map_or_else(|| vec![0; self.grid.len()], |h| h.count.clone())
+        self.history
+            .as_ref()
+            .map_or_else(|| vec![0; self.grid.len()], |h| h.count.clone())
     }
 
     /// The entropy history (`None` while it is off), to be handed to
     /// [`CoverageMap::restore_history`] of a map loaded from this one's
     /// histograms.
     pub fn history_state(&self) -> Option<HistoryState> {
-        self.history
-            .as_ref()
-            .map(|h| HistoryState { entropies: h.entropies.as_flattened().to_vec(), count: h.count.clone() })
+        self.history.as_ref().map(|h| HistoryState {
+            entropies: h.entropies.as_flattened().to_vec(),
+            count: h.count.clone(),
+        })
     }
 
     /// Track the history and make it `state` (from
@@ -309,12 +342,29 @@ impl CoverageMap {
         // for the rounding of an `f32` entropy).
         let most = (self.bins as f32).ln() * (1.0 + 1e-5) + 1e-6;
         let impossible = |v: &f32| !(v.is_finite() && *v >= 0.0 && *v <= most);
-        if let Some((i, &value)) = state.entropies.iter().enumerate().find(|(_, v)| impossible(v)) {
-            return Err(CovmapError::InvalidHistory { cell: i / LEN, value: f64::from(value) });
+        if let Some((i, &value)) = state
+            .entropies
+            .iter()
+            .enumerate()
+            .find(|(_, v)| impossible(v))
+        {
+            return Err(CovmapError::InvalidHistory {
+                cell: i / LEN,
+                value: f64::from(value),
+            });
         }
-        let entropies = state.entropies.chunks_exact(LEN).map(|ring| std::array::from_fn(|k| ring[k])).collect();
+        let entropies = state
+            .entropies
+            .chunks_exact(LEN)
+            .map(|ring| std::array::from_fn(|k| ring[k]))
+            .collect();
         // No scan of this map has stamped a cell yet: the per-scan bookkeeping starts afresh.
-        self.history = Some(Box::new(History { entropies, count: state.count, stamp: vec![0; cells], scan: 0 }));
+        self.history = Some(Box::new(History {
+            entropies,
+            count: state.count,
+            stamp: vec![0; cells],
+            scan: 0,
+        }));
         Ok(())
     }
 
@@ -339,24 +389,46 @@ impl CoverageMap {
         }
         let ring = &h.entropies[index];
         let len = STAGNATION_MEASUREMENTS + 1;
-        (ring[(n - 1) % len] - ring[(n - 1 - STAGNATION_MEASUREMENTS) % len]).abs() < STAGNATION_NATS
+        (ring[(n - 1) % len] - ring[(n - 1 - STAGNATION_MEASUREMENTS) % len]).abs()
+            < STAGNATION_NATS
     }
 
-    fn record_history<M: SensorModel + ?Sized>(&mut self, pose: &Pose, ranges: &[f64], bearings: &[f64], model: &M) {
-        let Self { grid, bins, data, history, .. } = self;
-        let Some(h) = history.as_deref_mut() else { return };
+    fn record_history<M: SensorModel + ?Sized>(
+        &mut self,
+        pose: &Pose,
+        ranges: &[f64],
+        bearings: &[f64],
+        model: &M,
+    ) {
+        let Self {
+            grid,
+            bins,
+            data,
+            history,
+            ..
+        } = self;
+        let Some(h) = history.as_deref_mut() else {
+            return;
+        };
         h.scan = h.scan.wrapping_add(1).max(1);
         let scan = h.scan;
         let range = model.range_model();
         let mut touched = Vec::new();
         for (&r, &bearing) in ranges.iter().zip(bearings) {
             let (reach, _) = range.reach(r);
-            visit(grid, [pose.x_m, pose.y_m], pose.theta_rad + bearing, reach, model.footprint(), &mut |i, _| {
-                if h.stamp[i] != scan {
-                    h.stamp[i] = scan;
-                    touched.push(i);
-                }
-            });
+            visit(
+                grid,
+                [pose.x_m, pose.y_m],
+                pose.theta_rad + bearing,
+                reach,
+                model.footprint(),
+                &mut |i, _| {
+                    if h.stamp[i] != scan {
+                        h.stamp[i] = scan;
+                        touched.push(i);
+                    }
+                },
+            );
         }
         let len = STAGNATION_MEASUREMENTS + 1;
         for i in touched {
@@ -375,8 +447,17 @@ impl CoverageMap {
         bearings: &[f64],
         model: &M,
     ) -> usize {
-        let Self { grid, bins, floor, data, table, .. } = self;
-        let Some(table) = table.as_deref() else { return 0 };
+        let Self {
+            grid,
+            bins,
+            floor,
+            data,
+            table,
+            ..
+        } = self;
+        let Some(table) = table.as_deref() else {
+            return 0;
+        };
         let range = model.range_model();
         let footprint = model.footprint();
         let mut updates = 0;
@@ -390,7 +471,14 @@ impl CoverageMap {
                 lookup: table.reading(r.min(range.max_range_m), echo),
                 updates: 0,
             };
-            visit(grid, [pose.x_m, pose.y_m], pose.theta_rad + bearing, reach, footprint, &mut beam);
+            visit(
+                grid,
+                [pose.x_m, pose.y_m],
+                pose.theta_rad + bearing,
+                reach,
+                footprint,
+                &mut beam,
+            );
             updates += beam.updates;
         }
         updates
@@ -434,7 +522,8 @@ mod tests {
     fn bad_input_leaves_map_unchanged() {
         let mut map = CoverageMap::new(grid());
         let sonar = SonarModel::default();
-        map.integrate(&Pose::new(2.0, 1.5, 0.3), &[1.0, 2.0], &[0.0, 1.0], &sonar).unwrap();
+        map.integrate(&Pose::new(2.0, 1.5, 0.3), &[1.0, 2.0], &[0.0, 1.0], &sonar)
+            .unwrap();
         let before = map.histograms().to_vec();
         let p = Pose::new(2.0, 1.5, 0.0);
         let cases: Vec<(Pose, Vec<f64>, Vec<f64>)> = vec![
@@ -451,7 +540,10 @@ mod tests {
             (Pose::new(2.0, 1.5, 1e308), vec![1.0], vec![1e308]),
         ];
         for (pose, r, b) in cases {
-            assert!(map.integrate(&pose, &r, &b, &sonar).is_err(), "{pose:?} {r:?} {b:?}");
+            assert!(
+                map.integrate(&pose, &r, &b, &sonar).is_err(),
+                "{pose:?} {r:?} {b:?}"
+            );
             assert_eq!(map.histograms(), &before[..]);
         }
         // Parameters of the right sign whose kernels cannot be computed: a
@@ -461,8 +553,14 @@ mod tests {
         type Break = (fn(&mut SonarModel), &'static str);
         let breaks: [Break; 5] = [
             (|m| m.range.sigma_min = -1.0, "sigma_min"),
-            (|m| (m.range.sigma_min, m.range.sigma_per_m) = (1e-310, 0.0), "sigma_min"),
-            (|m| (m.range.xi_min, m.range.xi_per_m) = (2e6, 0.0), "xi_min"),
+            (
+                |m| (m.range.sigma_min, m.range.sigma_per_m) = (1e-310, 0.0),
+                "sigma_min",
+            ),
+            (
+                |m| (m.range.xi_min, m.range.xi_per_m) = (2e6, 0.0),
+                "xi_min",
+            ),
             (|m| m.range.xi_min = 1e308, "xi_min"),
             (|m| m.range.xi_per_m = 1e306, "xi_per_m"),
         ];
@@ -470,7 +568,10 @@ mod tests {
             let mut bad = sonar;
             brk(&mut bad);
             let err = map.integrate(&p, &[1.0], &[0.0], &bad).unwrap_err();
-            assert!(matches!(err, CovmapError::InvalidParameter { name, .. } if name == at_fault), "{err}");
+            assert!(
+                matches!(err, CovmapError::InvalidParameter { name, .. } if name == at_fault),
+                "{err}"
+            );
             assert_eq!(map.histograms(), &before[..]);
         }
     }
@@ -495,7 +596,8 @@ mod tests {
         let cell = g.world_to_cell(0.5, 0.1).unwrap();
         assert_eq!(map.ml()[g.index(cell).unwrap()], 0.0);
         let short = vec![0.49; 100];
-        map.integrate(&pose, &short, &bearings[..100], &laser).unwrap();
+        map.integrate(&pose, &short, &bearings[..100], &laser)
+            .unwrap();
         assert!(map.mean()[g.index(cell).unwrap()] > 0.5);
     }
 
@@ -527,18 +629,26 @@ mod tests {
         for k in 0..5 {
             map.integrate(&pose, &[1.0], &[0.0], &laser).unwrap();
             assert_eq!(map.measurements(cell).unwrap(), k + 1);
-            assert!(!map.stagnated(cell).unwrap(), "not after {} measurements", k + 1);
+            assert!(
+                !map.stagnated(cell).unwrap(),
+                "not after {} measurements",
+                k + 1
+            );
         }
         // Many readings per scan: the cell's entropy has settled.
         for _ in 0..40 {
-            map.integrate(&pose, &vec![1.0; 50], &[0.0; 50], &laser).unwrap();
+            map.integrate(&pose, &vec![1.0; 50], &[0.0; 50], &laser)
+                .unwrap();
         }
         assert!(map.stagnated(cell).unwrap());
         let all = map.stagnation();
         for (i, &stagnated) in all.iter().enumerate() {
             assert_eq!(stagnated, map.stagnated(g.cell(i)).unwrap());
         }
-        assert!(all.iter().any(|&s| !s), "cells the beam never reached have no history");
+        assert!(
+            all.iter().any(|&s| !s),
+            "cells the beam never reached have no history"
+        );
         let untouched = g.world_to_cell(1.9, 0.1).unwrap();
         assert_eq!(map.measurements(untouched).unwrap(), 0);
         assert!(!map.stagnated(untouched).unwrap());
@@ -554,9 +664,11 @@ mod tests {
             let pose = Pose::new(0.01 + 0.002 * (k % 3) as f64, 0.1, 0.0);
             let beams = if k < 5 { 1 } else { 50 };
             if k % 4 == 3 {
-                map.integrate(&pose, &vec![1.2; beams], &vec![0.1; beams], &sonar).unwrap();
+                map.integrate(&pose, &vec![1.2; beams], &vec![0.1; beams], &sonar)
+                    .unwrap();
             } else {
-                map.integrate(&pose, &vec![1.0; beams], &vec![0.0; beams], &laser).unwrap();
+                map.integrate(&pose, &vec![1.0; beams], &vec![0.0; beams], &laser)
+                    .unwrap();
             }
         }
     }
@@ -571,9 +683,14 @@ mod tests {
             original.track_history(true);
             settling_scans(&mut original, 0..split);
             let state = original.history_state().unwrap();
-            assert!(state.count.iter().any(|&n| n as usize == split), "a cell measured by every scan");
+            assert!(
+                state.count.iter().any(|&n| n as usize == split),
+                "a cell measured by every scan"
+            );
 
-            let mut loaded = CoverageMap::from_histograms(g, original.bins(), original.histograms().to_vec()).unwrap();
+            let mut loaded =
+                CoverageMap::from_histograms(g, original.bins(), original.histograms().to_vec())
+                    .unwrap();
             assert!(!loaded.tracks_history());
             loaded.restore_history(state.clone()).unwrap();
             assert!(loaded.tracks_history());
@@ -588,7 +705,10 @@ mod tests {
             assert_eq!(loaded.history_state(), original.history_state());
             let stagnation = original.stagnation();
             assert_eq!(loaded.stagnation(), stagnation);
-            assert!(stagnation.iter().any(|&s| s) && stagnation.iter().any(|&s| !s), "split {split}");
+            assert!(
+                stagnation.iter().any(|&s| s) && stagnation.iter().any(|&s| !s),
+                "split {split}"
+            );
         }
     }
 
@@ -626,7 +746,10 @@ mod tests {
                 if bad.count.len() != g.len() || bad.entropies.len() != g.len() * len {
                     assert!(matches!(err, CovmapError::LengthMismatch { .. }), "{err}");
                 } else {
-                    assert!(matches!(err, CovmapError::InvalidHistory { cell: 7, .. }), "{err}");
+                    assert!(
+                        matches!(err, CovmapError::InvalidHistory { cell: 7, .. }),
+                        "{err}"
+                    );
                 }
                 assert_eq!(map.histograms(), &histograms[..]);
                 assert_eq!(map.history_state(), history);

@@ -23,7 +23,9 @@ pub enum CovmapError {
         expected: &'static str,
     },
     /// A range reading is NaN, infinite or negative.
-    #[error("invalid range at index {index}: {value} (expected a finite, non-negative distance in metres)")]
+    #[error(
+        "invalid range at index {index}: {value} (expected a finite, non-negative distance in metres)"
+    )]
     InvalidRange {
         /// Position of the reading in the scan.
         index: usize,
@@ -94,7 +96,9 @@ pub enum CovmapError {
     InvalidHistogram(String),
     /// A stored entropy history holds an entropy no map can have (NaN,
     /// infinite, negative, or above the prior's `ln bins`).
-    #[error("invalid entropy history at cell {cell}: {value} (expected an entropy from 0 to ln(bins) nats)")]
+    #[error(
+        "invalid entropy history at cell {cell}: {value} (expected an entropy from 0 to ln(bins) nats)"
+    )]
     InvalidHistory {
         /// Row-major index of the cell.
         cell: usize,

@@ -25,7 +25,14 @@ pub(crate) trait CellVisitor {
     /// cells'). `near` and `far` are the least and the greatest of `d[..n]`.
     /// A visitor may take the block at once.
     #[inline(always)]
-    fn row_block(&mut self, first: usize, d: &[f64; ROW_BLOCK], n: usize, _bounds: [f64; 2], reach_m: f64) {
+    fn row_block(
+        &mut self,
+        first: usize,
+        d: &[f64; ROW_BLOCK],
+        n: usize,
+        _bounds: [f64; 2],
+        reach_m: f64,
+    ) {
         for (k, &d) in d[..n].iter().enumerate() {
             if d <= reach_m {
                 self.cell(first + k, d, d);
@@ -57,7 +64,9 @@ pub(crate) fn visit(
     f: &mut impl CellVisitor,
 ) {
     match footprint {
-        Footprint::Cone { half_angle_rad } => visit_cone(grid, origin, angle_rad, half_angle_rad, reach_m, f),
+        Footprint::Cone { half_angle_rad } => {
+            visit_cone(grid, origin, angle_rad, half_angle_rad, reach_m, f)
+        }
         Footprint::Ray => visit_ray(grid, origin, angle_rad, reach_m, f),
     }
 }
@@ -88,7 +97,14 @@ pub(crate) const ROW_BLOCK: usize = 8;
 /// Cells whose centres lie in the sector of radius `reach` and half-angle
 /// `half` (< pi/2) around `axis`: the disk cut by the two boundary half-planes.
 #[inline(always)]
-fn visit_cone(grid: &Grid, [sx, sy]: [f64; 2], axis: f64, half: f64, reach: f64, f: &mut impl CellVisitor) {
+fn visit_cone(
+    grid: &Grid,
+    [sx, sy]: [f64; 2],
+    axis: f64,
+    half: f64,
+    reach: f64,
+    f: &mut impl CellVisitor,
+) {
     // `within` compares angles by their difference, which a large axis
     // would swamp: such an axis is brought to (-pi, pi] first, through the
     // direction its sine and cosine give (exactly reduced, as every other
@@ -119,7 +135,12 @@ fn visit_cone(grid: &Grid, [sx, sy]: [f64; 2], axis: f64, half: f64, reach: f64,
     if within(-std::f64::consts::FRAC_PI_2, axis, half) {
         y_lo = -reach;
     }
-    let Some((row_lo, row_hi)) = centre_range(sy + y_lo - slack - oy, sy + y_hi + slack - oy, r, grid.rows()) else {
+    let Some((row_lo, row_hi)) = centre_range(
+        sy + y_lo - slack - oy,
+        sy + y_hi + slack - oy,
+        r,
+        grid.rows(),
+    ) else {
         return;
     };
     let reach2 = reach * reach;
@@ -180,7 +201,9 @@ fn visit_cone(grid: &Grid, [sx, sy]: [f64; 2], axis: f64, half: f64, reach: f64,
             } else if last <= 0.0 {
                 d[n - 1]
             } else {
-                d[..n].iter().fold(f64::INFINITY, |lo, &x| if x < lo { x } else { lo })
+                d[..n]
+                    .iter()
+                    .fold(f64::INFINITY, |lo, &x| if x < lo { x } else { lo })
             };
             f.row_block(base + col, &d, n, [near, far], reach);
             // Only the row's last block is short, so `next` runs past the
@@ -241,7 +264,13 @@ mod tests {
     use super::*;
     use std::collections::BTreeMap;
 
-    fn collect(grid: &Grid, o: [f64; 2], a: f64, reach: f64, fp: Footprint) -> BTreeMap<usize, f64> {
+    fn collect(
+        grid: &Grid,
+        o: [f64; 2],
+        a: f64,
+        reach: f64,
+        fp: Footprint,
+    ) -> BTreeMap<usize, f64> {
         let mut m = BTreeMap::new();
         visit(grid, o, a, reach, fp, &mut |i, d| {
             assert!(m.insert(i, d).is_none(), "cell {i} visited twice");
@@ -254,7 +283,9 @@ mod tests {
     #[test]
     fn a_huge_axis_is_the_direction_it_names() {
         let grid = Grid::new([0.0, 0.0], 0.05, 60, 60).unwrap();
-        let cone = Footprint::Cone { half_angle_rad: 7.5f64.to_radians() };
+        let cone = Footprint::Cone {
+            half_angle_rad: 7.5f64.to_radians(),
+        };
         for axis in [2e3, -5e5, 1e12, 1e16, 1e300] {
             let (s, c) = f64::sin_cos(axis);
             let small = s.atan2(c);
@@ -280,7 +311,15 @@ mod tests {
             let axis = std::f64::consts::TAU * (next() - 0.5) * 2.0;
             let half = 0.01 + 1.5 * next();
             let reach = 4.0 * next();
-            let got = collect(&grid, o, axis, reach, Footprint::Cone { half_angle_rad: half });
+            let got = collect(
+                &grid,
+                o,
+                axis,
+                reach,
+                Footprint::Cone {
+                    half_angle_rad: half,
+                },
+            );
             let mut want = BTreeMap::new();
             for i in 0..grid.len() {
                 let [x, y] = grid.cell_center(grid.cell(i));
@@ -290,7 +329,10 @@ mod tests {
                     want.insert(i, d);
                 }
             }
-            assert_eq!(got.keys().collect::<Vec<_>>(), want.keys().collect::<Vec<_>>());
+            assert_eq!(
+                got.keys().collect::<Vec<_>>(),
+                want.keys().collect::<Vec<_>>()
+            );
             for (k, d) in &got {
                 assert!((d - want[k]).abs() < 1e-9);
             }
@@ -307,7 +349,14 @@ mod tests {
         struct Check([usize; 3]);
         impl CellVisitor for Check {
             fn cell(&mut self, _: usize, _: f64, _: f64) {}
-            fn row_block(&mut self, _: usize, d: &[f64; ROW_BLOCK], n: usize, [near, far]: [f64; 2], _: f64) {
+            fn row_block(
+                &mut self,
+                _: usize,
+                d: &[f64; ROW_BLOCK],
+                n: usize,
+                [near, far]: [f64; 2],
+                _: f64,
+            ) {
                 let lo = d[..n].iter().copied().fold(f64::INFINITY, f64::min);
                 let hi = d[..n].iter().copied().fold(0.0, f64::max);
                 assert_eq!((near, far), (lo, hi), "{:?}", &d[..n]);
@@ -320,12 +369,20 @@ mod tests {
         let mut check = Check::default();
         for k in 0..720 {
             let axis = k as f64 * 0.5f64.to_radians() + 0.003;
-            let origin = [-1.0 + 0.0117 * (k % 300) as f64, 0.5 + 0.0093 * (k % 370) as f64];
-            let cone = Footprint::Cone { half_angle_rad: (5.0 + (k % 40) as f64).to_radians() };
+            let origin = [
+                -1.0 + 0.0117 * (k % 300) as f64,
+                0.5 + 0.0093 * (k % 370) as f64,
+            ];
+            let cone = Footprint::Cone {
+                half_angle_rad: (5.0 + (k % 40) as f64).to_radians(),
+            };
             visit(&grid, origin, axis, 1.0 + (k % 5) as f64, cone, &mut check);
         }
         let [blocks, short, inside] = check.0;
-        assert!(blocks > 10_000 && short > 1_000 && inside > 1_000, "{blocks} blocks, {short} short, {inside} inside");
+        assert!(
+            blocks > 10_000 && short > 1_000 && inside > 1_000,
+            "{blocks} blocks, {short} short, {inside} inside"
+        );
     }
 
     /// Every cell the ray visits intersects the segment, they are contiguous,
@@ -338,7 +395,9 @@ mod tests {
             let o = [2.512, 2.487];
             let reach = 1.7;
             let mut cells = Vec::new();
-            visit(&grid, o, a, reach, Footprint::Ray, &mut |i, d| cells.push((grid.cell(i), d)));
+            visit(&grid, o, a, reach, Footprint::Ray, &mut |i, d| {
+                cells.push((grid.cell(i), d))
+            });
             // Cells are 4-connected neighbours, distances increase.
             for w in cells.windows(2) {
                 let (c0, d0) = w[0];
@@ -349,13 +408,21 @@ mod tests {
             // The end point's cell is the last one or just before it.
             let end = [o[0] + reach * a.cos(), o[1] + reach * a.sin()];
             let end_cell = grid.world_to_cell(end[0], end[1]).unwrap();
-            let pos = cells.iter().position(|(c, _)| *c == end_cell).expect("end cell visited");
+            let pos = cells
+                .iter()
+                .position(|(c, _)| *c == end_cell)
+                .expect("end cell visited");
             assert!(cells.len() - pos <= 2, "walked past the end");
             // Dense sampling of the segment finds no cell the walk missed.
             for s in 0..2000 {
                 let t = reach * s as f64 / 2000.0;
-                let c = grid.world_to_cell(o[0] + t * a.cos(), o[1] + t * a.sin()).unwrap();
-                assert!(cells.iter().any(|(x, _)| *x == c), "missed {c:?} at angle {a}");
+                let c = grid
+                    .world_to_cell(o[0] + t * a.cos(), o[1] + t * a.sin())
+                    .unwrap();
+                assert!(
+                    cells.iter().any(|(x, _)| *x == c),
+                    "missed {c:?} at angle {a}"
+                );
             }
         }
     }
@@ -364,7 +431,14 @@ mod tests {
     fn ray_stops_at_map_edge() {
         let grid = Grid::new([0.0, 0.0], 1.0, 3, 3).unwrap();
         let mut n = 0;
-        visit(&grid, [0.5, 1.5], 0.0, 100.0, Footprint::Ray, &mut |_, _| n += 1);
+        visit(
+            &grid,
+            [0.5, 1.5],
+            0.0,
+            100.0,
+            Footprint::Ray,
+            &mut |_, _| n += 1,
+        );
         assert_eq!(n, 3);
     }
 }

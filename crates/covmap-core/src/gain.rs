@@ -125,8 +125,16 @@ pub fn entropy(h: &[f32]) -> f64 {
 /// `I(h | k) = H(h) - H(h')`, `h'` the normalised product of `h` and kernel
 /// `k`, straight from the definitions (eq. 11-12).
 pub fn information_gain(h: &[f32], k: &[f32]) -> f64 {
-    let z: f64 = h.iter().zip(k).map(|(&a, &b)| f64::from(a) * f64::from(b)).sum();
-    let posterior_entropy = -h.iter().zip(k).map(|(&a, &b)| x_ln_x(f64::from(a) * f64::from(b) / z)).sum::<f64>();
+    let z: f64 = h
+        .iter()
+        .zip(k)
+        .map(|(&a, &b)| f64::from(a) * f64::from(b))
+        .sum();
+    let posterior_entropy = -h
+        .iter()
+        .zip(k)
+        .map(|(&a, &b)| x_ln_x(f64::from(a) * f64::from(b) / z))
+        .sum::<f64>();
     entropy(h) - posterior_entropy
 }
 
@@ -203,7 +211,9 @@ fn trace_readings(
     // A reading ends at most half a cell past the centre of a cell the beam
     // crosses, so none lies beyond the map's farthest corner plus a cell.
     let [x0, y0, x1, y1] = grid.bounds_m();
-    let far = (origin[0] - x0).max(x1 - origin[0]).hypot((origin[1] - y0).max(y1 - origin[1]));
+    let far = (origin[0] - x0)
+        .max(x1 - origin[0])
+        .hypot((origin[1] - y0).max(y1 - origin[1]));
     let limit = ((far + r) / step_m).ceil() + 1.0;
     let wanted = (range.max_range_m / step_m).ceil();
     let slots = if wanted > limit {
@@ -212,7 +222,10 @@ fn trace_readings(
     } else {
         // The readings `j * step_m` below the maximum range.
         let n = wanted as usize;
-        (0..=n).rev().find(|&j| (j as f64) * step_m < range.max_range_m).map_or(0, |j| j + 1)
+        (0..=n)
+            .rev()
+            .find(|&j| (j as f64) * step_m < range.max_range_m)
+            .map_or(0, |j| j + 1)
     };
     let mut probabilities = vec![0.0; slots];
     let mut through = 1.0f64;
@@ -228,8 +241,19 @@ fn trace_readings(
             through *= 1.0 - c;
         }
     };
-    visit(grid, origin, angle_rad, range.max_range_m, Footprint::Ray, &mut trace);
-    ReadingDistribution { step_m, probabilities, no_echo: through }
+    visit(
+        grid,
+        origin,
+        angle_rad,
+        range.max_range_m,
+        Footprint::Ray,
+        &mut trace,
+    );
+    ReadingDistribution {
+        step_m,
+        probabilities,
+        no_echo: through,
+    }
 }
 
 /// `h ln h` of every bin of every histogram, in `f64` (through the
@@ -267,8 +291,12 @@ impl LogCache {
         // which of its cells are at the prior.
         const CELLS: usize = 4096;
         let fill = |(((u, e), p), h): Piece<'_>| {
-            u.iter_mut().zip(h).for_each(|(u, &v)| *u = x_ln_x_of_f32(v));
-            e.iter_mut().zip(u.chunks_exact(bins)).for_each(|(e, u)| *e = -u.iter().sum::<f64>());
+            u.iter_mut()
+                .zip(h)
+                .for_each(|(u, &v)| *u = x_ln_x_of_f32(v));
+            e.iter_mut()
+                .zip(u.chunks_exact(bins))
+                .for_each(|(e, u)| *e = -u.iter().sum::<f64>());
             p.iter_mut()
                 .zip(h.chunks_exact(bins))
                 .for_each(|(p, h)| *p = u8::from(h.iter().all(|v| v.to_bits() == prior_bits)));
@@ -286,8 +314,17 @@ impl LogCache {
         }
         #[cfg(not(feature = "parallel"))]
         pieces.into_iter().for_each(fill);
-        let prior_gain = if prior.contains(&1) { prior_gains(bins, table) } else { Vec::new() };
-        Self { h_ln_h, entropy, prior, prior_gain }
+        let prior_gain = if prior.contains(&1) {
+            prior_gains(bins, table)
+        } else {
+            Vec::new()
+        };
+        Self {
+            h_ln_h,
+            entropy,
+            prior,
+            prior_gain,
+        }
     }
 }
 
@@ -348,7 +385,11 @@ impl<'a> GainEvaluator<'a> {
     /// [`CovmapError::InvalidParameter`] if the model is invalid, or
     /// `options.range_step_m` is not between [`MIN_STEP_FRACTION`] of the
     /// grid resolution and the resolution.
-    pub fn new<M: SensorModel + ?Sized>(map: &'a CoverageMap, model: &M, options: GainOptions) -> Result<Self> {
+    pub fn new<M: SensorModel + ?Sized>(
+        map: &'a CoverageMap,
+        model: &M,
+        options: GainOptions,
+    ) -> Result<Self> {
         model.validate()?;
         let resolution = map.grid().resolution_m();
         let step_m = options.range_step_m.unwrap_or(resolution);
@@ -384,10 +425,16 @@ impl<'a> GainEvaluator<'a> {
     /// [`CovmapError::PoseOutsideMap`] if one lies in no cell of the map,
     /// [`CovmapError::InvalidBearing`] if a bearing, or its sum with a
     /// pose's heading, is not finite.
-    pub fn evaluate(&self, poses: &[Pose], bearings: &[f64], method: GainMethod) -> Result<Vec<f64>> {
+    pub fn evaluate(
+        &self,
+        poses: &[Pose],
+        bearings: &[f64],
+        method: GainMethod,
+    ) -> Result<Vec<f64>> {
         self.validate(poses, bearings)?;
         if method == GainMethod::Fast {
-            self.cache.get_or_init(|| LogCache::new(self.map, &self.table));
+            self.cache
+                .get_or_init(|| LogCache::new(self.map, &self.table));
         }
         let beam = |pose: &Pose, b: f64, queue: &mut Queue| -> f64 {
             let origin = [pose.x_m, pose.y_m];
@@ -412,10 +459,15 @@ impl<'a> GainEvaluator<'a> {
             .collect();
         order.sort_unstable();
         let group = |members: &[(u64, usize)]| -> Vec<(usize, f64)> {
-            let mut beams: Vec<(f64, usize, f64)> = Vec::with_capacity(members.len() * bearings.len());
+            let mut beams: Vec<(f64, usize, f64)> =
+                Vec::with_capacity(members.len() * bearings.len());
             for (slot, &(_, k)) in members.iter().enumerate() {
                 for &b in bearings {
-                    beams.push(((poses[k].theta_rad + b).rem_euclid(std::f64::consts::TAU), slot, b));
+                    beams.push((
+                        (poses[k].theta_rad + b).rem_euclid(std::f64::consts::TAU),
+                        slot,
+                        b,
+                    ));
                 }
             }
             beams.sort_by(|x, y| x.0.total_cmp(&y.0).then(x.1.cmp(&y.1)));
@@ -450,9 +502,14 @@ impl<'a> GainEvaluator<'a> {
         let mut n = 0u64;
         for pose in poses {
             for &b in bearings {
-                visit(self.map.grid(), [pose.x_m, pose.y_m], pose.theta_rad + b, reach, self.footprint, &mut |_, _| {
-                    n += 1
-                });
+                visit(
+                    self.map.grid(),
+                    [pose.x_m, pose.y_m],
+                    pose.theta_rad + b,
+                    reach,
+                    self.footprint,
+                    &mut |_, _| n += 1,
+                );
             }
         }
         Ok(n)
@@ -471,13 +528,23 @@ impl<'a> GainEvaluator<'a> {
     }
 
     fn distribution(&self, origin: [f64; 2], angle: f64) -> ReadingDistribution {
-        trace_readings(self.map.grid(), &self.stop, origin, angle, &self.range, self.step_m)
+        trace_readings(
+            self.map.grid(),
+            &self.stop,
+            origin,
+            angle,
+            &self.range,
+            self.step_m,
+        )
     }
 
     /// The widest reach of any hypothetical reading.
     fn widest_reach(&self) -> f64 {
         let last = (self.range.max_range_m / self.step_m).ceil() * self.step_m;
-        self.range.reach(self.range.max_range_m).0.max(last + self.range.band_m)
+        self.range
+            .reach(self.range.max_range_m)
+            .0
+            .max(last + self.range.band_m)
     }
 
     /// Sum of the gains of the cells a reading `d` would update.
@@ -486,9 +553,19 @@ impl<'a> GainEvaluator<'a> {
         let lookup = self.table.reading(d.min(self.range.max_range_m), echo);
         let (data, bins) = (self.map.histograms(), self.map.bins());
         let mut sum = 0.0;
-        visit(self.map.grid(), origin, angle, reach, self.footprint, &mut |i, d_l| {
-            sum += information_gain(&data[i * bins..(i + 1) * bins], self.table.at(lookup.offset(d_l)));
-        });
+        visit(
+            self.map.grid(),
+            origin,
+            angle,
+            reach,
+            self.footprint,
+            &mut |i, d_l| {
+                sum += information_gain(
+                    &data[i * bins..(i + 1) * bins],
+                    self.table.at(lookup.offset(d_l)),
+                );
+            },
+        );
         sum
     }
 
@@ -502,7 +579,9 @@ impl<'a> GainEvaluator<'a> {
     }
 
     fn fast_beam(&self, origin: [f64; 2], angle: f64, queue: &mut Queue) -> f64 {
-        let Some(cache) = self.cache.get() else { return f64::NAN };
+        let Some(cache) = self.cache.get() else {
+            return f64::NAN;
+        };
         let dist = self.distribution(origin, angle);
         let (none_reach, _) = self.range.reach(self.range.max_range_m);
         let n = dist.probabilities.len();
@@ -512,14 +591,22 @@ impl<'a> GainEvaluator<'a> {
             .map(|j| {
                 let d = j as f64 * dist.step_m;
                 let (reach, echo) = self.range.reach(d);
-                Hypothesis { lookup: self.table.reading(d, echo), reach, p: dist.probabilities[j] }
+                Hypothesis {
+                    lookup: self.table.reading(d, echo),
+                    reach,
+                    p: dist.probabilities[j],
+                }
             })
             .collect();
         // The footprint of the farthest reading that can occur: no cell
         // beyond it is updated by any (behind a wall the ML map marks as
         // covered, none), and footprints of growing reaches are nested.
         let echo_reach = possible.last().map_or(0.0, |h| h.reach);
-        let reach = if dist.no_echo > 0.0 { echo_reach.max(none_reach) } else { echo_reach };
+        let reach = if dist.no_echo > 0.0 {
+            echo_reach.max(none_reach)
+        } else {
+            echo_reach
+        };
         let mut suffix = vec![0.0; possible.len() + 1];
         for j in (0..possible.len()).rev() {
             suffix[j] = suffix[j + 1] + possible[j].p;
@@ -595,7 +682,12 @@ impl<'a> GainEvaluator<'a> {
     /// One beam's sum with `N` bins and the arithmetic `A`, which `has`
     /// shows the processor to have.
     #[inline(always)]
-    fn run_with<const N: usize, const A: u8>(&self, has: Has<A>, beam: &Beam<'_>, queue: &mut Queue) -> f64 {
+    fn run_with<const N: usize, const A: u8>(
+        &self,
+        has: Has<A>,
+        beam: &Beam<'_>,
+        queue: &mut Queue,
+    ) -> f64 {
         let rows = Rows::new(
             self.map.histograms(),
             &beam.cache.h_ln_h,
@@ -604,8 +696,21 @@ impl<'a> GainEvaluator<'a> {
             self.table.k_ln_k(),
         );
         debug_assert_eq!(queue.len, 0);
-        let mut sweep = FastBeam::<N, A> { has, beam, rows, total: 0.0, queue };
-        visit(self.map.grid(), beam.origin, beam.angle, beam.reach, self.footprint, &mut sweep);
+        let mut sweep = FastBeam::<N, A> {
+            has,
+            beam,
+            rows,
+            total: 0.0,
+            queue,
+        };
+        visit(
+            self.map.grid(),
+            beam.origin,
+            beam.angle,
+            beam.reach,
+            self.footprint,
+            &mut sweep,
+        );
         sweep.flush();
         sweep.total
     }
@@ -620,7 +725,12 @@ const FEW_ECHOES: usize = 8;
 /// test; see [`Beam::buckets`]. Reach and freeness grow with the echo's
 /// distance, so the echoes before the run cannot reach the bucket's cells and
 /// those after it leave them all in free space.
-fn echo_buckets(possible: &[Hypothesis], bucket_m: f64, reach: f64, resolution_m: f64) -> Vec<(usize, usize)> {
+fn echo_buckets(
+    possible: &[Hypothesis],
+    bucket_m: f64,
+    reach: f64,
+    resolution_m: f64,
+) -> Vec<(usize, usize)> {
     // A cell's centre distance lies within half a cell diagonal of where the
     // footprint reaches it (they are equal for a cone).
     let margin = resolution_m + 1e-6 * bucket_m;
@@ -718,7 +828,13 @@ struct Queue {
 
 impl Queue {
     fn new() -> Self {
-        Self { cell: [0; SLOTS], offset: [0; SLOTS], weight: [0.0; SLOTS], entropy: [0.0; SLOTS], len: 0 }
+        Self {
+            cell: [0; SLOTS],
+            offset: [0; SLOTS],
+            weight: [0.0; SLOTS],
+            entropy: [0.0; SLOTS],
+            len: 0,
+        }
     }
 }
 
@@ -745,17 +861,39 @@ impl<'a, const N: usize> Rows<'a, N> {
     /// If `h_ln_h` is not as long as `h` or `k_ln_k` not as long as `k` (the
     /// unchecked reads of [`row_sums_zmm`] rely on both), or `entropy` does
     /// not hold one value per histogram.
-    fn new(h: &'a [f32], h_ln_h: &'a [f64], entropy: &'a [f64], k: &'a [f64], k_ln_k: &'a [f64]) -> Self {
-        assert!(h.len() == h_ln_h.len() && k.len() == k_ln_k.len(), "rows of unequal lengths");
-        let rows = Self { h: rows(h), h_ln_h: rows(h_ln_h), entropy, k: rows(k), k_ln_k: rows(k_ln_k) };
-        assert!(N == 0 || rows.h.len() == entropy.len(), "one entropy per histogram");
+    fn new(
+        h: &'a [f32],
+        h_ln_h: &'a [f64],
+        entropy: &'a [f64],
+        k: &'a [f64],
+        k_ln_k: &'a [f64],
+    ) -> Self {
+        assert!(
+            h.len() == h_ln_h.len() && k.len() == k_ln_k.len(),
+            "rows of unequal lengths"
+        );
+        let rows = Self {
+            h: rows(h),
+            h_ln_h: rows(h_ln_h),
+            entropy,
+            k: rows(k),
+            k_ln_k: rows(k_ln_k),
+        };
+        assert!(
+            N == 0 || rows.h.len() == entropy.len(),
+            "one entropy per histogram"
+        );
         rows
     }
 }
 
 /// `values` cut into rows of `N` (none for `N = 0`).
 fn rows<T, const N: usize>(values: &[T]) -> &[[T; N]] {
-    if N == 0 { &[] } else { values.as_chunks::<N>().0 }
+    if N == 0 {
+        &[]
+    } else {
+        values.as_chunks::<N>().0
+    }
 }
 
 /// Candidates evaluated together.
@@ -787,8 +925,11 @@ impl<const N: usize, const A: u8> FastBeam<'_, N, A> {
             return;
         }
         let q = &self.queue;
-        self.total +=
-            if N == 0 { weighted_gains_any(self.beam, q) } else { weighted_gains::<N, A>(self.has, &self.rows, q) };
+        self.total += if N == 0 {
+            weighted_gains_any(self.beam, q)
+        } else {
+            weighted_gains::<N, A>(self.has, &self.rows, q)
+        };
         self.queue.len = 0;
     }
 }
@@ -856,13 +997,20 @@ impl Arith {
     #[cfg(test)]
     fn available() -> Vec<Self> {
         let widest = Self::detect() as u8;
-        [Self::Avx512, Self::Avx2, Self::Baseline].into_iter().filter(|&a| a as u8 <= widest).collect()
+        [Self::Avx512, Self::Avx2, Self::Baseline]
+            .into_iter()
+            .filter(|&a| a as u8 <= widest)
+            .collect()
     }
 }
 
 /// [`weighted_gains_with`] compiled for the arithmetic `A` (`N > 0`), which
 /// `has` shows the processor to have.
-fn weighted_gains<const N: usize, const A: u8>(has: Has<A>, rows: &Rows<'_, N>, jobs: &Queue) -> f64 {
+fn weighted_gains<const N: usize, const A: u8>(
+    has: Has<A>,
+    rows: &Rows<'_, N>,
+    jobs: &Queue,
+) -> f64 {
     #[cfg(target_arch = "x86_64")]
     {
         // SAFETY: `has` shows that the processor has the instructions `A`
@@ -902,7 +1050,11 @@ fn weighted_gains_avx2<const N: usize>(rows: &Rows<'_, N>, jobs: &Queue) -> f64 
 /// shows the processor to have: with [`AVX2`] (or wider) the sums are formed
 /// in AVX2 registers ([`sums_avx2`]), else in plain code ([`sums`]).
 #[inline(always)]
-fn weighted_gains_with<const N: usize, const A: u8>(has: Has<A>, rows: &Rows<'_, N>, q: &Queue) -> f64 {
+fn weighted_gains_with<const N: usize, const A: u8>(
+    has: Has<A>,
+    rows: &Rows<'_, N>,
+    q: &Queue,
+) -> f64 {
     let _ = has;
     let n = q.len.min(SLOTS);
     // Unused slots hold Z = 1, A = 0.
@@ -913,7 +1065,8 @@ fn weighted_gains_with<const N: usize, const A: u8>(has: Has<A>, rows: &Rows<'_,
         #[cfg(target_arch = "x86_64")]
         if A >= AVX2 {
             // SAFETY: `has` shows that the processor has AVX2 and FMA.
-            (z[j], a[j]) = unsafe { sums_avx2::<N>(&rows.h[i], &rows.h_ln_h[i], &rows.k[e], &rows.k_ln_k[e]) };
+            (z[j], a[j]) =
+                unsafe { sums_avx2::<N>(&rows.h[i], &rows.h_ln_h[i], &rows.k[e], &rows.k_ln_k[e]) };
             continue;
         }
         (z[j], a[j]) = sums::<N>(&rows.h[i], &rows.h_ln_h[i], &rows.k[e], &rows.k_ln_k[e]);
@@ -926,7 +1079,11 @@ fn weighted_gains_with<const N: usize, const A: u8>(has: Has<A>, rows: &Rows<'_,
     let mut total = 0.0;
     for j in 0..n {
         // The fast logarithm holds for normal numbers only.
-        let h_post = if z[j].is_normal() { posterior[j] } else { z[j].ln() - a[j] / z[j] };
+        let h_post = if z[j].is_normal() {
+            posterior[j]
+        } else {
+            z[j].ln() - a[j] / z[j]
+        };
         total += q.weight[j] * (q.entropy[j] - h_post);
     }
     total
@@ -1039,11 +1196,19 @@ fn row_sums_zmm<const N: usize>(
     e: usize,
 ) -> (std::arch::x86_64::__m512d, std::arch::x86_64::__m512d) {
     use std::arch::x86_64::*;
-    assert!(i < rows.h.len() && e < rows.k.len(), "cell or kernel out of range");
+    assert!(
+        i < rows.h.len() && e < rows.k.len(),
+        "cell or kernel out of range"
+    );
     // SAFETY: `Rows::new` made `h_ln_h` as long as `h` and `k_ln_k` as long
     // as `k`, and the two indices were checked against those.
     let (h, u, k, m) = unsafe {
-        (rows.h.get_unchecked(i), rows.h_ln_h.get_unchecked(i), rows.k.get_unchecked(e), rows.k_ln_k.get_unchecked(e))
+        (
+            rows.h.get_unchecked(i),
+            rows.h_ln_h.get_unchecked(i),
+            rows.k.get_unchecked(e),
+            rows.k_ln_k.get_unchecked(e),
+        )
     };
     // Each chunk of eight bins on its own, then the chunks added pairwise.
     let mut z = [_mm512_setzero_pd(); 4];
@@ -1058,7 +1223,10 @@ fn row_sums_zmm<const N: usize>(
                 _mm512_loadu_pd(m.as_ptr().add(8 * c)),
             )
         };
-        let (zc, ac) = (_mm512_mul_pd(hv, kv), _mm512_fmadd_pd(uv, kv, _mm512_mul_pd(hv, mv)));
+        let (zc, ac) = (
+            _mm512_mul_pd(hv, kv),
+            _mm512_fmadd_pd(uv, kv, _mm512_mul_pd(hv, mv)),
+        );
         if c < 4 {
             (z[c], a[c]) = (zc, ac);
         } else {
@@ -1091,7 +1259,10 @@ fn fold4<const N: usize>(v: [std::arch::x86_64::__m512d; 4]) -> std::arch::x86_6
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx512f")]
 #[inline]
-fn sum_pairs(x: std::arch::x86_64::__m512d, y: std::arch::x86_64::__m512d) -> std::arch::x86_64::__m512d {
+fn sum_pairs(
+    x: std::arch::x86_64::__m512d,
+    y: std::arch::x86_64::__m512d,
+) -> std::arch::x86_64::__m512d {
     use std::arch::x86_64::*;
     _mm512_add_pd(_mm512_unpacklo_pd(x, y), _mm512_unpackhi_pd(x, y))
 }
@@ -1101,9 +1272,15 @@ fn sum_pairs(x: std::arch::x86_64::__m512d, y: std::arch::x86_64::__m512d) -> st
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx512f")]
 #[inline]
-fn sum_quads(x: std::arch::x86_64::__m512d, y: std::arch::x86_64::__m512d) -> std::arch::x86_64::__m512d {
+fn sum_quads(
+    x: std::arch::x86_64::__m512d,
+    y: std::arch::x86_64::__m512d,
+) -> std::arch::x86_64::__m512d {
     use std::arch::x86_64::*;
-    _mm512_add_pd(_mm512_shuffle_f64x2::<0b10_00_10_00>(x, y), _mm512_shuffle_f64x2::<0b11_01_11_01>(x, y))
+    _mm512_add_pd(
+        _mm512_shuffle_f64x2::<0b10_00_10_00>(x, y),
+        _mm512_shuffle_f64x2::<0b11_01_11_01>(x, y),
+    )
 }
 
 /// `Z = sum h k` and `A = sum k (h ln h) + h (k ln k)` for `N` bins (a
@@ -1146,9 +1323,15 @@ fn sums_avx2<const N: usize>(h: &[f32; N], u: &[f64; N], k: &[f64; N], m: &[f64;
     }
     // (lane 0 + lane 2) + (lane 1 + lane 3), as `sums` adds them, for both
     // sums at once: [z0 + z2, z1 + z3, a0 + a2, a1 + a3], then pairwise.
-    let halves = _mm256_add_pd(_mm256_permute2f128_pd::<0x20>(z, a), _mm256_permute2f128_pd::<0x31>(z, a));
+    let halves = _mm256_add_pd(
+        _mm256_permute2f128_pd::<0x20>(z, a),
+        _mm256_permute2f128_pd::<0x31>(z, a),
+    );
     let both = _mm256_hadd_pd(halves, halves);
-    (_mm256_cvtsd_f64(both), _mm_cvtsd_f64(_mm256_extractf128_pd::<1>(both)))
+    (
+        _mm256_cvtsd_f64(both),
+        _mm_cvtsd_f64(_mm256_extractf128_pd::<1>(both)),
+    )
 }
 
 /// [`weighted_gains`] for any bin count, plainly.
@@ -1156,9 +1339,19 @@ fn weighted_gains_any(beam: &Beam<'_>, q: &Queue) -> f64 {
     let bins = beam.map.bins();
     let (k, m) = (beam.table.values_f64(), beam.table.k_ln_k());
     let mut total = 0.0;
-    for (((&i, &offset), &w), &entropy) in q.cell.iter().zip(&q.offset).zip(&q.weight).zip(&q.entropy).take(q.len) {
+    for (((&i, &offset), &w), &entropy) in q
+        .cell
+        .iter()
+        .zip(&q.offset)
+        .zip(&q.weight)
+        .zip(&q.entropy)
+        .take(q.len)
+    {
         let cell = i * bins..(i + 1) * bins;
-        let (h, u) = (&beam.map.histograms()[cell.clone()], &beam.cache.h_ln_h[cell]);
+        let (h, u) = (
+            &beam.map.histograms()[cell.clone()],
+            &beam.cache.h_ln_h[cell],
+        );
         let kernel = offset..offset + bins;
         let h_u = h.iter().map(|&v| f64::from(v)).zip(u.iter().copied());
         total += w * plain_gain(h_u, entropy, &k[kernel.clone()], &m[kernel]);
@@ -1214,7 +1407,11 @@ impl<const N: usize, const A: u8> FastBeam<'_, N, A> {
         if !(far <= reach_m) {
             return None;
         }
-        let mut j = if beam.buckets.is_empty() { 0 } else { beam.buckets[beam.bucket(near)].0 };
+        let mut j = if beam.buckets.is_empty() {
+            0
+        } else {
+            beam.buckets[beam.bucket(near)].0
+        };
         while j < beam.possible.len() && beam.possible[j].reach < near {
             j += 1;
         }
@@ -1270,8 +1467,11 @@ impl<const N: usize, const A: u8> CellVisitor for FastBeam<'_, N, A> {
         if !prior {
             self.prefetch(i);
         }
-        let (lo, hi) =
-            if beam.buckets.is_empty() { (0, beam.possible.len()) } else { beam.buckets[beam.bucket(enter)] };
+        let (lo, hi) = if beam.buckets.is_empty() {
+            (0, beam.possible.len())
+        } else {
+            beam.buckets[beam.bucket(enter)]
+        };
         // Echoes that end near the cell need kernels of their own. From the
         // first echo that reaches the cell and leaves it in free space on,
         // every farther one does both (reach and freeness grow with the
@@ -1298,7 +1498,14 @@ impl<const N: usize, const A: u8> CellVisitor for FastBeam<'_, N, A> {
     }
 
     #[inline(always)]
-    fn row_block(&mut self, first: usize, d: &[f64; ROW_BLOCK], n: usize, bounds: [f64; 2], reach_m: f64) {
+    fn row_block(
+        &mut self,
+        first: usize,
+        d: &[f64; ROW_BLOCK],
+        n: usize,
+        bounds: [f64; 2],
+        reach_m: f64,
+    ) {
         if let Some(w) = self.block_weight(bounds, reach_m) {
             // Every cell of the block gets the free kernel with weight `w`:
             // what `cell` would do for each, done for the block at once.
@@ -1340,8 +1547,11 @@ impl<const N: usize, const A: u8> CellVisitor for FastBeam<'_, N, A> {
             let q = &mut self.queue;
             let at = q.len.min(BATCH);
             let slots = at..at + ROW_BLOCK;
-            for (k, ((cell, offset), weight)) in
-                q.cell[slots.clone()].iter_mut().zip(&mut q.offset[slots.clone()]).zip(&mut q.weight[slots]).enumerate()
+            for (k, ((cell, offset), weight)) in q.cell[slots.clone()]
+                .iter_mut()
+                .zip(&mut q.offset[slots.clone()])
+                .zip(&mut q.weight[slots])
+                .enumerate()
             {
                 (*cell, *offset, *weight) = (first + k, free.free_offset(d[k]), w);
             }
@@ -1380,7 +1590,11 @@ impl CoverageMap {
         let resolution = self.grid().resolution_m();
         match self.cached_table() {
             Some(t) if t.serves(range, resolution, self.bins()) => Ok(Cow::Borrowed(t)),
-            _ => Ok(Cow::Owned(KernelTable::new(range, resolution, self.bins())?)),
+            _ => Ok(Cow::Owned(KernelTable::new(
+                range,
+                resolution,
+                self.bins(),
+            )?)),
         }
     }
 }
@@ -1413,8 +1627,14 @@ mod tests {
         assert_eq!(d.no_echo, 0.0, "the full wall stops every beam");
         // The partial cell at x in [3.0, 3.05) reflects 40 %, at 3.05 - 0.4 * 0.05 = 3.03.
         let j = ((3.03 - 1.025) / 0.05f64).round() as usize;
-        assert!((d.probabilities[j] - 0.4).abs() < 1e-7, "{:?}", &d.probabilities[35..45]);
-        let open = reading_distribution(&grid, &vec![0.0; grid.len()], [1.0, 1.0], 0.3, &range, 0.05).unwrap();
+        assert!(
+            (d.probabilities[j] - 0.4).abs() < 1e-7,
+            "{:?}",
+            &d.probabilities[35..45]
+        );
+        let open =
+            reading_distribution(&grid, &vec![0.0; grid.len()], [1.0, 1.0], 0.3, &range, 0.05)
+                .unwrap();
         assert_eq!(open.no_echo, 1.0);
     }
 
@@ -1424,22 +1644,42 @@ mod tests {
         let mut map = CoverageMap::new(grid);
         let sonar = SonarModel::default();
         let bearings: Vec<f64> = (0..8).map(|i| i as f64 * 0.785).collect();
-        map.integrate(&Pose::new(3.0, 2.5, 0.1), &[1.2, 2.0, 6.0, 0.7, 1.5, 2.2, 3.0, 0.4], &bearings, &sonar).unwrap();
-        map.integrate(&Pose::new(5.0, 2.0, -0.3), &[2.5, 1.0, 1.7, 0.9, 5.5, 2.2, 1.0, 0.8], &bearings, &sonar)
-            .unwrap();
+        map.integrate(
+            &Pose::new(3.0, 2.5, 0.1),
+            &[1.2, 2.0, 6.0, 0.7, 1.5, 2.2, 3.0, 0.4],
+            &bearings,
+            &sonar,
+        )
+        .unwrap();
+        map.integrate(
+            &Pose::new(5.0, 2.0, -0.3),
+            &[2.5, 1.0, 1.7, 0.9, 5.5, 2.2, 1.0, 0.8],
+            &bearings,
+            &sonar,
+        )
+        .unwrap();
         // No band behind the end point: an echo's reach then ends where its
         // free space does, give or take the end band.
         let mut laser_no_band = LaserModel::default();
         laser_no_band.range.band_m = 0.0;
         let mut sonar_no_band = sonar;
         sonar_no_band.range.band_m = 0.0;
-        let models: [&dyn SensorModel; 4] = [&sonar, &LaserModel::default(), &laser_no_band, &sonar_no_band];
+        let models: [&dyn SensorModel; 4] = [
+            &sonar,
+            &LaserModel::default(),
+            &laser_no_band,
+            &sonar_no_band,
+        ];
         for model in models {
             for stop_coverage in [StopCoverage::MaximumLikelihood, StopCoverage::Mean] {
-                let options = GainOptions { range_step_m: None, stop_coverage };
+                let options = GainOptions {
+                    range_step_m: None,
+                    stop_coverage,
+                };
                 let mut eval = GainEvaluator::new(&map, model, options).unwrap();
-                let poses: Vec<Pose> =
-                    (0..6).map(|k| Pose::new(0.4 + 1.1 * k as f64, 1.0 + 0.6 * k as f64, k as f64)).collect();
+                let poses: Vec<Pose> = (0..6)
+                    .map(|k| Pose::new(0.4 + 1.1 * k as f64, 1.0 + 0.6 * k as f64, k as f64))
+                    .collect();
                 let exact = eval.evaluate(&poses, &bearings, GainMethod::Exact).unwrap();
                 // Every arithmetic the processor can run.
                 for arith in Arith::available() {
@@ -1447,7 +1687,10 @@ mod tests {
                     let fast = eval.evaluate(&poses, &bearings, GainMethod::Fast).unwrap();
                     for (f, e) in fast.iter().zip(&exact) {
                         assert!(*e > 0.0);
-                        assert!((f - e).abs() <= 1e-6 * e.abs(), "{stop_coverage:?}, {arith:?}: fast {f} exact {e}");
+                        assert!(
+                            (f - e).abs() <= 1e-6 * e.abs(),
+                            "{stop_coverage:?}, {arith:?}: fast {f} exact {e}"
+                        );
                     }
                 }
             }
@@ -1495,19 +1738,30 @@ mod tests {
             let mut laser = LaserModel::default();
             laser.range.max_range_m = 1.0 + 1.5 * next();
             let models: [&dyn SensorModel; 2] = [&sonar, &laser];
-            let poses: Vec<Pose> =
-                (0..3).map(|_| Pose::new(0.05 + 2.7 * next(), 0.05 + 2.3 * next(), 6.0 * next() - 3.0)).collect();
+            let poses: Vec<Pose> = (0..3)
+                .map(|_| Pose::new(0.05 + 2.7 * next(), 0.05 + 2.3 * next(), 6.0 * next() - 3.0))
+                .collect();
             let bearings: Vec<f64> = (0..4).map(|_| 6.4 * next() - 3.2).collect();
-            let stop_coverage = if case % 3 == 0 { StopCoverage::Mean } else { StopCoverage::MaximumLikelihood };
+            let stop_coverage = if case % 3 == 0 {
+                StopCoverage::Mean
+            } else {
+                StopCoverage::MaximumLikelihood
+            };
             for model in models {
-                let options = GainOptions { range_step_m: None, stop_coverage };
+                let options = GainOptions {
+                    range_step_m: None,
+                    stop_coverage,
+                };
                 let mut eval = GainEvaluator::new(&map, model, options).unwrap();
                 let exact = eval.evaluate(&poses, &bearings, GainMethod::Exact).unwrap();
                 for arith in Arith::available() {
                     eval.arith = arith;
                     let fast = eval.evaluate(&poses, &bearings, GainMethod::Fast).unwrap();
                     for (f, e) in fast.iter().zip(&exact) {
-                        assert!((f - e).abs() <= 1e-6 * e.abs().max(1e-12), "case {case}, {arith:?}: {f} vs {e}");
+                        assert!(
+                            (f - e).abs() <= 1e-6 * e.abs().max(1e-12),
+                            "case {case}, {arith:?}: {f} vs {e}"
+                        );
                     }
                 }
             }
@@ -1540,7 +1794,8 @@ mod tests {
                     row[N - 1] = 1.0;
                     continue;
                 }
-                row.iter_mut().for_each(|v| *v = (next() as f32).powi(3) + 1e-6);
+                row.iter_mut()
+                    .for_each(|v| *v = (next() as f32).powi(3) + 1e-6);
                 let sum: f32 = row.iter().sum();
                 row.iter_mut().for_each(|v| *v /= sum);
             }
@@ -1558,23 +1813,39 @@ mod tests {
                 }
             }
             let m: Vec<f64> = k.iter().map(|&v| x_ln_x(v)).collect();
-            let (h, u, k, m) =
-                (Aligned::from_slice(&h), Aligned::from_slice(&u), Aligned::from_slice(&k), Aligned::from_slice(&m));
+            let (h, u, k, m) = (
+                Aligned::from_slice(&h),
+                Aligned::from_slice(&u),
+                Aligned::from_slice(&k),
+                Aligned::from_slice(&m),
+            );
             let rows = Rows::<N>::new(&h, &u, &entropy, &k, &m);
             for len in 1..=SLOTS {
                 for with_empty in [false, true] {
                     let mut q = Queue::new();
                     for j in 0..len {
-                        let i = if with_empty && j % 5 == 2 { cells - 1 } else { (j * 7) % (cells - 1) };
-                        let e = if with_empty { j % kernels } else { 1 + j % (kernels - 1) };
-                        (q.cell[j], q.offset[j], q.weight[j], q.entropy[j]) = (i, e * N, next(), entropy[i]);
+                        let i = if with_empty && j % 5 == 2 {
+                            cells - 1
+                        } else {
+                            (j * 7) % (cells - 1)
+                        };
+                        let e = if with_empty {
+                            j % kernels
+                        } else {
+                            1 + j % (kernels - 1)
+                        };
+                        (q.cell[j], q.offset[j], q.weight[j], q.entropy[j]) =
+                            (i, e * N, next(), entropy[i]);
                     }
                     q.len = len;
                     let plain = weighted_gains_with::<N, BASELINE>(Has::baseline(), &rows, &q);
                     // SAFETY: AVX-512 was detected above.
                     let wide = weighted_gains::<N, AVX512>(unsafe { Has::new() }, &rows, &q);
                     assert!(plain.is_finite(), "{N} bins, {len}: {plain}");
-                    assert!((wide - plain).abs() <= 1e-12 * plain.abs().max(1.0), "{N} bins, {len}: {wide} {plain}");
+                    assert!(
+                        (wide - plain).abs() <= 1e-12 * plain.abs().max(1.0),
+                        "{N} bins, {len}: {wide} {plain}"
+                    );
                 }
             }
         }
@@ -1588,13 +1859,22 @@ mod tests {
         let mut map = CoverageMap::new(Grid::new([0.0, 0.0], 0.1, 40, 50).unwrap());
         let sonar = SonarModel::default();
         let bearings: Vec<f64> = (0..8).map(|i| i as f64 * 0.785).collect();
-        map.integrate(&Pose::new(2.0, 2.0, 0.3), &[1.2, 2.0, 6.0, 0.7, 1.5, 2.2, 3.0, 0.4], &bearings, &sonar).unwrap();
+        map.integrate(
+            &Pose::new(2.0, 2.0, 0.3),
+            &[1.2, 2.0, 6.0, 0.7, 1.5, 2.2, 3.0, 0.4],
+            &bearings,
+            &sonar,
+        )
+        .unwrap();
         let eval = GainEvaluator::new(&map, &sonar, GainOptions::default()).unwrap();
-        let poses: Vec<Pose> =
-            (0..40).map(|k| Pose::new(0.3 + 0.12 * k as f64, 0.4 + 0.09 * k as f64, 0.7 * k as f64)).collect();
+        let poses: Vec<Pose> = (0..40)
+            .map(|k| Pose::new(0.3 + 0.12 * k as f64, 0.4 + 0.09 * k as f64, 0.7 * k as f64))
+            .collect();
         let together = eval.evaluate(&poses, &bearings, GainMethod::Fast).unwrap();
         for (pose, g) in poses.iter().zip(&together) {
-            let alone = eval.evaluate(std::slice::from_ref(pose), &bearings, GainMethod::Fast).unwrap();
+            let alone = eval
+                .evaluate(std::slice::from_ref(pose), &bearings, GainMethod::Fast)
+                .unwrap();
             assert_eq!(alone[0].to_bits(), g.to_bits());
         }
     }
@@ -1604,17 +1884,41 @@ mod tests {
         let map = CoverageMap::new(Grid::new([0.0, 0.0], 0.1, 10, 10).unwrap());
         let sonar = SonarModel::default();
         let eval = GainEvaluator::new(&map, &sonar, GainOptions::default()).unwrap();
-        assert!(eval.evaluate(&[Pose::new(-1.0, 0.5, 0.0)], &[0.0], GainMethod::Fast).is_err());
-        assert!(eval.evaluate(&[Pose::new(0.5, 0.5, f64::NAN)], &[0.0], GainMethod::Fast).is_err());
-        assert!(eval.evaluate(&[Pose::new(0.5, 0.5, 0.0)], &[f64::INFINITY], GainMethod::Exact).is_err());
+        assert!(
+            eval.evaluate(&[Pose::new(-1.0, 0.5, 0.0)], &[0.0], GainMethod::Fast)
+                .is_err()
+        );
+        assert!(
+            eval.evaluate(&[Pose::new(0.5, 0.5, f64::NAN)], &[0.0], GainMethod::Fast)
+                .is_err()
+        );
+        assert!(
+            eval.evaluate(
+                &[Pose::new(0.5, 0.5, 0.0)],
+                &[f64::INFINITY],
+                GainMethod::Exact
+            )
+            .is_err()
+        );
         // The direction overflows although heading and bearing are finite.
-        let err = eval.evaluate(&[Pose::new(0.5, 0.5, 1e308)], &[1e308], GainMethod::Fast).unwrap_err();
-        assert!(matches!(err, CovmapError::InvalidBearing { index: 0, .. }), "{err}");
+        let err = eval
+            .evaluate(&[Pose::new(0.5, 0.5, 1e308)], &[1e308], GainMethod::Fast)
+            .unwrap_err();
+        assert!(
+            matches!(err, CovmapError::InvalidBearing { index: 0, .. }),
+            "{err}"
+        );
         for step in [0.2, 0.0, 5e-324, 0.05 / 1024.0, f64::NAN] {
-            let bad = GainOptions { range_step_m: Some(step), ..GainOptions::default() };
+            let bad = GainOptions {
+                range_step_m: Some(step),
+                ..GainOptions::default()
+            };
             assert!(GainEvaluator::new(&map, &sonar, bad).is_err(), "{step}");
         }
-        let finest = GainOptions { range_step_m: Some(0.1 / 1024.0), ..GainOptions::default() };
+        let finest = GainOptions {
+            range_step_m: Some(0.1 / 1024.0),
+            ..GainOptions::default()
+        };
         assert!(GainEvaluator::new(&map, &sonar, finest).is_ok());
         // The public trace validates what the evaluator validates once.
         let (grid, range, stop) = (map.grid(), sonar.range, map.ml());
@@ -1636,10 +1940,20 @@ mod tests {
         laser.range.sigma_per_m = 0.0;
         laser.range.xi_per_m = 0.0;
         let bearings: Vec<f64> = (0..8).map(|k| f64::from(k) * 0.8).collect();
-        map.integrate(&Pose::new(2.0, 1.5, 0.1), &[1.0, 0.7, 3.0, 0.4, 2.0, 0.9, 1e13, 1.2], &bearings, &laser)
+        map.integrate(
+            &Pose::new(2.0, 1.5, 0.1),
+            &[1.0, 0.7, 3.0, 0.4, 2.0, 0.9, 1e13, 1.2],
+            &bearings,
+            &laser,
+        )
+        .unwrap();
+        let d = reading_distribution(map.grid(), &map.ml(), [2.0, 1.5], 0.3, &laser.range, 0.1)
             .unwrap();
-        let d = reading_distribution(map.grid(), &map.ml(), [2.0, 1.5], 0.3, &laser.range, 0.1).unwrap();
-        assert!(d.probabilities.len() <= 60, "{} slots", d.probabilities.len());
+        assert!(
+            d.probabilities.len() <= 60,
+            "{} slots",
+            d.probabilities.len()
+        );
         let total: f64 = d.probabilities.iter().sum::<f64>() + d.no_echo;
         assert!((total - 1.0).abs() < 1e-12);
         let eval = GainEvaluator::new(&map, &laser, GainOptions::default()).unwrap();

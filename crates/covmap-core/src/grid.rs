@@ -55,7 +55,12 @@ impl TryFrom<GridSpec> for Grid {
 
 impl From<Grid> for GridSpec {
     fn from(g: Grid) -> Self {
-        GridSpec { origin_m: g.origin_m, resolution_m: g.resolution_m, rows: g.rows, cols: g.cols }
+        GridSpec {
+            origin_m: g.origin_m,
+            resolution_m: g.resolution_m,
+            rows: g.rows,
+            cols: g.cols,
+        }
     }
 }
 
@@ -97,24 +102,45 @@ impl Grid {
             )));
         }
         if rows.checked_mul(cols).is_none_or(|n| n > MAX_CELLS) {
-            return Err(CovmapError::InvalidGrid(format!("{rows} x {cols} cells exceed the limit of {MAX_CELLS}")));
+            return Err(CovmapError::InvalidGrid(format!(
+                "{rows} x {cols} cells exceed the limit of {MAX_CELLS}"
+            )));
         }
-        let far = [origin_m[0] + cols as f64 * resolution_m, origin_m[1] + rows as f64 * resolution_m];
-        let largest = origin_m.iter().chain(&far).fold(0.0f64, |m, v| m.max(v.abs()));
+        let far = [
+            origin_m[0] + cols as f64 * resolution_m,
+            origin_m[1] + rows as f64 * resolution_m,
+        ];
+        let largest = origin_m
+            .iter()
+            .chain(&far)
+            .fold(0.0f64, |m, v| m.max(v.abs()));
         if !(largest <= MAX_CELLS_FROM_ZERO * resolution_m) {
             return Err(CovmapError::InvalidGrid(format!(
                 "a corner lies {largest} m from zero, more than 2^32 cells of {resolution_m} m: \
                  coordinates that large cannot resolve a cell"
             )));
         }
-        Ok(Self { origin_m, resolution_m, rows, cols })
+        Ok(Self {
+            origin_m,
+            resolution_m,
+            rows,
+            cols,
+        })
     }
 
     /// A grid covering the rectangle `[x_min, x_max] x [y_min, y_max]` (rounded
     /// up to whole cells) at `resolution_m`.
-    pub fn covering(x_min: f64, y_min: f64, x_max: f64, y_max: f64, resolution_m: f64) -> Result<Self> {
+    pub fn covering(
+        x_min: f64,
+        y_min: f64,
+        x_max: f64,
+        y_max: f64,
+        resolution_m: f64,
+    ) -> Result<Self> {
         if !(x_max > x_min && y_max > y_min) {
-            return Err(CovmapError::InvalidGrid(format!("empty rectangle [{x_min}, {x_max}] x [{y_min}, {y_max}]")));
+            return Err(CovmapError::InvalidGrid(format!(
+                "empty rectangle [{x_min}, {x_max}] x [{y_min}, {y_max}]"
+            )));
         }
         if !(resolution_m.is_finite() && resolution_m > 0.0) {
             return Err(CovmapError::InvalidGrid(format!(
@@ -124,7 +150,9 @@ impl Grid {
         let cols = ((x_max - x_min) / resolution_m - 1e-9).ceil().max(1.0);
         let rows = ((y_max - y_min) / resolution_m - 1e-9).ceil().max(1.0);
         if !(cols.is_finite() && rows.is_finite()) || cols * rows > MAX_CELLS as f64 {
-            return Err(CovmapError::InvalidGrid("rectangle too large for the resolution".into()));
+            return Err(CovmapError::InvalidGrid(
+                "rectangle too large for the resolution".into(),
+            ));
         }
         Self::new([x_min, y_min], resolution_m, rows as usize, cols as usize)
     }
@@ -160,7 +188,12 @@ impl Grid {
     /// `[x_min, y_min, x_max, y_max]` of the covered rectangle, metres.
     pub fn bounds_m(&self) -> [f64; 4] {
         let [ox, oy] = self.origin_m;
-        [ox, oy, ox + self.cols as f64 * self.resolution_m, oy + self.rows as f64 * self.resolution_m]
+        [
+            ox,
+            oy,
+            ox + self.cols as f64 * self.resolution_m,
+            oy + self.rows as f64 * self.resolution_m,
+        ]
     }
     /// Whether the world point lies inside the grid: exactly when
     /// [`Self::world_to_cell`] finds its cell. Up to the rounding of
@@ -182,7 +215,10 @@ impl Grid {
     /// Continuous grid coordinates `[col, row]` of a world point: cell
     /// `(r, c)` spans `[c, c + 1) x [r, r + 1)`.
     pub fn world_to_grid(&self, x: f64, y: f64) -> [f64; 2] {
-        [(x - self.origin_m[0]) / self.resolution_m, (y - self.origin_m[1]) / self.resolution_m]
+        [
+            (x - self.origin_m[0]) / self.resolution_m,
+            (y - self.origin_m[1]) / self.resolution_m,
+        ]
     }
     /// World position of a cell's centre, metres (the cell need not be inside).
     pub fn cell_center(&self, cell: Cell) -> [f64; 2] {
@@ -196,12 +232,20 @@ impl Grid {
         if cell.row < self.rows && cell.col < self.cols {
             Ok(cell.row * self.cols + cell.col)
         } else {
-            Err(CovmapError::CellOutOfBounds { row: cell.row, col: cell.col, rows: self.rows, cols: self.cols })
+            Err(CovmapError::CellOutOfBounds {
+                row: cell.row,
+                col: cell.col,
+                rows: self.rows,
+                cols: self.cols,
+            })
         }
     }
     /// The cell at a row-major index (which must be below [`Grid::len`]).
     pub fn cell(&self, index: usize) -> Cell {
-        Cell { row: index / self.cols, col: index % self.cols }
+        Cell {
+            row: index / self.cols,
+            col: index % self.cols,
+        }
     }
 
     /// Errors unless `(x, y)` lies inside the grid.
@@ -210,7 +254,14 @@ impl Grid {
             return Ok(cell);
         }
         let [x_min, y_min, x_max, y_max] = self.bounds_m();
-        Err(CovmapError::PoseOutsideMap { x, y, x_min, x_max, y_min, y_max })
+        Err(CovmapError::PoseOutsideMap {
+            x,
+            y,
+            x_min,
+            x_max,
+            y_min,
+            y_max,
+        })
     }
 }
 
@@ -221,7 +272,10 @@ mod tests {
     #[test]
     fn rejects_bad_geometry() {
         for r in [0.0, -0.1, f64::NAN, f64::INFINITY] {
-            assert!(matches!(Grid::new([0.0, 0.0], r, 3, 3), Err(CovmapError::InvalidGrid(_))));
+            assert!(matches!(
+                Grid::new([0.0, 0.0], r, 3, 3),
+                Err(CovmapError::InvalidGrid(_))
+            ));
         }
         assert!(Grid::new([0.0, 0.0], 0.1, 0, 3).is_err());
         assert!(Grid::new([0.0, 0.0], 0.1, 3, 0).is_err());
@@ -232,7 +286,10 @@ mod tests {
         assert!(Grid::new([0.0, 0.0], 1e-7, 1, 40).is_err());
         assert!(Grid::new([1e17, 0.0], 0.05, 4, 4).is_err());
         assert!(Grid::new([-3e8, 0.0], 0.05, 4, 4).is_err());
-        assert!(Grid::new([6e6, 4e6], 0.05, 400, 400).is_ok(), "UTM coordinates");
+        assert!(
+            Grid::new([6e6, 4e6], 0.05, 400, 400).is_ok(),
+            "UTM coordinates"
+        );
         assert!(Grid::new([0.0, 0.0], 1e-6, 1, 40).is_ok());
     }
 
@@ -247,7 +304,10 @@ mod tests {
         }
         assert_eq!(g.world_to_cell(-2.0001, 1.5), None);
         assert_eq!(g.world_to_cell(1.0, 1.5), None, "upper x edge excluded");
-        assert_eq!(g.world_to_cell(0.999, 2.999), Some(Cell { row: 7, col: 11 }));
+        assert_eq!(
+            g.world_to_cell(0.999, 2.999),
+            Some(Cell { row: 7, col: 11 })
+        );
         assert!(g.index(Cell { row: 8, col: 0 }).is_err());
     }
 
@@ -260,7 +320,12 @@ mod tests {
         let below = |v: f64| f64::from_bits(v.to_bits() - 1);
         // Rounds up to the far edge in grid coordinates: in no cell.
         assert_eq!(g.world_to_grid(below(x_max), 0.05)[0], 5.0);
-        for (x, y) in [(below(x_max), 0.05), (0.05, below(y_max)), (below(below(x_max)), 0.05), (-1.3, 0.0)] {
+        for (x, y) in [
+            (below(x_max), 0.05),
+            (0.05, below(y_max)),
+            (below(below(x_max)), 0.05),
+            (-1.3, 0.0),
+        ] {
             let cell = g.world_to_cell(x, y);
             assert_eq!(g.contains(x, y), cell.is_some(), "({x}, {y})");
             assert_eq!(g.check_inside(x, y).ok(), cell, "({x}, {y})");

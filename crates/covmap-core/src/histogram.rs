@@ -37,7 +37,11 @@ pub fn check_bins(bins: usize) -> Result<()> {
     if (MIN_BINS..=MAX_BINS).contains(&bins) {
         Ok(())
     } else {
-        Err(CovmapError::InvalidParameter { name: "bins", value: bins as f64, expected: "a bin count from 2 to 256" })
+        Err(CovmapError::InvalidParameter {
+            name: "bins",
+            value: bins as f64,
+            expected: "a bin count from 2 to 256",
+        })
     }
 }
 
@@ -108,7 +112,10 @@ pub(crate) fn update_any(h: &mut [f32], k: &[f32], floor: f32) {
 
 /// Shannon entropy in nats; `0 * ln 0` counts as 0.
 pub fn entropy(h: &[f32]) -> f32 {
-    -h.iter().filter(|&&p| p > 0.0).map(|&p| p * p.ln()).sum::<f32>()
+    -h.iter()
+        .filter(|&&p| p > 0.0)
+        .map(|&p| p * p.ln())
+        .sum::<f32>()
 }
 
 /// The index of the most probable bin (the first on ties).
@@ -123,7 +130,10 @@ pub fn argmax(h: &[f32]) -> usize {
 /// Expected coverage.
 pub fn mean(h: &[f32]) -> f32 {
     let n = h.len();
-    h.iter().enumerate().map(|(b, &p)| p * bin_value(b, n) as f32).sum()
+    h.iter()
+        .enumerate()
+        .map(|(b, &p)| p * bin_value(b, n) as f32)
+        .sum()
 }
 
 #[cfg(test)]

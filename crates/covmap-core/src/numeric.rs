@@ -49,10 +49,13 @@ const SQRT_HALF_HIGH: u64 = 0x3fe6_a09e;
 #[inline(always)]
 pub(crate) fn ln_normal(x: f64) -> f64 {
     // Shift the exponent so that mantissas at or above sqrt(2)/2 round up.
-    let bits = x.to_bits().wrapping_add((0x3ff0_0000 - SQRT_HALF_HIGH) << 32);
+    let bits = x
+        .to_bits()
+        .wrapping_add((0x3ff0_0000 - SQRT_HALF_HIGH) << 32);
     // The exponent k as a float without an integer conversion (which has no
     // vector instruction before AVX-512): 2^52 + e, minus 2^52 + 1023.
-    let k = f64::from_bits((bits >> 52) | 0x4330_0000_0000_0000) - (4_503_599_627_370_496.0 + 1023.0);
+    let k =
+        f64::from_bits((bits >> 52) | 0x4330_0000_0000_0000) - (4_503_599_627_370_496.0 + 1023.0);
     let m = f64::from_bits((bits & 0x000f_ffff_ffff_ffff) + (SQRT_HALF_HIGH << 32));
     let f = m - 1.0;
     let hfsq = 0.5 * f * f;
@@ -74,10 +77,15 @@ pub(crate) fn ln_normal(x: f64) -> f64 {
 pub(crate) fn ln_normal_zmm(x: std::arch::x86_64::__m512d) -> std::arch::x86_64::__m512d {
     use std::arch::x86_64::*;
     let c = _mm512_set1_pd;
-    let bits =
-        _mm512_add_epi64(_mm512_castpd_si512(x), _mm512_set1_epi64(((0x3ff0_0000 - SQRT_HALF_HIGH) << 32) as i64));
+    let bits = _mm512_add_epi64(
+        _mm512_castpd_si512(x),
+        _mm512_set1_epi64(((0x3ff0_0000 - SQRT_HALF_HIGH) << 32) as i64),
+    );
     let k = _mm512_sub_pd(
-        _mm512_castsi512_pd(_mm512_or_si512(_mm512_srli_epi64::<52>(bits), _mm512_set1_epi64(0x4330_0000_0000_0000))),
+        _mm512_castsi512_pd(_mm512_or_si512(
+            _mm512_srli_epi64::<52>(bits),
+            _mm512_set1_epi64(0x4330_0000_0000_0000),
+        )),
         c(4_503_599_627_370_496.0 + 1023.0),
     );
     let m = _mm512_castsi512_pd(_mm512_add_epi64(
@@ -91,7 +99,13 @@ pub(crate) fn ln_normal_zmm(x: std::arch::x86_64::__m512d) -> std::arch::x86_64:
     let z = mul(s, s);
     let w = mul(z, z);
     let t1 = mul(w, add(c(LG2), mul(w, add(c(LG4), mul(w, c(LG6))))));
-    let t2 = mul(z, add(c(LG1), mul(w, add(c(LG3), mul(w, add(c(LG5), mul(w, c(LG7))))))));
+    let t2 = mul(
+        z,
+        add(
+            c(LG1),
+            mul(w, add(c(LG3), mul(w, add(c(LG5), mul(w, c(LG7)))))),
+        ),
+    );
     let r = add(t2, t1);
     // s * (hfsq + r) + k * LN2_LO - hfsq + f + k * LN2_HI, left to right.
     let sum = add(mul(s, add(hfsq, r)), mul(k, c(LN2_LO)));
@@ -142,7 +156,16 @@ mod tests {
     #[test]
     fn x_ln_x_of_histogram_values() {
         let mut state = 0x9e37_79b9_7f4a_7c15u64;
-        let specials = [0.0f32, -0.0, 1.0, f32::MIN_POSITIVE, f32::from_bits(1), 0.5, 1e-30, 0.999_999_9];
+        let specials = [
+            0.0f32,
+            -0.0,
+            1.0,
+            f32::MIN_POSITIVE,
+            f32::from_bits(1),
+            0.5,
+            1e-30,
+            0.999_999_9,
+        ];
         for n in 0..1_000_000u32 {
             state ^= state << 13;
             state ^= state >> 7;
@@ -152,7 +175,10 @@ mod tests {
                 f32::from_bits((state >> 32) as u32 % 0x3f80_0100)
             });
             let (got, want) = (x_ln_x_of_f32(v), x_ln_x(f64::from(v)));
-            assert!((got - want).abs() <= 2.0 * f64::EPSILON * want.abs(), "{v:e}: {got:e} vs {want:e}");
+            assert!(
+                (got - want).abs() <= 2.0 * f64::EPSILON * want.abs(),
+                "{v:e}: {got:e} vs {want:e}"
+            );
         }
     }
 

@@ -30,14 +30,24 @@ pub struct OccupancyModel {
 
 impl Default for OccupancyModel {
     fn default() -> Self {
-        Self { p_occupied: 0.7, p_free: 0.35, log_odds_limit: 5.0 }
+        Self {
+            p_occupied: 0.7,
+            p_free: 0.35,
+            log_odds_limit: 5.0,
+        }
     }
 }
 
 impl OccupancyModel {
     /// Errors unless `0.5 < p_occupied < 1`, `0 < p_free < 0.5`, limit > 0.
     pub fn validate(&self) -> Result<()> {
-        let bad = |name, value, expected| Err(CovmapError::InvalidParameter { name, value, expected });
+        let bad = |name, value, expected| {
+            Err(CovmapError::InvalidParameter {
+                name,
+                value,
+                expected,
+            })
+        };
         if !(self.p_occupied > 0.5 && self.p_occupied < 1.0) {
             return bad("p_occupied", self.p_occupied, "a probability in (0.5, 1)");
         }
@@ -45,7 +55,11 @@ impl OccupancyModel {
             return bad("p_free", self.p_free, "a probability in (0, 0.5)");
         }
         if !(self.log_odds_limit.is_finite() && self.log_odds_limit > 0.0) {
-            return bad("log_odds_limit", self.log_odds_limit, "a positive, finite bound");
+            return bad(
+                "log_odds_limit",
+                self.log_odds_limit,
+                "a positive, finite bound",
+            );
         }
         Ok(())
     }
@@ -93,7 +107,11 @@ impl TryFrom<OccupancyGridData> for OccupancyGrid {
                 expected: "log-odds within the model's limit",
             });
         }
-        Ok(Self { model: d.model, log_odds: d.log_odds, counts: d.counts })
+        Ok(Self {
+            model: d.model,
+            log_odds: d.log_odds,
+            counts: d.counts,
+        })
     }
 }
 
@@ -103,13 +121,21 @@ impl OccupancyGrid {
     /// # Panics
     /// If its 8 bytes a cell cannot be allocated.
     pub fn new(grid: Grid) -> Self {
-        Self { model: OccupancyModel::default(), log_odds: vec![0.0; grid.len()], counts: ScanCounts::new(grid) }
+        Self {
+            model: OccupancyModel::default(),
+            log_odds: vec![0.0; grid.len()],
+            counts: ScanCounts::new(grid),
+        }
     }
 
     /// An unknown grid with `model`, counting into `counts` (which sets the grid).
     pub fn with_model(model: OccupancyModel, counts: ScanCounts) -> Result<Self> {
         model.validate()?;
-        Ok(Self { model, log_odds: vec![0.0; counts.grid().len()], counts })
+        Ok(Self {
+            model,
+            log_odds: vec![0.0; counts.grid().len()],
+            counts,
+        })
     }
 
     /// The grid.
@@ -126,7 +152,10 @@ impl OccupancyGrid {
     }
     /// Probability of occupancy, row-major.
     pub fn probabilities(&self) -> Vec<f32> {
-        self.log_odds.iter().map(|l| 1.0 / (1.0 + (-l).exp())).collect()
+        self.log_odds
+            .iter()
+            .map(|l| 1.0 / (1.0 + (-l).exp()))
+            .collect()
     }
     /// The scan counts of the same beams.
     pub fn counts(&self) -> &ScanCounts {
@@ -160,7 +189,11 @@ impl OccupancyGrid {
                 reach,
                 model.footprint(),
                 &mut |i: usize, d_l: f64| {
-                    let l = if echo && d_l >= r - half { l_occ } else { l_free };
+                    let l = if echo && d_l >= r - half {
+                        l_occ
+                    } else {
+                        l_free
+                    };
                     log_odds[i] = (log_odds[i] + l).clamp(-limit, limit);
                 },
             );
@@ -189,7 +222,10 @@ mod tests {
             s.replace("\"p_occupied\":0.7", "\"p_occupied\":7.0"),
         ] {
             assert_ne!(bad, s);
-            assert!(serde_json::from_str::<OccupancyGrid>(&bad).is_err(), "{bad}");
+            assert!(
+                serde_json::from_str::<OccupancyGrid>(&bad).is_err(),
+                "{bad}"
+            );
         }
     }
 }

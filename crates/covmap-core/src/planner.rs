@@ -91,27 +91,57 @@ impl Default for PlannerConfig {
 impl PlannerConfig {
     /// Errors unless every setting lies in its valid range.
     pub fn validate(&self) -> Result<()> {
-        let bad = |name, value, expected| Err(CovmapError::InvalidParameter { name, value, expected });
+        let bad = |name, value, expected| {
+            Err(CovmapError::InvalidParameter {
+                name,
+                value,
+                expected,
+            })
+        };
         if !(0.0..=1.0).contains(&self.alpha) {
             return bad("alpha", self.alpha, "a weight in [0, 1]");
         }
         if !(self.robot_radius_m >= 0.0 && self.robot_radius_m.is_finite()) {
-            return bad("robot_radius_m", self.robot_radius_m, "a non-negative, finite radius");
+            return bad(
+                "robot_radius_m",
+                self.robot_radius_m,
+                "a non-negative, finite radius",
+            );
         }
         if !(self.candidate_stride_m > 0.0 && self.candidate_stride_m.is_finite()) {
-            return bad("candidate_stride_m", self.candidate_stride_m, "a positive, finite spacing");
+            return bad(
+                "candidate_stride_m",
+                self.candidate_stride_m,
+                "a positive, finite spacing",
+            );
         }
         if !(self.min_travel_m >= 0.0 && self.min_travel_m.is_finite()) {
-            return bad("min_travel_m", self.min_travel_m, "a non-negative, finite distance");
+            return bad(
+                "min_travel_m",
+                self.min_travel_m,
+                "a non-negative, finite distance",
+            );
         }
         if !(self.min_gain_nats >= 0.0 && self.min_gain_nats.is_finite()) {
-            return bad("min_gain_nats", self.min_gain_nats, "a non-negative, finite gain");
+            return bad(
+                "min_gain_nats",
+                self.min_gain_nats,
+                "a non-negative, finite gain",
+            );
         }
         if !(0.0..1.0).contains(&self.blocked_coverage) {
-            return bad("blocked_coverage", self.blocked_coverage, "a coverage in [0, 1)");
+            return bad(
+                "blocked_coverage",
+                self.blocked_coverage,
+                "a coverage in [0, 1)",
+            );
         }
         if !(self.unknown_entropy_fraction > 0.0 && self.unknown_entropy_fraction <= 1.0) {
-            return bad("unknown_entropy_fraction", self.unknown_entropy_fraction, "a fraction in (0, 1]");
+            return bad(
+                "unknown_entropy_fraction",
+                self.unknown_entropy_fraction,
+                "a fraction in (0, 1]",
+            );
         }
         if !(self.epsilon > 0.0 && self.epsilon.is_finite()) {
             return bad("epsilon", self.epsilon, "a positive, finite entropy");
@@ -119,7 +149,11 @@ impl PlannerConfig {
         if let Some(step) = self.gain.range_step_m
             && !(step > 0.0 && step.is_finite())
         {
-            return bad("gain.range_step_m", step, "a positive, finite step (at most the grid resolution)");
+            return bad(
+                "gain.range_step_m",
+                step,
+                "a positive, finite step (at most the grid resolution)",
+            );
         }
         Ok(())
     }
@@ -198,7 +232,11 @@ impl Reachability {
             at = self.previous[at];
             cells.push(at);
         }
-        cells.iter().rev().map(|&i| self.grid.cell_center(self.grid.cell(i))).collect()
+        cells
+            .iter()
+            .rev()
+            .map(|&i| self.grid.cell_center(self.grid.cell(i)))
+            .collect()
     }
 }
 
@@ -208,7 +246,10 @@ struct Entry(f64, usize);
 impl Eq for Entry {}
 impl Ord for Entry {
     fn cmp(&self, other: &Self) -> Ordering {
-        other.0.total_cmp(&self.0).then_with(|| other.1.cmp(&self.1))
+        other
+            .0
+            .total_cmp(&self.0)
+            .then_with(|| other.1.cmp(&self.1))
     }
 }
 impl PartialOrd for Entry {
@@ -259,7 +300,8 @@ pub fn shortest_paths(grid: &Grid, passable: &[bool], start: Cell) -> Result<Rea
             if !passable[n]
                 || (dr != 0
                     && dc != 0
-                    && !(passable[(row * cols + nc) as usize] && passable[(nr * cols + col) as usize]))
+                    && !(passable[(row * cols + nc) as usize]
+                        && passable[(nr * cols + col) as usize]))
             {
                 continue;
             }
@@ -271,7 +313,11 @@ pub fn shortest_paths(grid: &Grid, passable: &[bool], start: Cell) -> Result<Rea
             }
         }
     }
-    Ok(Reachability { grid: *grid, cost, previous })
+    Ok(Reachability {
+        grid: *grid,
+        cost,
+        previous,
+    })
 }
 
 /// The decision-theoretic exploration planner.
@@ -346,13 +392,15 @@ impl Planner {
         // The prior's entropy as the map computes every cell's (in `f32`,
         // a little off `ln bins`), so that a fraction of 1 holds it unknown.
         let prior = vec![1.0 / map.bins() as f32; map.bins()];
-        let unknown_entropy = self.config.unknown_entropy_fraction * f64::from(crate::histogram::entropy(&prior));
+        let unknown_entropy =
+            self.config.unknown_entropy_fraction * f64::from(crate::histogram::entropy(&prior));
         let ml = map.ml();
         let entropy = map.entropy();
         ml.iter()
             .zip(&entropy)
             .map(|(&c, &h)| {
-                f64::from(c) > self.config.blocked_coverage || (unknown_blocks && f64::from(h) >= unknown_entropy)
+                f64::from(c) > self.config.blocked_coverage
+                    || (unknown_blocks && f64::from(h) >= unknown_entropy)
             })
             .collect()
     }
@@ -369,7 +417,11 @@ impl Planner {
 
     /// [`Self::free_space`], and shortest paths from `pose` over it and the
     /// unblocked cells the robot's disc at `pose` overlaps.
-    fn free_and_reachable(&self, map: &CoverageMap, pose: &Pose) -> Result<(Vec<bool>, Reachability)> {
+    fn free_and_reachable(
+        &self,
+        map: &CoverageMap,
+        pose: &Pose,
+    ) -> Result<(Vec<bool>, Reachability)> {
         let start = check_pose(map.grid(), pose)?;
         let grid = map.grid();
         let (free, blocked) = self.free_and_blocked(map);
@@ -403,7 +455,8 @@ impl Planner {
     ) -> Result<Plan> {
         let (free, reach) = self.free_and_reachable(map, pose)?;
         let grid = map.grid();
-        let stride = ((self.config.candidate_stride_m / grid.resolution_m()).round() as usize).max(1);
+        let stride =
+            ((self.config.candidate_stride_m / grid.resolution_m()).round() as usize).max(1);
         let mut indices = Vec::new();
         for row in (stride / 2..grid.rows()).step_by(stride) {
             for col in (stride / 2..grid.cols()).step_by(stride) {
@@ -426,12 +479,21 @@ impl Planner {
         let utilities = self.utilities(&gains, &costs)?;
         let chosen = (0..utilities.len())
             .filter(|&k| utilities[k] > f64::NEG_INFINITY)
-            .max_by(|&a, &b| utilities[a].total_cmp(&utilities[b]).then_with(|| b.cmp(&a)));
+            .max_by(|&a, &b| {
+                utilities[a]
+                    .total_cmp(&utilities[b])
+                    .then_with(|| b.cmp(&a))
+            });
         Ok(Plan {
             pose: chosen.map(|k| poses[k]),
             path: chosen.map_or_else(Vec::new, |k| reach.path_to(indices[k])),
             chosen,
-            candidates: Candidates { poses, gains, costs, utilities },
+            candidates: Candidates {
+                poses,
+                gains,
+                costs,
+                utilities,
+            },
         })
     }
 
@@ -440,19 +502,37 @@ impl Planner {
     /// Errors if `gains` and `costs` differ in length.
     pub fn utilities(&self, gains: &[f64], costs: &[f64]) -> Result<Vec<f64>> {
         if gains.len() != costs.len() {
-            return Err(CovmapError::LengthMismatch { what: "gains and costs", left: gains.len(), right: costs.len() });
+            return Err(CovmapError::LengthMismatch {
+                what: "gains and costs",
+                left: gains.len(),
+                right: costs.len(),
+            });
         }
         let worth = |k: usize| gains[k] > self.config.min_gain_nats;
-        let max_gain = (0..gains.len()).filter(|&k| worth(k)).map(|k| gains[k]).fold(0.0, f64::max);
-        let max_cost = (0..gains.len()).filter(|&k| worth(k)).map(|k| costs[k]).fold(0.0, f64::max);
+        let max_gain = (0..gains.len())
+            .filter(|&k| worth(k))
+            .map(|k| gains[k])
+            .fold(0.0, f64::max);
+        let max_cost = (0..gains.len())
+            .filter(|&k| worth(k))
+            .map(|k| costs[k])
+            .fold(0.0, f64::max);
         let a = self.config.alpha;
         Ok((0..gains.len())
             .map(|k| {
                 if !worth(k) {
                     return f64::NEG_INFINITY;
                 }
-                let g = if max_gain > 0.0 { gains[k] / max_gain } else { 0.0 };
-                let c = if max_cost > 0.0 { costs[k] / max_cost } else { 0.0 };
+                let g = if max_gain > 0.0 {
+                    gains[k] / max_gain
+                } else {
+                    0.0
+                };
+                let c = if max_cost > 0.0 {
+                    costs[k] / max_cost
+                } else {
+                    0.0
+                };
                 a * g - (1.0 - a) * c
             })
             .collect())
@@ -480,8 +560,8 @@ impl Planner {
                 status.stagnated_cells += 1;
             }
         }
-        status.done =
-            status.reachable_cells > 0 && status.certain_cells + status.stagnated_cells == status.reachable_cells;
+        status.done = status.reachable_cells > 0
+            && status.certain_cells + status.stagnated_cells == status.reachable_cells;
         Ok(status)
     }
 }
@@ -506,7 +586,11 @@ fn disc_offsets(radius: f64) -> Vec<(i64, i64)> {
 }
 
 /// Row-major indices of the cells at `offsets` from cell `i` that lie on `grid`.
-fn cells_at<'o>(grid: &Grid, i: usize, offsets: &'o [(i64, i64)]) -> impl Iterator<Item = usize> + 'o {
+fn cells_at<'o>(
+    grid: &Grid,
+    i: usize,
+    offsets: &'o [(i64, i64)],
+) -> impl Iterator<Item = usize> + 'o {
     let (rows, cols) = (grid.rows() as i64, grid.cols() as i64);
     let (row, col) = ((i / grid.cols()) as i64, (i % grid.cols()) as i64);
     offsets.iter().filter_map(move |&(dr, dc)| {
@@ -534,7 +618,9 @@ mod tests {
     use crate::sensor::{LaserModel, SonarModel};
 
     fn ring() -> Vec<f64> {
-        (0..24).map(|i| i as f64 * std::f64::consts::TAU / 24.0).collect()
+        (0..24)
+            .map(|i| i as f64 * std::f64::consts::TAU / 24.0)
+            .collect()
     }
 
     /// A square room 4 m wide seen from its centre a few times.
@@ -543,7 +629,10 @@ mod tests {
         let pose = Pose::new(4.0, 4.0, 0.0);
         let sonar = SonarModel::default();
         let bearings = ring();
-        let ranges: Vec<f64> = bearings.iter().map(|b| 2.0 / b.cos().abs().max(b.sin().abs())).collect();
+        let ranges: Vec<f64> = bearings
+            .iter()
+            .map(|b| 2.0 / b.cos().abs().max(b.sin().abs()))
+            .collect();
         for _ in 0..3 {
             map.integrate(&pose, &ranges, &bearings, &sonar).unwrap();
         }
@@ -557,7 +646,10 @@ mod tests {
         passable[2 * 5 + 2] = false;
         let r = shortest_paths(&grid, &passable, Cell { row: 0, col: 0 }).unwrap();
         assert_eq!(r.cost(4), 4.0);
-        assert!((r.cost(24) - 4.0 * std::f64::consts::SQRT_2 - 0.0).abs() > 1e-9, "the centre is blocked");
+        assert!(
+            (r.cost(24) - 4.0 * std::f64::consts::SQRT_2 - 0.0).abs() > 1e-9,
+            "the centre is blocked"
+        );
         assert!(!r.reachable(12));
         assert_eq!(r.path_to(4).len(), 5);
     }
@@ -566,14 +658,22 @@ mod tests {
     fn never_picks_unreachable_or_colliding_poses() {
         let (map, pose) = room();
         let planner = Planner::new(PlannerConfig::default()).unwrap();
-        let plan = planner.next_viewpoint(&map, &pose, &ring(), &SonarModel::default()).unwrap();
+        let plan = planner
+            .next_viewpoint(&map, &pose, &ring(), &SonarModel::default())
+            .unwrap();
         let free = planner.free_space(&map);
         let reach = planner.reachability(&map, &pose).unwrap();
         for p in &plan.candidates.poses {
-            let i = map.grid().index(map.grid().world_to_cell(p.x_m, p.y_m).unwrap()).unwrap();
+            let i = map
+                .grid()
+                .index(map.grid().world_to_cell(p.x_m, p.y_m).unwrap())
+                .unwrap();
             assert!(free[i] && reach.reachable(i));
             // Inside the room's walls, minus the robot's radius.
-            assert!((p.x_m - 4.0).abs() < 2.0 - 0.2 && (p.y_m - 4.0).abs() < 2.0 - 0.2, "{p:?}");
+            assert!(
+                (p.x_m - 4.0).abs() < 2.0 - 0.2 && (p.y_m - 4.0).abs() < 2.0 - 0.2,
+                "{p:?}"
+            );
         }
         assert!(plan.pose.is_some());
     }
@@ -582,13 +682,28 @@ mod tests {
     fn alpha_extremes() {
         let (map, pose) = room();
         let sonar = SonarModel::default();
-        let mut config = PlannerConfig { alpha: 0.0, min_travel_m: 0.3, ..PlannerConfig::default() };
-        let near = Planner::new(config).unwrap().next_viewpoint(&map, &pose, &ring(), &sonar).unwrap();
+        let mut config = PlannerConfig {
+            alpha: 0.0,
+            min_travel_m: 0.3,
+            ..PlannerConfig::default()
+        };
+        let near = Planner::new(config)
+            .unwrap()
+            .next_viewpoint(&map, &pose, &ring(), &sonar)
+            .unwrap();
         config.alpha = 1.0;
-        let far = Planner::new(config).unwrap().next_viewpoint(&map, &pose, &ring(), &sonar).unwrap();
+        let far = Planner::new(config)
+            .unwrap()
+            .next_viewpoint(&map, &pose, &ring(), &sonar)
+            .unwrap();
         let c = &near.candidates;
-        let worth: Vec<usize> = (0..c.gains.len()).filter(|&k| c.gains[k] > config.min_gain_nats).collect();
-        let min_cost = worth.iter().map(|&k| c.costs[k]).fold(f64::INFINITY, f64::min);
+        let worth: Vec<usize> = (0..c.gains.len())
+            .filter(|&k| c.gains[k] > config.min_gain_nats)
+            .collect();
+        let min_cost = worth
+            .iter()
+            .map(|&k| c.costs[k])
+            .fold(f64::INFINITY, f64::min);
         let max_gain = worth.iter().map(|&k| c.gains[k]).fold(0.0, f64::max);
         assert_eq!(c.costs[near.chosen.unwrap()], min_cost);
         assert_eq!(far.candidates.gains[far.chosen.unwrap()], max_gain);
@@ -625,16 +740,27 @@ mod tests {
         let [wx0, wy0] = grid.cell_center(wall);
         let half = 0.5 * grid.resolution_m();
         for radius in [0.0, 0.05, 0.12, 0.25, 0.27, 0.29] {
-            let planner = Planner::new(PlannerConfig { robot_radius_m: radius, ..PlannerConfig::default() }).unwrap();
+            let planner = Planner::new(PlannerConfig {
+                robot_radius_m: radius,
+                ..PlannerConfig::default()
+            })
+            .unwrap();
             let free = planner.free_space(&map);
             for (i, &f) in free.iter().enumerate() {
                 let [x, y] = grid.cell_center(grid.cell(i));
                 // Distance from the centre to the nearest point of the blocked cell.
-                let gap = ((x - wx0).abs() - half).max(0.0).hypot(((y - wy0).abs() - half).max(0.0));
+                let gap = ((x - wx0).abs() - half)
+                    .max(0.0)
+                    .hypot(((y - wy0).abs() - half).max(0.0));
                 let clear = grid.cell(i) != wall && gap >= radius;
                 // Away from the rounding of `gap == radius` itself.
                 if (gap - radius).abs() > 1e-9 {
-                    assert_eq!(f, clear, "radius {radius}, cell {:?}, gap {gap}", grid.cell(i));
+                    assert_eq!(
+                        f,
+                        clear,
+                        "radius {radius}, cell {:?}, gap {gap}",
+                        grid.cell(i)
+                    );
                 }
             }
         }
@@ -658,24 +784,58 @@ mod tests {
         };
         let planner = Planner::new(config).unwrap();
         let free = planner.free_space(&map);
-        assert!(!free[map.grid().index(start).unwrap()], "the start must lie in the inflated wall");
-        let plan = planner.next_viewpoint(&map, &pose, &ring(), &SonarModel::default()).unwrap();
+        assert!(
+            !free[map.grid().index(start).unwrap()],
+            "the start must lie in the inflated wall"
+        );
+        let plan = planner
+            .next_viewpoint(&map, &pose, &ring(), &SonarModel::default())
+            .unwrap();
         for p in &plan.candidates.poses {
-            let i = map.grid().index(map.grid().world_to_cell(p.x_m, p.y_m).unwrap()).unwrap();
+            let i = map
+                .grid()
+                .index(map.grid().world_to_cell(p.x_m, p.y_m).unwrap())
+                .unwrap();
             assert!(free[i], "candidate {p:?} collides");
         }
         let goal = plan.pose.expect("free space around");
         assert_ne!(map.grid().world_to_cell(goal.x_m, goal.y_m).unwrap(), start);
-        assert_eq!(plan.path.first().map(|c| map.grid().world_to_cell(c[0], c[1]).unwrap()), Some(start));
+        assert_eq!(
+            plan.path
+                .first()
+                .map(|c| map.grid().world_to_cell(c[0], c[1]).unwrap()),
+            Some(start)
+        );
     }
 
     #[test]
     fn rejects_bad_config() {
-        assert!(Planner::new(PlannerConfig { alpha: 1.5, ..PlannerConfig::default() }).is_err());
-        assert!(Planner::new(PlannerConfig { candidate_stride_m: 0.0, ..PlannerConfig::default() }).is_err());
-        assert!(Planner::new(PlannerConfig { robot_radius_m: f64::NAN, ..PlannerConfig::default() }).is_err());
+        assert!(
+            Planner::new(PlannerConfig {
+                alpha: 1.5,
+                ..PlannerConfig::default()
+            })
+            .is_err()
+        );
+        assert!(
+            Planner::new(PlannerConfig {
+                candidate_stride_m: 0.0,
+                ..PlannerConfig::default()
+            })
+            .is_err()
+        );
+        assert!(
+            Planner::new(PlannerConfig {
+                robot_radius_m: f64::NAN,
+                ..PlannerConfig::default()
+            })
+            .is_err()
+        );
         let planner = Planner::new(PlannerConfig::default()).unwrap();
-        assert!(matches!(planner.utilities(&[2.0, 3.0], &[1.0]), Err(CovmapError::LengthMismatch { .. })));
+        assert!(matches!(
+            planner.utilities(&[2.0, 3.0], &[1.0]),
+            Err(CovmapError::LengthMismatch { .. })
+        ));
     }
 
     /// With `unknown_entropy_fraction = 1`, a cell at the prior is still
@@ -684,11 +844,18 @@ mod tests {
     #[test]
     fn a_fraction_of_one_keeps_the_prior_unknown() {
         for bins in [10, 16, 17, 100, 256] {
-            let map = CoverageMap::with_bins(Grid::new([0.0, 0.0], 0.05, 20, 20).unwrap(), bins).unwrap();
-            let config =
-                PlannerConfig { unknown_entropy_fraction: 1.0, robot_radius_m: 0.0, ..PlannerConfig::default() };
+            let map =
+                CoverageMap::with_bins(Grid::new([0.0, 0.0], 0.05, 20, 20).unwrap(), bins).unwrap();
+            let config = PlannerConfig {
+                unknown_entropy_fraction: 1.0,
+                robot_radius_m: 0.0,
+                ..PlannerConfig::default()
+            };
             let free = Planner::new(config).unwrap().free_space(&map);
-            assert!(free.iter().all(|&f| !f), "{bins} bins: unexplored cells counted free");
+            assert!(
+                free.iter().all(|&f| !f),
+                "{bins} bins: unexplored cells counted free"
+            );
         }
     }
 
@@ -699,12 +866,27 @@ mod tests {
         let mut map = CoverageMap::new(Grid::new([0.0, 0.0], 0.05, 40, 40).unwrap());
         let laser = LaserModel::default();
         for _ in 0..20 {
-            map.integrate(&Pose::new(0.3, 1.0, 0.0), &[1.2], &[0.0], &laser).unwrap();
+            map.integrate(&Pose::new(0.3, 1.0, 0.0), &[1.2], &[0.0], &laser)
+                .unwrap();
         }
-        let config = PlannerConfig { robot_radius_m: 1e3, unknown_is_free: true, ..PlannerConfig::default() };
+        let config = PlannerConfig {
+            robot_radius_m: 1e3,
+            unknown_is_free: true,
+            ..PlannerConfig::default()
+        };
         let free = Planner::new(config).unwrap().free_space(&map);
         assert!(free.iter().all(|&f| !f));
-        let unblocked = PlannerConfig { robot_radius_m: 0.25, ..config };
-        assert!(Planner::new(unblocked).unwrap().free_space(&map).iter().any(|&f| f), "a small robot fits");
+        let unblocked = PlannerConfig {
+            robot_radius_m: 0.25,
+            ..config
+        };
+        assert!(
+            Planner::new(unblocked)
+                .unwrap()
+                .free_space(&map)
+                .iter()
+                .any(|&f| f),
+            "a small robot fits"
+        );
     }
 }

@@ -19,20 +19,33 @@ pub struct Pose {
 impl Pose {
     /// A pose from its components.
     pub const fn new(x_m: f64, y_m: f64, theta_rad: f64) -> Self {
-        Self { x_m, y_m, theta_rad }
+        Self {
+            x_m,
+            y_m,
+            theta_rad,
+        }
     }
 }
 
 impl From<[f64; 3]> for Pose {
     fn from([x_m, y_m, theta_rad]: [f64; 3]) -> Self {
-        Self { x_m, y_m, theta_rad }
+        Self {
+            x_m,
+            y_m,
+            theta_rad,
+        }
     }
 }
 
 /// Check a scan against a grid: finite pose inside the map, equal lengths,
 /// finite non-negative ranges, finite bearings whose beam directions (heading
 /// plus bearing) are finite too.
-pub(crate) fn validate_scan(grid: &Grid, pose: &Pose, ranges: &[f64], bearings: &[f64]) -> Result<()> {
+pub(crate) fn validate_scan(
+    grid: &Grid,
+    pose: &Pose,
+    ranges: &[f64],
+    bearings: &[f64],
+) -> Result<()> {
     check_pose(grid, pose)?;
     if ranges.len() != bearings.len() {
         return Err(CovmapError::LengthMismatch {
@@ -41,7 +54,11 @@ pub(crate) fn validate_scan(grid: &Grid, pose: &Pose, ranges: &[f64], bearings: 
             right: bearings.len(),
         });
     }
-    if let Some((index, &value)) = ranges.iter().enumerate().find(|(_, r)| !(r.is_finite() && **r >= 0.0)) {
+    if let Some((index, &value)) = ranges
+        .iter()
+        .enumerate()
+        .find(|(_, r)| !(r.is_finite() && **r >= 0.0))
+    {
         return Err(CovmapError::InvalidRange { index, value });
     }
     check_bearings(pose.theta_rad, bearings)
@@ -52,7 +69,11 @@ pub(crate) fn validate_scan(grid: &Grid, pose: &Pose, ranges: &[f64], bearings: 
 /// ([`CovmapError::PoseOutsideMap`]).
 pub(crate) fn check_pose(grid: &Grid, pose: &Pose) -> Result<Cell> {
     if !(pose.x_m.is_finite() && pose.y_m.is_finite() && pose.theta_rad.is_finite()) {
-        return Err(CovmapError::InvalidPose { x: pose.x_m, y: pose.y_m, theta: pose.theta_rad });
+        return Err(CovmapError::InvalidPose {
+            x: pose.x_m,
+            y: pose.y_m,
+            theta: pose.theta_rad,
+        });
     }
     grid.check_inside(pose.x_m, pose.y_m)
 }
@@ -60,7 +81,11 @@ pub(crate) fn check_pose(grid: &Grid, pose: &Pose) -> Result<Cell> {
 /// Errors on the first bearing that is not finite or whose beam direction,
 /// `theta_rad + bearing`, is not (`theta_rad` is finite).
 pub(crate) fn check_bearings(theta_rad: f64, bearings: &[f64]) -> Result<()> {
-    match bearings.iter().enumerate().find(|(_, b)| !(b.is_finite() && (theta_rad + **b).is_finite())) {
+    match bearings
+        .iter()
+        .enumerate()
+        .find(|(_, b)| !(b.is_finite() && (theta_rad + **b).is_finite()))
+    {
         Some((index, &value)) => Err(CovmapError::InvalidBearing { index, value }),
         None => Ok(()),
     }

@@ -9,7 +9,8 @@ use covmap::gain::{GainMethod, StopCoverage};
 use covmap::{Cell, CovmapError, Grid, Pose, histogram};
 use numpy::ndarray::{Array2, Array3};
 use numpy::{
-    Element, IntoPyArray, PyArray2, PyArray3, PyArrayDyn, PyArrayMethods, PyUntypedArray, PyUntypedArrayMethods,
+    Element, IntoPyArray, PyArray2, PyArray3, PyArrayDyn, PyArrayMethods, PyUntypedArray,
+    PyUntypedArrayMethods,
 };
 use pyo3::exceptions::{PyRuntimeError, PyValueError};
 use pyo3::prelude::*;
@@ -44,13 +45,19 @@ fn numpy_values<T: Element + Copy>(
     }
     let shape = array.shape().to_vec();
     if shape.len() != ndim {
-        return Err(Exception::ArrayShape
-            .err(py, format!("{name} must be a {ndim}-D array of {expected}, got shape {shape:?}")));
+        return Err(Exception::ArrayShape.err(
+            py,
+            format!("{name} must be a {ndim}-D array of {expected}, got shape {shape:?}"),
+        ));
     }
     let Ok(typed) = array.cast::<PyArrayDyn<T>>() else {
         return Err(Exception::ArrayDtype.err(
             py,
-            format!("{name} must have dtype {}, got {} (convert with .astype)", numpy::dtype::<T>(py), array.dtype()),
+            format!(
+                "{name} must have dtype {}, got {} (convert with .astype)",
+                numpy::dtype::<T>(py),
+                array.dtype()
+            ),
         ));
     };
     let values = typed.try_readonly()?.as_array().iter().copied().collect();
@@ -61,9 +68,13 @@ fn numpy_values<T: Element + Copy>(
 /// Another length raises `ArrayShapeError`, anything else `ArrayDtypeError`.
 pub(crate) fn pose(obj: &Bound<'_, PyAny>) -> PyResult<Pose> {
     let py = obj.py();
-    obj.extract::<[f64; 3]>()
-        .map(Pose::from)
-        .map_err(|e| sequence_error(py, &e, format!("pose must be a sequence of three numbers (x, y, theta): {e}")))
+    obj.extract::<[f64; 3]>().map(Pose::from).map_err(|e| {
+        sequence_error(
+            py,
+            &e,
+            format!("pose must be a sequence of three numbers (x, y, theta): {e}"),
+        )
+    })
 }
 
 /// The error for a sequence of numbers that could not be read (`cause`): of
@@ -86,7 +97,10 @@ pub(crate) fn readings(obj: &Bound<'_, PyAny>, name: &str) -> PyResult<Vec<f64>>
     obj.extract::<Vec<f64>>().map_err(|_| {
         Exception::ArrayDtype.err(
             obj.py(),
-            format!("{name} must be a 1-D float64 numpy array or a sequence of numbers, got {}", obj.get_type()),
+            format!(
+                "{name} must be a 1-D float64 numpy array or a sequence of numbers, got {}",
+                obj.get_type()
+            ),
         )
     })
 }
@@ -123,16 +137,34 @@ fn per_cell<T: Element + Copy>(
 ) -> PyResult<(Vec<T>, Vec<usize>)> {
     let py = obj.py();
     let (rows, cols) = grid.shape();
-    let expected: Vec<Option<usize>> = [Some(rows), Some(cols)].into_iter().chain(more.iter().copied()).collect();
-    let spelled: Vec<String> = expected.iter().map(|n| n.map_or_else(|| "any".to_owned(), |n| n.to_string())).collect();
+    let expected: Vec<Option<usize>> = [Some(rows), Some(cols)]
+        .into_iter()
+        .chain(more.iter().copied())
+        .collect();
+    let spelled: Vec<String> = expected
+        .iter()
+        .map(|n| n.map_or_else(|| "any".to_owned(), |n| n.to_string()))
+        .collect();
     let spelled = format!("({})", spelled.join(", "));
     let Ok(array) = obj.cast::<PyUntypedArray>() else {
-        return Err(Exception::ArrayDtype
-            .err(py, format!("{name} must be a {dtype} numpy array of shape {spelled}, got {}", obj.get_type())));
+        return Err(Exception::ArrayDtype.err(
+            py,
+            format!(
+                "{name} must be a {dtype} numpy array of shape {spelled}, got {}",
+                obj.get_type()
+            ),
+        ));
     };
     let (values, shape) = numpy_values::<T>(array, name, expected.len(), dtype)?;
-    if shape.iter().zip(&expected).any(|(&n, want)| want.is_some_and(|w| w != n)) {
-        return Err(Exception::ArrayShape.err(py, format!("{name} must have shape {spelled}, got {shape:?}")));
+    if shape
+        .iter()
+        .zip(&expected)
+        .any(|(&n, want)| want.is_some_and(|w| w != n))
+    {
+        return Err(Exception::ArrayShape.err(
+            py,
+            format!("{name} must have shape {spelled}, got {shape:?}"),
+        ));
     }
     Ok((values, shape))
 }
@@ -152,9 +184,16 @@ impl<'a, 'py> FromPyObject<'a, 'py> for Seed {
             return Ok(Self(seed));
         }
         match obj.call_method0(pyo3::intern!(py, "__index__")) {
-            Ok(value) => Err(Exception::InvalidParameter
-                .err(py, format!("invalid parameter `seed` = {value}: expected an integer from 0 to 2**64 - 1"))),
-            Err(_) => Err(Exception::InvalidType.err(py, format!("seed must be an integer, got {}", obj.get_type()))),
+            Ok(value) => Err(Exception::InvalidParameter.err(
+                py,
+                format!(
+                    "invalid parameter `seed` = {value}: expected an integer from 0 to 2**64 - 1"
+                ),
+            )),
+            Err(_) => Err(Exception::InvalidType.err(
+                py,
+                format!("seed must be an integer, got {}", obj.get_type()),
+            )),
         }
     }
 }
@@ -177,7 +216,11 @@ pub(crate) fn cell(py: Python<'_>, grid: &Grid, row: i64, col: i64) -> PyResult<
         (Ok(row), Ok(col)) if row < grid.rows() && col < grid.cols() => Ok(Cell { row, col }),
         _ => Err(Exception::CellOutOfBounds.err(
             py,
-            format!("cell (row {row}, col {col}) lies outside a grid of {} x {} cells", grid.rows(), grid.cols()),
+            format!(
+                "cell (row {row}, col {col}) lies outside a grid of {} x {} cells",
+                grid.rows(),
+                grid.cols()
+            ),
         )),
     }
 }
@@ -185,20 +228,33 @@ pub(crate) fn cell(py: Python<'_>, grid: &Grid, row: i64, col: i64) -> PyResult<
 /// Rows of `K` numbers: a float64 numpy array of shape `(N, K)`, or a sequence
 /// of `N` sequences of `K` numbers. `what` describes one row for messages
 /// (`"(x, y)"`).
-pub(crate) fn rows<const K: usize>(obj: &Bound<'_, PyAny>, name: &str, what: &str) -> PyResult<Vec<[f64; K]>> {
+pub(crate) fn rows<const K: usize>(
+    obj: &Bound<'_, PyAny>,
+    name: &str,
+    what: &str,
+) -> PyResult<Vec<[f64; K]>> {
     let py = obj.py();
     let expected = format!("float64 with shape (N, {K}), one {what} a row");
     if let Ok(array) = obj.cast::<PyUntypedArray>() {
         let (values, shape) = numpy_values::<f64>(array, name, 2, &expected)?;
         if shape[1] != K {
-            return Err(Exception::ArrayShape.err(py, format!("{name} must have shape (N, {K}), got {shape:?}")));
+            return Err(Exception::ArrayShape.err(
+                py,
+                format!("{name} must have shape (N, {K}), got {shape:?}"),
+            ));
         }
-        return Ok(values.chunks_exact(K).map(|c| std::array::from_fn(|k| c[k])).collect());
+        return Ok(values
+            .chunks_exact(K)
+            .map(|c| std::array::from_fn(|k| c[k]))
+            .collect());
     }
     let Ok(nested) = obj.extract::<Vec<Vec<f64>>>() else {
         return Err(Exception::ArrayDtype.err(
             py,
-            format!("{name} must be a {expected} numpy array or a sequence of {what}, got {}", obj.get_type()),
+            format!(
+                "{name} must be a {expected} numpy array or a sequence of {what}, got {}",
+                obj.get_type()
+            ),
         ));
     };
     nested
@@ -206,7 +262,13 @@ pub(crate) fn rows<const K: usize>(obj: &Bound<'_, PyAny>, name: &str, what: &st
         .enumerate()
         .map(|(i, row)| {
             <[f64; K]>::try_from(row.as_slice()).map_err(|_| {
-                Exception::ArrayShape.err(py, format!("{name}[{i}] has {} numbers, expected {K}: {what}", row.len()))
+                Exception::ArrayShape.err(
+                    py,
+                    format!(
+                        "{name}[{i}] has {} numbers, expected {K}: {what}",
+                        row.len()
+                    ),
+                )
             })
         })
         .collect()
@@ -214,7 +276,10 @@ pub(crate) fn rows<const K: usize>(obj: &Bound<'_, PyAny>, name: &str, what: &st
 
 /// Poses: a float64 array of shape `(N, 3)` (or a sequence of `(x, y, theta)`).
 pub(crate) fn poses(obj: &Bound<'_, PyAny>, name: &str) -> PyResult<Vec<Pose>> {
-    Ok(rows::<3>(obj, name, "(x, y, theta)")?.into_iter().map(Pose::from).collect())
+    Ok(rows::<3>(obj, name, "(x, y, theta)")?
+        .into_iter()
+        .map(Pose::from)
+        .collect())
 }
 
 /// A point: any sequence of two numbers `(x, y)`, metres; with `heading_ok`,
@@ -222,11 +287,15 @@ pub(crate) fn poses(obj: &Bound<'_, PyAny>, name: &str) -> PyResult<Vec<Pose>> {
 /// Raises `InvalidValueError` for the first point with a coordinate that is
 /// not finite; `name` names the argument.
 pub(crate) fn finite_points(py: Python<'_>, points: &[[f64; 2]], name: &str) -> PyResult<()> {
-    match points.iter().position(|p| !(p[0].is_finite() && p[1].is_finite())) {
+    match points
+        .iter()
+        .position(|p| !(p[0].is_finite() && p[1].is_finite()))
+    {
         None => Ok(()),
         Some(i) => {
             let [x, y] = points[i];
-            Err(Exception::InvalidValue.err(py, format!("{name}: point {i} ({x}, {y}) is not finite")))
+            Err(Exception::InvalidValue
+                .err(py, format!("{name}: point {i} ({x}, {y}) is not finite")))
         }
     }
 }
@@ -234,12 +303,23 @@ pub(crate) fn finite_points(py: Python<'_>, points: &[[f64; 2]], name: &str) -> 
 pub(crate) fn point(obj: &Bound<'_, PyAny>, name: &str, heading_ok: bool) -> PyResult<[f64; 2]> {
     let py = obj.py();
     let fail = |e: PyErr| {
-        let what = if heading_ok { "(x, y) or a pose (x, y, theta)" } else { "(x, y)" };
-        sequence_error(py, &e, format!("{name} must be a sequence of two numbers {what}: {e}"))
+        let what = if heading_ok {
+            "(x, y) or a pose (x, y, theta)"
+        } else {
+            "(x, y)"
+        };
+        sequence_error(
+            py,
+            &e,
+            format!("{name} must be a sequence of two numbers {what}: {e}"),
+        )
     };
     match obj.extract::<Vec<f64>>() {
         Ok(v) if v.len() == 2 || (heading_ok && v.len() == 3) => Ok([v[0], v[1]]),
-        Ok(v) => Err(fail(PyValueError::new_err(format!("got {} numbers", v.len())))),
+        Ok(v) => Err(fail(PyValueError::new_err(format!(
+            "got {} numbers",
+            v.len()
+        )))),
         Err(e) => Err(fail(e)),
     }
 }
@@ -250,7 +330,8 @@ pub(crate) fn cell_array<'py, T: Element>(
     grid: &Grid,
     values: Vec<T>,
 ) -> PyResult<Bound<'py, PyArray2<T>>> {
-    let array = Array2::from_shape_vec(grid.shape(), values).map_err(|e| PyRuntimeError::new_err(e.to_string()))?;
+    let array = Array2::from_shape_vec(grid.shape(), values)
+        .map_err(|e| PyRuntimeError::new_err(e.to_string()))?;
     Ok(array.into_pyarray(py))
 }
 
@@ -263,13 +344,16 @@ pub(crate) fn cell_stack_array<'py, T: Element>(
     values: Vec<T>,
 ) -> PyResult<Bound<'py, PyArray3<T>>> {
     let (rows, cols) = grid.shape();
-    let array =
-        Array3::from_shape_vec((rows, cols, depth), values).map_err(|e| PyRuntimeError::new_err(e.to_string()))?;
+    let array = Array3::from_shape_vec((rows, cols, depth), values)
+        .map_err(|e| PyRuntimeError::new_err(e.to_string()))?;
     Ok(array.into_pyarray(py))
 }
 
 /// Rows of `K` numbers as an `(N, K)` float64 numpy array.
-pub(crate) fn rows_array<'py, const K: usize>(py: Python<'py>, rows: &[[f64; K]]) -> Bound<'py, PyArray2<f64>> {
+pub(crate) fn rows_array<'py, const K: usize>(
+    py: Python<'py>,
+    rows: &[[f64; K]],
+) -> Bound<'py, PyArray2<f64>> {
     Array2::from_shape_fn((rows.len(), K), |(i, k)| rows[i][k]).into_pyarray(py)
 }
 
@@ -284,7 +368,10 @@ pub(crate) fn gain_method(py: Python<'_>, name: &str) -> PyResult<GainMethod> {
     match name {
         "fast" => Ok(GainMethod::Fast),
         "exact" => Ok(GainMethod::Exact),
-        _ => Err(Exception::InvalidParameter.err(py, format!("method must be \"fast\" or \"exact\", got {name:?}"))),
+        _ => Err(Exception::InvalidParameter.err(
+            py,
+            format!("method must be \"fast\" or \"exact\", got {name:?}"),
+        )),
     }
 }
 
@@ -294,9 +381,10 @@ pub(crate) fn stop_coverage(py: Python<'_>, name: &str) -> PyResult<StopCoverage
     match name {
         "ml" | "maximum_likelihood" => Ok(StopCoverage::MaximumLikelihood),
         "mean" => Ok(StopCoverage::Mean),
-        _ => {
-            Err(Exception::InvalidParameter.err(py, format!("stop_coverage must be \"ml\" or \"mean\", got {name:?}")))
-        }
+        _ => Err(Exception::InvalidParameter.err(
+            py,
+            format!("stop_coverage must be \"ml\" or \"mean\", got {name:?}"),
+        )),
     }
 }
 

@@ -21,7 +21,11 @@ type HistoryArrays<'py> = (Bound<'py, PyArray3<f32>>, Bound<'py, PyArray2<u32>>)
 
 /// What `__reduce__` returns: a constructor, its arguments and the state for
 /// `__setstate__` (the history, if kept).
-type Reduce<'py> = (Bound<'py, PyAny>, (PyGrid, Bound<'py, PyArray3<f32>>), Option<HistoryArrays<'py>>);
+type Reduce<'py> = (
+    Bound<'py, PyAny>,
+    (PyGrid, Bound<'py, PyArray3<f32>>),
+    Option<HistoryArrays<'py>>,
+);
 
 /// A grid whose every cell holds a histogram over how much of it is covered by
 /// obstacles (0 = empty, 1 = fully covered), starting at the uniform prior.
@@ -38,7 +42,9 @@ impl PyCoverageMap {
     #[pyo3(signature = (grid, bins=16))]
     fn new(py: Python<'_>, grid: &Bound<'_, PyGrid>, bins: i64) -> PyResult<Self> {
         let bins = convert::bins(py, bins)?;
-        CoverageMap::with_bins(grid.get().0, bins).map(Self).or_raise(py)
+        CoverageMap::with_bins(grid.get().0, bins)
+            .map(Self)
+            .or_raise(py)
     }
 
     /// A map over ``grid`` from stored histograms: a float32 array of shape
@@ -54,7 +60,9 @@ impl PyCoverageMap {
         let grid = grid.get().0;
         let (values, bins) = convert::histograms(histograms, &grid)?;
         let bins = convert::bins(py, i64::try_from(bins).unwrap_or(i64::MAX))?;
-        CoverageMap::from_histograms(grid, bins, values).map(Self).or_raise(py)
+        CoverageMap::from_histograms(grid, bins, values)
+            .map(Self)
+            .or_raise(py)
     }
 
     /// The grid.
@@ -75,10 +83,20 @@ impl PyCoverageMap {
     /// A copy of all histograms: float32, ``(rows, cols, bins)``.
     #[getter]
     fn histograms<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray3<f32>>> {
-        convert::cell_stack_array(py, self.0.grid(), self.0.bins(), self.0.histograms().to_vec())
+        convert::cell_stack_array(
+            py,
+            self.0.grid(),
+            self.0.bins(),
+            self.0.histograms().to_vec(),
+        )
     }
     /// One cell's histogram: float32, ``(bins,)``.
-    fn histogram<'py>(&self, py: Python<'py>, row: i64, col: i64) -> PyResult<Bound<'py, PyArray1<f32>>> {
+    fn histogram<'py>(
+        &self,
+        py: Python<'py>,
+        row: i64,
+        col: i64,
+    ) -> PyResult<Bound<'py, PyArray1<f32>>> {
         let cell = convert::cell(py, self.0.grid(), row, col)?;
         let h = self.0.histogram(cell).or_raise(py)?;
         Ok(PyArray1::from_slice(py, h))
@@ -119,7 +137,8 @@ impl PyCoverageMap {
     ) -> PyResult<usize> {
         let scan = Scan::extract(pose, ranges, bearings, model)?;
         let map = &mut self.0;
-        py.detach(|| map.integrate(&scan.pose, &scan.ranges, &scan.bearings, &scan.model)).or_raise(py)
+        py.detach(|| map.integrate(&scan.pose, &scan.ranges, &scan.bearings, &scan.model))
+            .or_raise(py)
     }
 
     /// Keep (``True``) or stop keeping (``False``) each cell's entropy after
@@ -150,7 +169,11 @@ impl PyCoverageMap {
     }
 
     fn __repr__(&self) -> String {
-        format!("CoverageMap({}, bins={})", self.grid().__repr__(), self.0.bins())
+        format!(
+            "CoverageMap({}, bins={})",
+            self.grid().__repr__(),
+            self.0.bins()
+        )
     }
     /// Pickle and copy support: rebuilt from the grid and the histograms, the
     /// entropy history (if kept) restored by ``__setstate__``.
@@ -175,7 +198,8 @@ impl PyCoverageMap {
         if state.is_none() {
             return Ok(());
         }
-        let Ok((entropies, counts)) = state.extract::<(Bound<'_, PyAny>, Bound<'_, PyAny>)>() else {
+        let Ok((entropies, counts)) = state.extract::<(Bound<'_, PyAny>, Bound<'_, PyAny>)>()
+        else {
             let got = match state.cast::<PyTuple>() {
                 Ok(tuple) => format!("a tuple of length {}", tuple.len()),
                 Err(_) => state.get_type().to_string(),
@@ -185,8 +209,11 @@ impl PyCoverageMap {
         };
         let grid = *self.0.grid();
         let depth = Some(STAGNATION_MEASUREMENTS + 1);
-        let entropies = convert::cell_values::<f32>(&entropies, &grid, "history entropies", "float32", depth)?;
+        let entropies =
+            convert::cell_values::<f32>(&entropies, &grid, "history entropies", "float32", depth)?;
         let count = convert::cell_values::<u32>(&counts, &grid, "history counts", "uint32", None)?;
-        self.0.restore_history(HistoryState { entropies, count }).or_raise(py)
+        self.0
+            .restore_history(HistoryState { entropies, count })
+            .or_raise(py)
     }
 }

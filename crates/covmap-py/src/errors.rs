@@ -156,10 +156,18 @@ pub(crate) fn sim_to_py(py: Python<'_>, err: SimError) -> PyErr {
                 None => Exception::FileIO.err_with(py, (message,), &[("filename", filename)]),
             }
         }
-        SimError::Parse { path, place, reason } => Exception::FileFormat.err_with(
+        SimError::Parse {
+            path,
+            place,
+            reason,
+        } => Exception::FileFormat.err_with(
             py,
             (message,),
-            &[("filename", path.display().to_string()), ("place", place), ("reason", reason)],
+            &[
+                ("filename", path.display().to_string()),
+                ("place", place),
+                ("reason", reason),
+            ],
         ),
         SimError::UnknownWorld { .. } => Exception::UnknownWorld.err(py, message),
         SimError::InvalidParameter { .. } => Exception::InvalidParameter.err(py, message),

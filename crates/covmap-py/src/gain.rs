@@ -24,7 +24,10 @@ use crate::sensor::AnyModel;
 /// released, candidates in parallel.
 #[pyfunction]
 #[pyo3(signature = (map, poses, bearings, model, method="fast", *, range_step_m=None, stop_coverage="ml"))]
-#[allow(clippy::too_many_arguments, reason = "the evaluator's inputs and its three options")]
+#[allow(
+    clippy::too_many_arguments,
+    reason = "the evaluator's inputs and its three options"
+)]
 pub(crate) fn expected_information_gain<'py>(
     py: Python<'py>,
     map: PyRef<'py, PyCoverageMap>,
@@ -36,13 +39,19 @@ pub(crate) fn expected_information_gain<'py>(
     stop_coverage: &str,
 ) -> PyResult<Bound<'py, PyArray1<f64>>> {
     let method = convert::gain_method(py, method)?;
-    let options = GainOptions { range_step_m, stop_coverage: convert::stop_coverage(py, stop_coverage)? };
+    let options = GainOptions {
+        range_step_m,
+        stop_coverage: convert::stop_coverage(py, stop_coverage)?,
+    };
     let poses = convert::poses(poses, "poses")?;
     let bearings = convert::readings(bearings, "bearings")?;
     let model = AnyModel::extract(model)?;
     let map = &map.0;
     let gains = py
-        .detach(|| GainEvaluator::new(map, &model, options).and_then(|e| e.evaluate(&poses, &bearings, method)))
+        .detach(|| {
+            GainEvaluator::new(map, &model, options)
+                .and_then(|e| e.evaluate(&poses, &bearings, method))
+        })
         .or_raise(py)?;
     Ok(PyArray1::from_vec(py, gains))
 }

@@ -36,7 +36,12 @@ pub(crate) fn hash_f64s(values: impl IntoIterator<Item = f64>, extra: &[usize]) 
 impl PyGrid {
     #[new]
     #[pyo3(signature = (*, origin, resolution, shape))]
-    fn new(py: Python<'_>, origin: &Bound<'_, PyAny>, resolution: f64, shape: [i64; 2]) -> PyResult<Self> {
+    fn new(
+        py: Python<'_>,
+        origin: &Bound<'_, PyAny>,
+        resolution: f64,
+        shape: [i64; 2],
+    ) -> PyResult<Self> {
         let origin = convert::point(origin, "origin", false)?;
         let [rows, cols] = shape.map(|n| usize::try_from(n).ok());
         let (Some(rows), Some(cols)) = (rows, cols) else {
@@ -46,7 +51,9 @@ impl PyGrid {
             )))
             .or_raise(py);
         };
-        Grid::new(origin, resolution, rows, cols).map(Self).or_raise(py)
+        Grid::new(origin, resolution, rows, cols)
+            .map(Self)
+            .or_raise(py)
     }
 
     /// The grid covering ``bounds = (x_min, y_min, x_max, y_max)`` (metres),
@@ -55,7 +62,9 @@ impl PyGrid {
     #[pyo3(signature = (bounds, *, resolution))]
     fn covering(py: Python<'_>, bounds: [f64; 4], resolution: f64) -> PyResult<Self> {
         let [x_min, y_min, x_max, y_max] = bounds;
-        Grid::covering(x_min, y_min, x_max, y_max, resolution).map(Self).or_raise(py)
+        Grid::covering(x_min, y_min, x_max, y_max, resolution)
+            .map(Self)
+            .or_raise(py)
     }
 
     /// World position of the lower-left corner, metres.
@@ -121,10 +130,16 @@ impl PyGrid {
     }
     fn __hash__(&self) -> u64 {
         let [ox, oy] = self.0.origin_m();
-        hash_f64s([ox, oy, self.0.resolution_m()], &[self.0.rows(), self.0.cols()])
+        hash_f64s(
+            [ox, oy, self.0.resolution_m()],
+            &[self.0.rows(), self.0.cols()],
+        )
     }
     /// Pickle and copy support: the keyword arguments that rebuild the grid.
-    fn __getnewargs_ex__<'py>(&self, py: Python<'py>) -> PyResult<(Bound<'py, PyTuple>, Bound<'py, PyDict>)> {
+    fn __getnewargs_ex__<'py>(
+        &self,
+        py: Python<'py>,
+    ) -> PyResult<(Bound<'py, PyTuple>, Bound<'py, PyDict>)> {
         let kwargs = PyDict::new(py);
         kwargs.set_item("origin", self.origin())?;
         kwargs.set_item("resolution", self.resolution())?;

@@ -44,7 +44,8 @@ impl PyOccupancyGrid {
     ) -> PyResult<()> {
         let scan = Scan::extract(pose, ranges, bearings, model)?;
         let grid = &mut self.0;
-        py.detach(|| grid.integrate(&scan.pose, &scan.ranges, &scan.bearings, &scan.model)).or_raise(py)
+        py.detach(|| grid.integrate(&scan.pose, &scan.ranges, &scan.bearings, &scan.model))
+            .or_raise(py)
     }
 
     /// Probability of occupancy, float32, ``(rows, cols)``.

@@ -87,7 +87,8 @@ impl PyPlanner {
             min_travel_m: min_travel_m.unwrap_or(d.min_travel_m),
             min_gain_nats: min_gain_nats.unwrap_or(d.min_gain_nats),
             blocked_coverage: blocked_coverage.unwrap_or(d.blocked_coverage),
-            unknown_entropy_fraction: unknown_entropy_fraction.unwrap_or(d.unknown_entropy_fraction),
+            unknown_entropy_fraction: unknown_entropy_fraction
+                .unwrap_or(d.unknown_entropy_fraction),
             unknown_is_free: unknown_is_free.unwrap_or(d.unknown_is_free),
             epsilon: epsilon.unwrap_or(d.epsilon),
             gain,
@@ -166,7 +167,9 @@ impl PyPlanner {
         let bearings = convert::readings(bearings, "bearings")?;
         let model = AnyModel::extract(model)?;
         let (planner, map) = (&self.0, &map.0);
-        py.detach(|| planner.next_viewpoint(map, &pose, &bearings, &model)).map(PyPlan).or_raise(py)
+        py.detach(|| planner.next_viewpoint(map, &pose, &bearings, &model))
+            .map(PyPlan)
+            .or_raise(py)
     }
 
     /// How far exploration of ``map`` has come for a robot at ``pose``.
@@ -178,11 +181,17 @@ impl PyPlanner {
     ) -> PyResult<PyExplorationStatus> {
         let pose = convert::pose(pose)?;
         let (planner, map) = (&self.0, &map.0);
-        py.detach(|| planner.status(map, &pose)).map(PyExplorationStatus).or_raise(py)
+        py.detach(|| planner.status(map, &pose))
+            .map(PyExplorationStatus)
+            .or_raise(py)
     }
 
     /// Where the robot's centre may be on ``map``: bool, ``(rows, cols)``.
-    fn free_space<'py>(&self, py: Python<'py>, map: PyRef<'py, PyCoverageMap>) -> PyResult<Bound<'py, PyArray2<bool>>> {
+    fn free_space<'py>(
+        &self,
+        py: Python<'py>,
+        map: PyRef<'py, PyCoverageMap>,
+    ) -> PyResult<Bound<'py, PyArray2<bool>>> {
         let (planner, map) = (&self.0, &map.0);
         let free = py.detach(|| planner.free_space(map));
         cell_array(py, map.grid(), free)
@@ -199,7 +208,9 @@ impl PyPlanner {
     ) -> PyResult<Bound<'py, PyArray2<f64>>> {
         let pose = convert::pose(pose)?;
         let (planner, map) = (&self.0, &map.0);
-        let reach = py.detach(|| planner.reachability(map, &pose)).or_raise(py)?;
+        let reach = py
+            .detach(|| planner.reachability(map, &pose))
+            .or_raise(py)?;
         cell_array(py, map.grid(), reach.costs().to_vec())
     }
 
@@ -218,7 +229,9 @@ impl PyPlanner {
             c.unknown_entropy_fraction,
             if c.unknown_is_free { "True" } else { "False" },
             c.epsilon,
-            c.gain.range_step_m.map_or_else(|| "None".to_string(), |s| format!("{s:?}")),
+            c.gain
+                .range_step_m
+                .map_or_else(|| "None".to_string(), |s| format!("{s:?}")),
             convert::stop_coverage_name(c.gain.stop_coverage),
         )
     }
@@ -235,7 +248,9 @@ impl PyPlan {
     /// no candidate is worth visiting.
     #[getter]
     fn pose<'py>(&self, py: Python<'py>) -> Option<Bound<'py, PyArray1<f64>>> {
-        self.0.pose.map(|p| PyArray1::from_slice(py, &[p.x_m, p.y_m, p.theta_rad]))
+        self.0
+            .pose
+            .map(|p| PyArray1::from_slice(py, &[p.x_m, p.y_m, p.theta_rad]))
     }
     /// The path to it: cell centres from the robot's cell to the goal's,
     /// float64 ``(K, 2)`` (``K = 0`` without a goal).

@@ -35,7 +35,9 @@ impl PyRobot {
     /// ``world``. A pose with a non-finite position collides.
     fn collides(&self, world: &Bound<'_, PyWorld>, pose: &Bound<'_, PyAny>) -> PyResult<bool> {
         let [x, y] = convert::point(pose, "pose", true)?;
-        Ok(self.0.collides(&world.get().0, &covmap::Pose::new(x, y, 0.0)))
+        Ok(self
+            .0
+            .collides(&world.get().0, &covmap::Pose::new(x, y, 0.0)))
     }
 
     /// Whether driving straight from ``start`` to ``goal`` touches an
@@ -46,7 +48,10 @@ impl PyRobot {
         start: &Bound<'_, PyAny>,
         goal: &Bound<'_, PyAny>,
     ) -> PyResult<bool> {
-        let (a, b) = (convert::point(start, "start", true)?, convert::point(goal, "goal", true)?);
+        let (a, b) = (
+            convert::point(start, "start", true)?,
+            convert::point(goal, "goal", true)?,
+        );
         Ok(self.0.move_collides(&world.get().0, a, b))
     }
 
@@ -60,7 +65,10 @@ impl PyRobot {
         start: &Bound<'_, PyAny>,
         goal: &Bound<'_, PyAny>,
     ) -> PyResult<f64> {
-        let (a, b) = (convert::point(start, "start", true)?, convert::point(goal, "goal", true)?);
+        let (a, b) = (
+            convert::point(start, "start", true)?,
+            convert::point(goal, "goal", true)?,
+        );
         convert::finite_points(world.py(), &[a], "start")?;
         convert::finite_points(world.py(), &[b], "goal")?;
         Ok(self.0.free_travel_m(&world.get().0, a, b))
@@ -79,7 +87,12 @@ impl PyRobot {
         let points = convert::rows::<2>(points, "points", "point (x, y)")?;
         convert::finite_points(py, &points, "points")?;
         let (robot, world) = (self.0, &world.get().0);
-        let gaps: Vec<f64> = py.detach(|| points.iter().map(|&p| robot.clearance_m(world, p)).collect());
+        let gaps: Vec<f64> = py.detach(|| {
+            points
+                .iter()
+                .map(|&p| robot.clearance_m(world, p))
+                .collect()
+        });
         Ok(PyArray1::from_vec(py, gaps))
     }
 

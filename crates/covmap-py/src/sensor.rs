@@ -71,7 +71,9 @@ fn kernel_array<'py, M: SensorModel + Sync>(
 ) -> PyResult<Option<Bound<'py, PyArray1<f32>>>> {
     let bins = convert::bins(py, bins)?;
     // Tabulating the kernels takes a millisecond or so: let other threads run.
-    let k = py.detach(|| model.kernel(cell_distance, measured_distance, resolution, bins)).or_raise(py)?;
+    let k = py
+        .detach(|| model.kernel(cell_distance, measured_distance, resolution, bins))
+        .or_raise(py)?;
     Ok(k.map(|k| PyArray1::from_vec(py, k)))
 }
 
@@ -90,7 +92,16 @@ pub(crate) struct PySonarModel(pub(crate) SonarModel);
 impl PySonarModel {
     fn fields(&self) -> [(&'static str, f64); 8] {
         let [a, b, c, d, e, f, g] = range_fields(&self.0.range);
-        [a, b, c, d, e, f, g, ("opening_angle_rad", self.0.opening_angle_rad)]
+        [
+            a,
+            b,
+            c,
+            d,
+            e,
+            f,
+            g,
+            ("opening_angle_rad", self.0.opening_angle_rad),
+        ]
     }
 }
 
@@ -114,7 +125,15 @@ impl PySonarModel {
         opening_angle_rad: Option<f64>,
     ) -> PyResult<Self> {
         let default = SonarModel::default();
-        let args = RangeArgs { max_range_m, band_m, sigma_min, sigma_per_m, sigma_end, xi_min, xi_per_m };
+        let args = RangeArgs {
+            max_range_m,
+            band_m,
+            sigma_min,
+            sigma_per_m,
+            sigma_end,
+            xi_min,
+            xi_per_m,
+        };
         let model = SonarModel {
             range: args.over(default.range),
             opening_angle_rad: opening_angle_rad.unwrap_or(default.opening_angle_rad),
@@ -178,7 +197,14 @@ impl PySonarModel {
         resolution: f64,
         bins: i64,
     ) -> PyResult<Option<Bound<'py, PyArray1<f32>>>> {
-        kernel_array(py, &self.0, cell_distance, measured_distance, resolution, bins)
+        kernel_array(
+            py,
+            &self.0,
+            cell_distance,
+            measured_distance,
+            resolution,
+            bins,
+        )
     }
 
     /// The parameters as a dict of keyword arguments.
@@ -187,7 +213,10 @@ impl PySonarModel {
     }
     /// The model with the parameters of ``d`` (missing ones take the defaults).
     #[classmethod]
-    fn from_dict<'py>(cls: &Bound<'py, PyType>, d: &Bound<'py, PyDict>) -> PyResult<Bound<'py, PyAny>> {
+    fn from_dict<'py>(
+        cls: &Bound<'py, PyType>,
+        d: &Bound<'py, PyDict>,
+    ) -> PyResult<Bound<'py, PyAny>> {
         cls.call((), Some(d))
     }
     fn __repr__(&self) -> String {
@@ -197,7 +226,10 @@ impl PySonarModel {
         hash_f64s(self.fields().map(|(_, v)| v), &[])
     }
     /// Pickle and copy support: the keyword arguments that rebuild the model.
-    fn __getnewargs_ex__<'py>(&self, py: Python<'py>) -> PyResult<(Bound<'py, PyTuple>, Bound<'py, PyDict>)> {
+    fn __getnewargs_ex__<'py>(
+        &self,
+        py: Python<'py>,
+    ) -> PyResult<(Bound<'py, PyTuple>, Bound<'py, PyDict>)> {
         Ok((PyTuple::empty(py), self.to_dict(py)?))
     }
 }
@@ -237,8 +269,18 @@ impl PyLaserModel {
         xi_min: Option<f64>,
         xi_per_m: Option<f64>,
     ) -> PyResult<Self> {
-        let args = RangeArgs { max_range_m, band_m, sigma_min, sigma_per_m, sigma_end, xi_min, xi_per_m };
-        let model = LaserModel { range: args.over(LaserModel::default().range) };
+        let args = RangeArgs {
+            max_range_m,
+            band_m,
+            sigma_min,
+            sigma_per_m,
+            sigma_end,
+            xi_min,
+            xi_per_m,
+        };
+        let model = LaserModel {
+            range: args.over(LaserModel::default().range),
+        };
         model.validate().or_raise(py)?;
         Ok(Self(model))
     }
@@ -293,7 +335,14 @@ impl PyLaserModel {
         resolution: f64,
         bins: i64,
     ) -> PyResult<Option<Bound<'py, PyArray1<f32>>>> {
-        kernel_array(py, &self.0, cell_distance, measured_distance, resolution, bins)
+        kernel_array(
+            py,
+            &self.0,
+            cell_distance,
+            measured_distance,
+            resolution,
+            bins,
+        )
     }
 
     /// The parameters as a dict of keyword arguments.
@@ -302,7 +351,10 @@ impl PyLaserModel {
     }
     /// The model with the parameters of ``d`` (missing ones take the defaults).
     #[classmethod]
-    fn from_dict<'py>(cls: &Bound<'py, PyType>, d: &Bound<'py, PyDict>) -> PyResult<Bound<'py, PyAny>> {
+    fn from_dict<'py>(
+        cls: &Bound<'py, PyType>,
+        d: &Bound<'py, PyDict>,
+    ) -> PyResult<Bound<'py, PyAny>> {
         cls.call((), Some(d))
     }
     fn __repr__(&self) -> String {
@@ -312,7 +364,10 @@ impl PyLaserModel {
         hash_f64s(self.fields().map(|(_, v)| v), &[])
     }
     /// Pickle and copy support: the keyword arguments that rebuild the model.
-    fn __getnewargs_ex__<'py>(&self, py: Python<'py>) -> PyResult<(Bound<'py, PyTuple>, Bound<'py, PyDict>)> {
+    fn __getnewargs_ex__<'py>(
+        &self,
+        py: Python<'py>,
+    ) -> PyResult<(Bound<'py, PyTuple>, Bound<'py, PyDict>)> {
         Ok((PyTuple::empty(py), self.to_dict(py)?))
     }
 }
@@ -331,8 +386,13 @@ impl AnyModel {
         } else if let Ok(m) = obj.cast::<PyLaserModel>() {
             Ok(Self::Laser(m.get().0))
         } else {
-            Err(Exception::InvalidType
-                .err(obj.py(), format!("model must be a SonarModel or a LaserModel, got {}", obj.get_type())))
+            Err(Exception::InvalidType.err(
+                obj.py(),
+                format!(
+                    "model must be a SonarModel or a LaserModel, got {}",
+                    obj.get_type()
+                ),
+            ))
         }
     }
 }

@@ -24,8 +24,13 @@ fn scan_one<'py, S: RangeSensor + Sync>(
 ) -> PyResult<Readings<'py>> {
     let pose = convert::pose(pose)?;
     let world: &World = &world.get().0;
-    let scan = py.detach(|| sensor.scan(world, &pose, &mut sim_rng(seed))).or_raise(py)?;
-    Ok((PyArray1::from_vec(py, scan.ranges_m), PyArray1::from_vec(py, scan.bearings_rad)))
+    let scan = py
+        .detach(|| sensor.scan(world, &pose, &mut sim_rng(seed)))
+        .or_raise(py)?;
+    Ok((
+        PyArray1::from_vec(py, scan.ranges_m),
+        PyArray1::from_vec(py, scan.bearings_rad),
+    ))
 }
 
 /// One scan from each of `poses`, scan `i` from stream `i` of `seed`, as a
@@ -39,7 +44,9 @@ fn scan_many<'py, S: RangeSensor + Sync>(
 ) -> PyResult<Bound<'py, PyArray2<f64>>> {
     let poses = convert::poses(poses, "poses")?;
     let world: &World = &world.get().0;
-    let scans = py.detach(|| simulate(sensor, world, &poses, seed)).or_raise(py)?;
+    let scans = py
+        .detach(|| simulate(sensor, world, &poses, seed))
+        .or_raise(py)?;
     let beams = sensor.bearings_rad().len();
     let ranges = Array2::from_shape_fn((scans.len(), beams), |(i, j)| scans[i].ranges_m[j]);
     Ok(ranges.into_pyarray(py))
@@ -48,7 +55,10 @@ fn scan_many<'py, S: RangeSensor + Sync>(
 /// A count from a Python int: negative is an invalid parameter.
 fn count(py: Python<'_>, name: &'static str, value: i64) -> PyResult<usize> {
     usize::try_from(value).map_err(|_| {
-        Exception::InvalidParameter.err(py, format!("invalid parameter `{name}` = {value}: expected a positive count"))
+        Exception::InvalidParameter.err(
+            py,
+            format!("invalid parameter `{name}` = {value}: expected a positive count"),
+        )
     })
 }
 
@@ -88,7 +98,10 @@ impl PySonarRing {
         rays_per_cone=None, noise_std_m=None, noise_std_per_m=None, outlier_probability=None,
         multipath_probability=None, critical_angle_wall_rad=None, critical_angle_glass_rad=None
     ))]
-    #[allow(clippy::too_many_arguments, reason = "one keyword per sensor parameter")]
+    #[allow(
+        clippy::too_many_arguments,
+        reason = "one keyword per sensor parameter"
+    )]
     fn new(
         py: Python<'_>,
         bearings_rad: Option<&Bound<'_, PyAny>>,
@@ -121,7 +134,8 @@ impl PySonarRing {
             outlier_probability: outlier_probability.unwrap_or(d.outlier_probability),
             multipath_probability: multipath_probability.unwrap_or(d.multipath_probability),
             critical_angle_wall_rad: critical_angle_wall_rad.unwrap_or(d.critical_angle_wall_rad),
-            critical_angle_glass_rad: critical_angle_glass_rad.unwrap_or(d.critical_angle_glass_rad),
+            critical_angle_glass_rad: critical_angle_glass_rad
+                .unwrap_or(d.critical_angle_glass_rad),
         };
         Self::checked(py, ring)
     }
@@ -279,7 +293,10 @@ impl PyLaser {
     ) -> PyResult<Self> {
         let mut laser = match bearings_rad {
             Some(_) if beams.is_some() || fov_rad.is_some() => {
-                return Err(Exception::InvalidType.err(py, "give either beams and fov_rad or bearings_rad, not both"));
+                return Err(Exception::InvalidType.err(
+                    py,
+                    "give either beams and fov_rad or bearings_rad, not both",
+                ));
             }
             Some(b) => Laser::with_bearings(convert::readings(b, "bearings_rad")?),
             None => {

@@ -26,39 +26,62 @@ pub(crate) struct PyWorld(pub(crate) World);
 /// A material by its name.
 fn material(py: Python<'_>, name: &str, index: usize) -> PyResult<Material> {
     Material::from_name(name).ok_or_else(|| {
-        Exception::InvalidParameter.err(py, format!("materials[{index}] must be \"wall\" or \"glass\", got {name:?}"))
+        Exception::InvalidParameter.err(
+            py,
+            format!("materials[{index}] must be \"wall\" or \"glass\", got {name:?}"),
+        )
     })
 }
 
 /// The extension of `path`, lower-case, without the dot.
 fn extension(path: &std::path::Path) -> String {
-    path.extension().map(|e| e.to_string_lossy().to_lowercase()).unwrap_or_default()
+    path.extension()
+        .map(|e| e.to_string_lossy().to_lowercase())
+        .unwrap_or_default()
 }
 
 #[pymethods]
 impl PyWorld {
     #[new]
     #[pyo3(signature = (polygons, materials=None))]
-    fn new(py: Python<'_>, polygons: &Bound<'_, PyAny>, materials: Option<&Bound<'_, PyAny>>) -> PyResult<Self> {
-        let lists: Vec<Bound<'_, PyAny>> =
-            polygons.try_iter().and_then(|it| it.collect::<PyResult<_>>()).map_err(|_| {
-                Exception::InvalidType
-                    .err(py, format!("polygons must be a list of (N, 2) vertex arrays, got {}", polygons.get_type()))
+    fn new(
+        py: Python<'_>,
+        polygons: &Bound<'_, PyAny>,
+        materials: Option<&Bound<'_, PyAny>>,
+    ) -> PyResult<Self> {
+        let lists: Vec<Bound<'_, PyAny>> = polygons
+            .try_iter()
+            .and_then(|it| it.collect::<PyResult<_>>())
+            .map_err(|_| {
+                Exception::InvalidType.err(
+                    py,
+                    format!(
+                        "polygons must be a list of (N, 2) vertex arrays, got {}",
+                        polygons.get_type()
+                    ),
+                )
             })?;
         // PyO3 refuses a lone string here (a sequence of letters, not names).
         let materials = materials
             .map(|m| {
                 m.extract::<Vec<String>>().map_err(|_| {
-                    Exception::InvalidType
-                        .err(py, format!("materials must be a list of names, one per polygon, got {}", m.get_type()))
+                    Exception::InvalidType.err(
+                        py,
+                        format!(
+                            "materials must be a list of names, one per polygon, got {}",
+                            m.get_type()
+                        ),
+                    )
                 })
             })
             .transpose()?;
         let materials = match materials {
             None => vec![Material::Wall; lists.len()],
-            Some(names) if names.len() == lists.len() => {
-                names.iter().enumerate().map(|(i, n)| material(py, n, i)).collect::<PyResult<_>>()?
-            }
+            Some(names) if names.len() == lists.len() => names
+                .iter()
+                .enumerate()
+                .map(|(i, n)| material(py, n, i))
+                .collect::<PyResult<_>>()?,
             Some(names) => {
                 return Err(SimError::LengthMismatch {
                     what: "materials and polygons",
@@ -70,7 +93,11 @@ impl PyWorld {
         };
         let mut vertex_lists = Vec::with_capacity(lists.len());
         for (i, list) in lists.iter().enumerate() {
-            vertex_lists.push(convert::rows::<2>(list, &format!("polygons[{i}]"), "vertex (x, y)")?);
+            vertex_lists.push(convert::rows::<2>(
+                list,
+                &format!("polygons[{i}]"),
+                "vertex (x, y)",
+            )?);
         }
         let built = py.detach(|| {
             vertex_lists
@@ -79,7 +106,9 @@ impl PyWorld {
                 .enumerate()
                 .map(|(index, (v, m))| {
                     Polygon::new(v, m).map_err(|e| match e {
-                        SimError::InvalidPolygon { reason, .. } => SimError::InvalidPolygon { index, reason },
+                        SimError::InvalidPolygon { reason, .. } => {
+                            SimError::InvalidPolygon { index, reason }
+                        }
                         other => other,
                     })
                 })
@@ -130,8 +159,13 @@ impl PyWorld {
         let ext = extension(&path);
         let image = matches!(ext.as_str(), "pgm" | "png");
         if image && resolution.is_none() {
-            return Err(Exception::InvalidParameter
-                .err(py, format!("{}: an occupancy image needs resolution= (metres per pixel)", path.display())));
+            return Err(Exception::InvalidParameter.err(
+                py,
+                format!(
+                    "{}: an occupancy image needs resolution= (metres per pixel)",
+                    path.display()
+                ),
+            ));
         }
         let loaded = py.detach(|| match ext.as_str() {
             "json" | "geojson" => World::from_geojson_file(&path),
@@ -172,7 +206,11 @@ impl PyWorld {
     /// The exterior ring of each polygon: a list of float64 ``(N, 2)`` arrays.
     #[getter]
     fn polygons<'py>(&self, py: Python<'py>) -> Vec<Bound<'py, PyArray2<f64>>> {
-        self.0.polygons().iter().map(|p| rows_array(py, p.exterior())).collect()
+        self.0
+            .polygons()
+            .iter()
+            .map(|p| rows_array(py, p.exterior()))
+            .collect()
     }
     /// The holes of each polygon: a list (one per polygon) of lists of
     /// float64 ``(K, 2)`` arrays.
@@ -182,14 +220,23 @@ impl PyWorld {
             .0
             .polygons()
             .iter()
-            .map(|p| p.holes().iter().map(|h| rows_array(py, h)).collect::<Vec<_>>())
+            .map(|p| {
+                p.holes()
+                    .iter()
+                    .map(|h| rows_array(py, h))
+                    .collect::<Vec<_>>()
+            })
             .collect::<Vec<_>>();
         PyList::new(py, per_polygon)
     }
     /// The material of each polygon, ``"wall"`` or ``"glass"``.
     #[getter]
     fn materials(&self) -> Vec<&'static str> {
-        self.0.polygons().iter().map(|p| p.material().as_str()).collect()
+        self.0
+            .polygons()
+            .iter()
+            .map(|p| p.material().as_str())
+            .collect()
     }
     /// The sum of the polygons' areas, square metres (overlaps counted twice;
     /// the union is ``coverage(grid).sum()`` times the cell area).
@@ -204,7 +251,11 @@ impl PyWorld {
     /// The exact fraction of every cell of ``grid`` inside the obstacles:
     /// float64, ``(rows, cols)``, in ``[0, 1]`` (the ground truth a coverage
     /// map estimates). Runs with the GIL released.
-    fn coverage<'py>(&self, py: Python<'py>, grid: &Bound<'py, PyGrid>) -> PyResult<Bound<'py, PyArray2<f64>>> {
+    fn coverage<'py>(
+        &self,
+        py: Python<'py>,
+        grid: &Bound<'py, PyGrid>,
+    ) -> PyResult<Bound<'py, PyArray2<f64>>> {
         let grid = grid.get().0;
         let world = &self.0;
         let values = py.detach(|| world.coverage(&grid));
@@ -237,15 +288,19 @@ impl PyWorld {
         let origins = if single {
             let p = convert::readings(origins, "origins")?;
             let Ok(p) = <[f64; 2]>::try_from(p.as_slice()) else {
-                return Err(Exception::ArrayShape
-                    .err(py, format!("origins must have shape (N, 2) or (2,), got ({},)", p.len())));
+                return Err(Exception::ArrayShape.err(
+                    py,
+                    format!("origins must have shape (N, 2) or (2,), got ({},)", p.len()),
+                ));
             };
             vec![p; angles.len()]
         } else {
             convert::rows::<2>(origins, "origins", "point (x, y)")?
         };
         let world = &self.0;
-        let hits = py.detach(|| world.cast_batch(&origins, &angles, max_range_m)).or_raise(py)?;
+        let hits = py
+            .detach(|| world.cast_batch(&origins, &angles, max_range_m))
+            .or_raise(py)?;
         let distances = PyArray1::from_iter(py, hits.iter().map(|h| h.distance_m));
         if return_incidence {
             let incidence = PyArray1::from_iter(py, hits.iter().map(|h| h.incidence_rad));
@@ -269,6 +324,9 @@ impl PyWorld {
 
     fn __repr__(&self) -> String {
         let [a, b, c, d] = self.0.bounds_m();
-        format!("<World: {} polygons within ({a:?}, {b:?}, {c:?}, {d:?})>", self.0.len())
+        format!(
+            "<World: {} polygons within ({a:?}, {b:?}, {c:?}, {d:?})>",
+            self.0.len()
+        )
     }
 }

@@ -57,10 +57,14 @@ fn run(out: &std::path::Path, seed: u64) -> Result<(), Box<dyn std::error::Error
         r.grid.resolution_m(),
         r.cells_reached
     );
-    println!("mean absolute error against the exact coverage (all reached cells / cells a wall face cuts):");
-    for (name, e) in
-        [("coverage map, ML", r.mae_ml), ("coverage map, mean", r.mae_mean), ("occupancy grid", r.mae_occupancy)]
-    {
+    println!(
+        "mean absolute error against the exact coverage (all reached cells / cells a wall face cuts):"
+    );
+    for (name, e) in [
+        ("coverage map, ML", r.mae_ml),
+        ("coverage map, mean", r.mae_mean),
+        ("occupancy grid", r.mae_occupancy),
+    ] {
         println!("  {name:<20} {:.4} / {:.4}", e.all, e.partial);
     }
     println!(
@@ -71,12 +75,22 @@ fn run(out: &std::path::Path, seed: u64) -> Result<(), Box<dyn std::error::Error
         r.log_likelihood_prior / r.cells_reached as f64
     );
     let grey_unreached = |v: &[f32]| -> Vec<f64> {
-        v.iter().zip(&r.reached).map(|(&x, &hit)| if hit { x as f64 } else { f64::NAN }).collect()
+        v.iter()
+            .zip(&r.reached)
+            .map(|(&x, &hit)| if hit { x as f64 } else { f64::NAN })
+            .collect()
     };
     write_map_png(out.join("fig3_truth.png"), &r.grid, &r.truth)?;
     write_map_png(out.join("fig3_ml.png"), &r.grid, &grey_unreached(&r.ml))?;
     write_map_png(out.join("fig3_mean.png"), &r.grid, &grey_unreached(&r.mean))?;
-    write_map_png(out.join("fig3_occupancy.png"), &r.grid, &grey_unreached(&r.occupancy))?;
-    println!("wrote fig3_truth.png, fig3_ml.png, fig3_mean.png, fig3_occupancy.png to {}", out.display());
+    write_map_png(
+        out.join("fig3_occupancy.png"),
+        &r.grid,
+        &grey_unreached(&r.occupancy),
+    )?;
+    println!(
+        "wrote fig3_truth.png, fig3_ml.png, fig3_mean.png, fig3_occupancy.png to {}",
+        out.display()
+    );
     Ok(())
 }

@@ -38,7 +38,10 @@ impl World {
             "office" => office()?,
             "partial" => vec![Polygon::rectangle([2.04, -1.0], [2.5, 1.0], Wall)?],
             _ => {
-                return Err(SimError::UnknownWorld { name: name.to_string(), available: NAMES.join(", ") });
+                return Err(SimError::UnknownWorld {
+                    name: name.to_string(),
+                    available: NAMES.join(", "),
+                });
             }
         };
         Ok(World::new(polygons))
@@ -118,8 +121,12 @@ fn office() -> Result<Vec<Polygon>> {
     const Y: f64 = 20.0;
     const S: f64 = 8.5; // corridor's south face
     const C: f64 = 11.0; // corridor's north face
-    let mut p =
-        vec![rect(-T, -T, X + T, 0.0)?, rect(-T, Y, X + T, Y + T)?, rect(-T, 0.0, 0.0, Y)?, rect(X, 0.0, X + T, Y)?];
+    let mut p = vec![
+        rect(-T, -T, X + T, 0.0)?,
+        rect(-T, Y, X + T, Y + T)?,
+        rect(-T, 0.0, 0.0, Y)?,
+        rect(X, 0.0, X + T, Y)?,
+    ];
     // South rooms: five, 6 m wide, 1 m doors in the corridor wall.
     for k in 0..5 {
         let x0 = 6.0 * k as f64;
@@ -171,8 +178,18 @@ fn office() -> Result<Vec<Polygon>> {
             _ => {
                 p.push(rect(x0 + 0.5, Y - 0.8, x0 + 2.5, Y)?);
                 p.push(rect(x0 + 4.5, Y - 0.8, x0 + 6.5, Y)?);
-                p.push(rect(x0 + 6.7, C + T + 1.5, x0 + 7.5 - 0.5 * T, C + T + 3.5)?);
-                p.push(rotated_box([x0 + 3.5, 15.0], 1.6, 0.8, 15.0 * (k as f64 - 1.0))?);
+                p.push(rect(
+                    x0 + 6.7,
+                    C + T + 1.5,
+                    x0 + 7.5 - 0.5 * T,
+                    C + T + 3.5,
+                )?);
+                p.push(rotated_box(
+                    [x0 + 3.5, 15.0],
+                    1.6,
+                    0.8,
+                    15.0 * (k as f64 - 1.0),
+                )?);
                 p.push(column([x0 + 1.5, 14.0], 0.25)?);
             }
         }
@@ -220,7 +237,11 @@ mod tests {
         assert!((hit.distance_m - (17.0 - 16.0 - 0.06 / (0.5f64.atan2(3.0)).cos())).abs() < 1e-9);
         assert!(hit.incidence_rad > 0.1);
         // Glass in the south wall.
-        assert_eq!(w.cast([7.5, 1.3], -std::f64::consts::FRAC_PI_2, 5.0).material, Some(Glass));
+        assert_eq!(
+            w.cast([7.5, 1.3], -std::f64::consts::FRAC_PI_2, 5.0)
+                .material,
+            Some(Glass)
+        );
     }
     const W_MID: f64 = 2.66;
 

@@ -70,7 +70,11 @@ impl Edge {
     fn y_at(&self, x: f64) -> f64 {
         // Interpolate from the nearer end: exact at both ends.
         let t = (x - self.x0) / (self.x1 - self.x0);
-        if t <= 0.5 { self.y0 + t * (self.y1 - self.y0) } else { self.y1 + (1.0 - t) * (self.y0 - self.y1) }
+        if t <= 0.5 {
+            self.y0 + t * (self.y1 - self.y0)
+        } else {
+            self.y1 + (1.0 - t) * (self.y0 - self.y1)
+        }
     }
 }
 
@@ -104,7 +108,13 @@ fn coverage(polygons: &[Polygon], grid: &Grid, parallel: bool) -> Vec<f64> {
                     continue;
                 }
                 let (l, r) = if a[0] < b[0] { (a, b) } else { (b, a) };
-                edges.push(Edge { x0: l[0], y0: l[1], x1: r[0], y1: r[1], polygon: pi as u32 });
+                edges.push(Edge {
+                    x0: l[0],
+                    y0: l[1],
+                    x1: r[0],
+                    y1: r[1],
+                    polygon: pi as u32,
+                });
             }
         }
     }
@@ -205,7 +215,14 @@ fn column_areas(edges: &[Edge], ids: &[u32], grid: &Grid, c: usize) -> Vec<(u32,
             continue;
         }
         let polygon = polys.binary_search(&e.polygon).unwrap_or(0) as u32;
-        local.push(Local { xl, xr, yl: e.y_at(xl), yr: e.y_at(xr), edge: i, polygon });
+        local.push(Local {
+            xl,
+            xr,
+            yl: e.y_at(xl),
+            yr: e.y_at(xr),
+            edge: i,
+            polygon,
+        });
     }
 
     // Slab boundaries: the column's sides, edge ends, edge crossings.
@@ -272,7 +289,10 @@ fn column_areas(edges: &[Edge], ids: &[u32], grid: &Grid, c: usize) -> Vec<(u32,
             if was == 0 && inside > 0 {
                 lower = k;
             } else if was > 0 && inside == 0 {
-                let (lo, hi) = (&edges[local[lower].edge as usize], &edges[local[k].edge as usize]);
+                let (lo, hi) = (
+                    &edges[local[lower].edge as usize],
+                    &edges[local[k].edge as usize],
+                );
                 let (lu, lv, hu, hv) = (lo.y_at(u), lo.y_at(v), hi.y_at(u), hi.y_at(v));
                 add_trapezoid(&mut area, &mut touched, oy, r, v - u, [lu, lv], [hu, hv]);
             }
@@ -284,12 +304,24 @@ fn column_areas(edges: &[Edge], ids: &[u32], grid: &Grid, c: usize) -> Vec<(u32,
     }
     touched.sort_unstable();
     touched.dedup();
-    touched.into_iter().filter(|&j| area[j as usize] > 0.0).map(|j| (j, area[j as usize])).collect()
+    touched
+        .into_iter()
+        .filter(|&j| area[j as usize] > 0.0)
+        .map(|j| (j, area[j as usize]))
+        .collect()
 }
 
 /// Add the area between the lines `lo` and `hi` (values at the slab's two
 /// sides) over a slab of `width`, split among the cell rows it crosses.
-fn add_trapezoid(area: &mut [f64], touched: &mut Vec<u32>, oy: f64, r: f64, width: f64, lo: [f64; 2], hi: [f64; 2]) {
+fn add_trapezoid(
+    area: &mut [f64],
+    touched: &mut Vec<u32>,
+    oy: f64,
+    r: f64,
+    width: f64,
+    lo: [f64; 2],
+    hi: [f64; 2],
+) {
     let rows = area.len();
     let bottom = lo[0].min(lo[1]);
     let top = hi[0].max(hi[1]);
@@ -300,7 +332,8 @@ fn add_trapezoid(area: &mut [f64], touched: &mut Vec<u32>, oy: f64, r: f64, widt
     let last = (((top - oy) / r).ceil().max(1.0) as usize).min(rows);
     for (j, cell) in area.iter_mut().enumerate().take(last).skip(first) {
         let y0 = oy + j as f64 * r;
-        let a = width * (clamped_mean(hi[0] - y0, hi[1] - y0, r) - clamped_mean(lo[0] - y0, lo[1] - y0, r));
+        let a = width
+            * (clamped_mean(hi[0] - y0, hi[1] - y0, r) - clamped_mean(lo[0] - y0, lo[1] - y0, r));
         if a > 0.0 {
             *cell += a;
             touched.push(j as u32);
@@ -386,7 +419,12 @@ mod tests {
     #[test]
     fn fig1_partial_cell() {
         // A wall face at x = 2.04 fills the far 20 % of the cell [2.00, 2.05).
-        let w = world(vec![vec![[2.04, -1.0], [2.5, -1.0], [2.5, 1.0], [2.04, 1.0]]]);
+        let w = world(vec![vec![
+            [2.04, -1.0],
+            [2.5, -1.0],
+            [2.5, 1.0],
+            [2.04, 1.0],
+        ]]);
         let g = Grid::new([1.0, -0.5], 0.05, 20, 40).unwrap();
         let c = w.coverage(&g);
         let i = g.index(g.world_to_cell(2.025, 0.0).unwrap()).unwrap();
@@ -398,7 +436,12 @@ mod tests {
     #[test]
     fn polygon_beyond_the_grid() {
         // A polygon reaching far below and left of the grid still fills it.
-        let w = world(vec![vec![[-10.0, -10.0], [10.0, -10.0], [10.0, 0.5], [-10.0, 0.5]]]);
+        let w = world(vec![vec![
+            [-10.0, -10.0],
+            [10.0, -10.0],
+            [10.0, 0.5],
+            [-10.0, 0.5],
+        ]]);
         let g = Grid::new([0.0, 0.0], 0.25, 4, 4).unwrap();
         let c = w.coverage(&g);
         assert_eq!(&c[..8], &[1.0; 8]);
@@ -412,7 +455,8 @@ mod tests {
         (0..g.len())
             .map(|i| {
                 let [cx, cy] = g.cell_center(g.cell(i));
-                p.area_in_rect_m2([cx - 0.5 * r, cy - 0.5 * r, cx + 0.5 * r, cy + 0.5 * r]) / (r * r)
+                p.area_in_rect_m2([cx - 0.5 * r, cy - 0.5 * r, cx + 0.5 * r, cy + 0.5 * r])
+                    / (r * r)
             })
             .collect()
     }
@@ -421,7 +465,9 @@ mod tests {
     /// angles and radii in `[0.3, 1] * radius`.
     fn star(rng: &mut crate::rng::SimRng, c: [f64; 2], radius: f64, n: usize) -> Vec<[f64; 2]> {
         use rand::RngExt;
-        let mut angles: Vec<f64> = (0..n).map(|_| rng.random::<f64>() * std::f64::consts::TAU).collect();
+        let mut angles: Vec<f64> = (0..n)
+            .map(|_| rng.random::<f64>() * std::f64::consts::TAU)
+            .collect();
         angles.sort_by(f64::total_cmp);
         angles.dedup();
         angles
@@ -551,6 +597,9 @@ mod tests {
         let w = World::builtin("office").unwrap();
         let [x0, y0, x1, y1] = w.bounds_m();
         let g = Grid::covering(x0 - 0.3, y0 - 0.3, x1 + 0.3, y1 + 0.3, 0.1).unwrap();
-        assert_eq!(coverage(w.polygons(), &g, true), coverage(w.polygons(), &g, false));
+        assert_eq!(
+            coverage(w.polygons(), &g, true),
+            coverage(w.polygons(), &g, false)
+        );
     }
 }

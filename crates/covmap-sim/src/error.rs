@@ -86,8 +86,21 @@ pub enum SimError {
 pub type Result<T, E = SimError> = std::result::Result<T, E>;
 
 /// Errors unless `value` is finite and `ok` holds.
-pub(crate) fn check_param(name: &'static str, value: f64, ok: bool, expected: &'static str) -> Result<()> {
-    if ok && value.is_finite() { Ok(()) } else { Err(SimError::InvalidParameter { name, value, expected }) }
+pub(crate) fn check_param(
+    name: &'static str,
+    value: f64,
+    ok: bool,
+    expected: &'static str,
+) -> Result<()> {
+    if ok && value.is_finite() {
+        Ok(())
+    } else {
+        Err(SimError::InvalidParameter {
+            name,
+            value,
+            expected,
+        })
+    }
 }
 
 /// The most beams one simulated sensor may have (2^16).
@@ -104,7 +117,11 @@ pub(crate) fn check_bearings(bearings_rad: &[f64], what: &'static str) -> Result
             expected: "from 1 to 65536 bearings",
         });
     }
-    if let Some((index, &value)) = bearings_rad.iter().enumerate().find(|(_, b)| !b.is_finite()) {
+    if let Some((index, &value)) = bearings_rad
+        .iter()
+        .enumerate()
+        .find(|(_, b)| !b.is_finite())
+    {
         return Err(SimError::InvalidValue { what, index, value });
     }
     Ok(())

@@ -44,15 +44,33 @@ impl Laser {
     /// first at `-fov_rad / 2` and the last at `+fov_rad / 2`; maximum range
     /// from [`LaserModel::default`], 1 cm noise.
     pub fn new(beams: usize, fov_rad: f64) -> Result<Self> {
-        check_param("beams", beams as f64, (2..=crate::MAX_BEAMS).contains(&beams), "from 2 to 65536 beams")?;
-        check_param("fov_rad", fov_rad, fov_rad > 0.0 && fov_rad <= 2.0 * PI, "an angle in (0, 2 pi] radians")?;
+        check_param(
+            "beams",
+            beams as f64,
+            (2..=crate::MAX_BEAMS).contains(&beams),
+            "from 2 to 65536 beams",
+        )?;
+        check_param(
+            "fov_rad",
+            fov_rad,
+            fov_rad > 0.0 && fov_rad <= 2.0 * PI,
+            "an angle in (0, 2 pi] radians",
+        )?;
         let step = fov_rad / (beams - 1) as f64;
-        Ok(Self::with_bearings((0..beams).map(|i| -0.5 * fov_rad + i as f64 * step).collect()))
+        Ok(Self::with_bearings(
+            (0..beams)
+                .map(|i| -0.5 * fov_rad + i as f64 * step)
+                .collect(),
+        ))
     }
 
     /// Beams at the given bearings (radians), with the default range and noise.
     pub fn with_bearings(bearings_rad: Vec<f64>) -> Self {
-        Self { bearings_rad, max_range_m: LaserModel::default().range.max_range_m, noise_std_m: 0.01 }
+        Self {
+            bearings_rad,
+            max_range_m: LaserModel::default().range.max_range_m,
+            noise_std_m: 0.01,
+        }
     }
 
     /// 180 beams one degree apart from -90 degrees (to +89), the layout of
@@ -63,7 +81,11 @@ impl Laser {
 
     /// 361 beams half a degree apart from -90 to +90 degrees.
     pub fn sick_361() -> Self {
-        Self::with_bearings((0..361).map(|i| (0.5 * i as f64 - 90.0).to_radians()).collect())
+        Self::with_bearings(
+            (0..361)
+                .map(|i| (0.5 * i as f64 - 90.0).to_radians())
+                .collect(),
+        )
     }
 }
 
@@ -78,8 +100,18 @@ impl RangeSensor for Laser {
 
     fn validate(&self) -> Result<()> {
         check_bearings(&self.bearings_rad, "laser bearing")?;
-        check_param("max_range_m", self.max_range_m, self.max_range_m > 0.0, "a positive distance")?;
-        check_param("noise_std_m", self.noise_std_m, self.noise_std_m >= 0.0, "a non-negative standard deviation")
+        check_param(
+            "max_range_m",
+            self.max_range_m,
+            self.max_range_m > 0.0,
+            "a positive distance",
+        )?;
+        check_param(
+            "noise_std_m",
+            self.noise_std_m,
+            self.noise_std_m >= 0.0,
+            "a non-negative standard deviation",
+        )
     }
 
     fn scan<R: Rng + ?Sized>(&self, world: &World, pose: &Pose, rng: &mut R) -> Result<Scan> {
@@ -100,7 +132,11 @@ impl RangeSensor for Laser {
                 if r >= max { max } else { r }
             })
             .collect();
-        Ok(Scan { pose: *pose, ranges_m, bearings_rad: self.bearings_rad.clone() })
+        Ok(Scan {
+            pose: *pose,
+            ranges_m,
+            bearings_rad: self.bearings_rad.clone(),
+        })
     }
 }
 
@@ -127,20 +163,37 @@ mod tests {
     #[test]
     fn readings_against_geometry_and_noise() {
         // A wall face on x = 3 spanning y in [-10, 10].
-        let w = World::new(vec![Polygon::rectangle([3.0, -10.0], [4.0, 10.0], Material::Glass).unwrap()]);
+        let w = World::new(vec![
+            Polygon::rectangle([3.0, -10.0], [4.0, 10.0], Material::Glass).unwrap(),
+        ]);
         let mut l = Laser::sick_361();
         l.noise_std_m = 0.0;
-        let s = l.scan(&w, &Pose::new(0.0, 0.0, 0.0), &mut sim_rng(2)).unwrap();
+        let s = l
+            .scan(&w, &Pose::new(0.0, 0.0, 0.0), &mut sim_rng(2))
+            .unwrap();
         for (r, b) in s.ranges_m.iter().zip(&s.bearings_rad) {
-            let expect = if b.cos() > 1e-9 { (3.0 / b.cos()).min(30.0) } else { 30.0 };
+            let expect = if b.cos() > 1e-9 {
+                (3.0 / b.cos()).min(30.0)
+            } else {
+                30.0
+            };
             // Beyond |y| = 10 the beam passes the wall's end.
-            let expect = if (3.0 * b.tan()).abs() > 10.0 { 30.0 } else { expect };
+            let expect = if (3.0 * b.tan()).abs() > 10.0 {
+                30.0
+            } else {
+                expect
+            };
             assert!((r - expect).abs() < 1e-9, "bearing {b}: {r} vs {expect}");
         }
         l.noise_std_m = 0.02;
         let mut rng = sim_rng(11);
-        let v: Vec<f64> =
-            (0..5000).map(|_| l.scan(&w, &Pose::new(0.0, 0.0, 0.0), &mut rng).unwrap().ranges_m[180]).collect();
+        let v: Vec<f64> = (0..5000)
+            .map(|_| {
+                l.scan(&w, &Pose::new(0.0, 0.0, 0.0), &mut rng)
+                    .unwrap()
+                    .ranges_m[180]
+            })
+            .collect();
         let m = v.iter().sum::<f64>() / v.len() as f64;
         let sd = (v.iter().map(|x| (x - m).powi(2)).sum::<f64>() / (v.len() - 1) as f64).sqrt();
         // 5 standard errors: 0.02 / sqrt(5000) = 2.8e-4 for the mean, 1 % for the sd.

@@ -8,7 +8,9 @@ use serde::{Deserialize, Serialize};
 /// incidence beyond which the echo is reflected away (specular reflection) and
 /// lost: walls scatter enough to echo at fairly oblique incidence, glass echoes
 /// only near normal incidence (see [`crate::SonarRing`]).
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize, Deserialize)]
+#[derive(
+    Clone, Copy, Debug, Default, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize, Deserialize,
+)]
 #[serde(rename_all = "lowercase")]
 #[repr(u8)]
 pub enum Material {

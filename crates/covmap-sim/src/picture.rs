@@ -46,12 +46,18 @@ pub fn write_map_png(path: impl AsRef<Path>, grid: &Grid, values: &[f64]) -> Res
     let mut pixels = Vec::with_capacity(rows * cols);
     for row in (0..rows).rev() {
         for v in &values[row * cols..(row + 1) * cols] {
-            let grey = if v.is_nan() { 128 } else { (255.0 * (1.0 - v.clamp(0.0, 1.0))).round() as u8 };
+            let grey = if v.is_nan() {
+                128
+            } else {
+                (255.0 * (1.0 - v.clamp(0.0, 1.0))).round() as u8
+            };
             pixels.push(grey);
         }
     }
-    let encode_err =
-        |e: png::EncodingError| SimError::Io { path: path.to_path_buf(), source: std::io::Error::other(e.to_string()) };
+    let encode_err = |e: png::EncodingError| SimError::Io {
+        path: path.to_path_buf(),
+        source: std::io::Error::other(e.to_string()),
+    };
     let mut bytes = Vec::new();
     {
         let mut enc = png::Encoder::new(&mut bytes, width, height);

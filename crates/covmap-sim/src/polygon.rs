@@ -39,11 +39,19 @@ impl Polygon {
     /// A polygon with holes. The rings must be simple, no two edges may
     /// cross or touch, every hole must lie inside the exterior, and no hole
     /// inside another (an island in a hole is a polygon of its own).
-    pub fn with_holes(exterior: Vec<[f64; 2]>, holes: Vec<Vec<[f64; 2]>>, material: Material) -> Result<Self> {
+    pub fn with_holes(
+        exterior: Vec<[f64; 2]>,
+        holes: Vec<Vec<[f64; 2]>>,
+        material: Material,
+    ) -> Result<Self> {
         let invalid = |reason: String| SimError::InvalidPolygon { index: 0, reason };
         let mut rings = Vec::with_capacity(1 + holes.len());
         for (k, ring) in std::iter::once(exterior).chain(holes).enumerate() {
-            let name = if k == 0 { "exterior ring".to_string() } else { format!("hole {}", k - 1) };
+            let name = if k == 0 {
+                "exterior ring".to_string()
+            } else {
+                format!("hole {}", k - 1)
+            };
             rings.push(clean_ring(ring).map_err(|e| invalid(format!("{name}: {e}")))?);
         }
         if let Some((a, b)) = first_crossing(&rings) {
@@ -55,7 +63,10 @@ impl Polygon {
         }
         for (k, hole) in rings.iter().enumerate().skip(1) {
             if !ring_contains(&rings[0], hole[0]) {
-                return Err(invalid(format!("hole {} lies outside the exterior ring", k - 1)));
+                return Err(invalid(format!(
+                    "hole {} lies outside the exterior ring",
+                    k - 1
+                )));
             }
         }
         // No edges cross, so a hole lies wholly inside another or apart from
@@ -75,7 +86,11 @@ impl Polygon {
             }
         }
         let bounds_m = ring_bounds(&rings[0]);
-        Ok(Self { rings, material, bounds_m })
+        Ok(Self {
+            rings,
+            material,
+            bounds_m,
+        })
     }
 
     /// The axis-aligned rectangle `[min, max]`.
@@ -94,7 +109,12 @@ impl Polygon {
     /// A wall along the segment `a`-`b`: a rectangle `thickness_m` wide centred
     /// on the segment and extended by half the thickness beyond both ends, so
     /// that walls meeting at a corner close it.
-    pub fn wall(a_m: [f64; 2], b_m: [f64; 2], thickness_m: f64, material: Material) -> Result<Self> {
+    pub fn wall(
+        a_m: [f64; 2],
+        b_m: [f64; 2],
+        thickness_m: f64,
+        material: Material,
+    ) -> Result<Self> {
         let (dx, dy) = (b_m[0] - a_m[0], b_m[1] - a_m[1]);
         let len = dx.hypot(dy);
         if !(thickness_m.is_finite() && thickness_m > 0.0) {
@@ -107,7 +127,10 @@ impl Polygon {
         if !(len.is_finite() && len > 0.0) {
             return Err(SimError::InvalidPolygon {
                 index: 0,
-                reason: format!("wall from ({}, {}) to ({}, {}) has no length", a_m[0], a_m[1], b_m[0], b_m[1]),
+                reason: format!(
+                    "wall from ({}, {}) to ({}, {}) has no length",
+                    a_m[0], a_m[1], b_m[0], b_m[1]
+                ),
             });
         }
         let h = 0.5 * thickness_m;
@@ -116,7 +139,12 @@ impl Polygon {
         let a = [a_m[0] - ux, a_m[1] - uy];
         let b = [b_m[0] + ux, b_m[1] + uy];
         Self::new(
-            vec![[a[0] - nx, a[1] - ny], [b[0] - nx, b[1] - ny], [b[0] + nx, b[1] + ny], [a[0] + nx, a[1] + ny]],
+            vec![
+                [a[0] - nx, a[1] - ny],
+                [b[0] - nx, b[1] - ny],
+                [b[0] + nx, b[1] + ny],
+                [a[0] + nx, a[1] + ny],
+            ],
             material,
         )
     }
@@ -148,7 +176,10 @@ impl Polygon {
         let vertices = (0..sides)
             .map(|i| {
                 let a = rotation_rad + i as f64 * step;
-                [center_m[0] + radius_m * a.cos(), center_m[1] + radius_m * a.sin()]
+                [
+                    center_m[0] + radius_m * a.cos(),
+                    center_m[1] + radius_m * a.sin(),
+                ]
             })
             .collect();
         Self::new(vertices, material)
@@ -178,7 +209,10 @@ impl Polygon {
     /// The area inside the polygon, square metres (exterior minus holes).
     pub fn area_m2(&self) -> f64 {
         let ext = ring_area(&self.rings[0]).abs();
-        ext - self.rings[1..].iter().map(|r| ring_area(r).abs()).sum::<f64>()
+        ext - self.rings[1..]
+            .iter()
+            .map(|r| ring_area(r).abs())
+            .sum::<f64>()
     }
 
     /// Whether the point lies inside (even-odd rule over all rings; points on
@@ -225,9 +259,22 @@ pub(crate) fn ring_area(ring: &[[f64; 2]]) -> f64 {
 }
 
 fn ring_bounds(ring: &[[f64; 2]]) -> [f64; 4] {
-    ring.iter().fold([f64::INFINITY, f64::INFINITY, f64::NEG_INFINITY, f64::NEG_INFINITY], |b, p| {
-        [b[0].min(p[0]), b[1].min(p[1]), b[2].max(p[0]), b[3].max(p[1])]
-    })
+    ring.iter().fold(
+        [
+            f64::INFINITY,
+            f64::INFINITY,
+            f64::NEG_INFINITY,
+            f64::NEG_INFINITY,
+        ],
+        |b, p| {
+            [
+                b[0].min(p[0]),
+                b[1].min(p[1]),
+                b[2].max(p[0]),
+                b[3].max(p[1]),
+            ]
+        },
+    )
 }
 
 /// Even-odd point-in-ring test (crossings of a ray towards +x).
@@ -250,7 +297,11 @@ pub(crate) fn ring_contains(ring: &[[f64; 2]], p: [f64; 2]) -> bool {
 
 /// Drop a closing vertex and repeated vertices; check the rest.
 fn clean_ring(ring: Vec<[f64; 2]>) -> std::result::Result<Vec<[f64; 2]>, String> {
-    if let Some((i, p)) = ring.iter().enumerate().find(|(_, p)| !(p[0].is_finite() && p[1].is_finite())) {
+    if let Some((i, p)) = ring
+        .iter()
+        .enumerate()
+        .find(|(_, p)| !(p[0].is_finite() && p[1].is_finite()))
+    {
         return Err(format!("vertex {i} ({}, {}) is not finite", p[0], p[1]));
     }
     let mut out: Vec<[f64; 2]> = Vec::with_capacity(ring.len());
@@ -263,7 +314,10 @@ fn clean_ring(ring: Vec<[f64; 2]>) -> std::result::Result<Vec<[f64; 2]>, String>
         out.pop();
     }
     if out.len() < 3 {
-        return Err(format!("{} distinct vertices (at least 3 are needed)", out.len()));
+        return Err(format!(
+            "{} distinct vertices (at least 3 are needed)",
+            out.len()
+        ));
     }
     let area = ring_area(&out);
     let [x0, y0, x1, y1] = ring_bounds(&out);
@@ -282,7 +336,10 @@ type EdgeRef = (usize, usize);
 fn describe_edge(rings: &[Vec<[f64; 2]>], (r, i): EdgeRef) -> String {
     let ring = &rings[r];
     let (a, b) = (ring[i], ring[(i + 1) % ring.len()]);
-    format!("ring {r} edge {i} ({}, {})-({}, {})", a[0], a[1], b[0], b[1])
+    format!(
+        "ring {r} edge {i} ({}, {})-({}, {})",
+        a[0], a[1], b[0], b[1]
+    )
 }
 
 /// The first pair of edges that cross or touch, other than neighbours sharing
@@ -339,14 +396,19 @@ fn orient(a: [f64; 2], b: [f64; 2], c: [f64; 2]) -> f64 {
 }
 
 fn on_segment(a: [f64; 2], b: [f64; 2], p: [f64; 2]) -> bool {
-    p[0] >= a[0].min(b[0]) && p[0] <= a[0].max(b[0]) && p[1] >= a[1].min(b[1]) && p[1] <= a[1].max(b[1])
+    p[0] >= a[0].min(b[0])
+        && p[0] <= a[0].max(b[0])
+        && p[1] >= a[1].min(b[1])
+        && p[1] <= a[1].max(b[1])
 }
 
 /// Whether closed segments `ab` and `cd` share a point.
 pub(crate) fn segments_touch(a: [f64; 2], b: [f64; 2], c: [f64; 2], d: [f64; 2]) -> bool {
     let (d1, d2) = (orient(c, d, a), orient(c, d, b));
     let (d3, d4) = (orient(a, b, c), orient(a, b, d));
-    if ((d1 > 0.0 && d2 < 0.0) || (d1 < 0.0 && d2 > 0.0)) && ((d3 > 0.0 && d4 < 0.0) || (d3 < 0.0 && d4 > 0.0)) {
+    if ((d1 > 0.0 && d2 < 0.0) || (d1 < 0.0 && d2 > 0.0))
+        && ((d3 > 0.0 && d4 < 0.0) || (d3 < 0.0 && d4 > 0.0))
+    {
         return true;
     }
     (d1 == 0.0 && on_segment(c, d, a))
@@ -358,20 +420,34 @@ pub(crate) fn segments_touch(a: [f64; 2], b: [f64; 2], c: [f64; 2], d: [f64; 2])
 /// Sutherland–Hodgman clipping of a ring against an axis-aligned rectangle.
 pub(crate) fn clip_ring_to_rect(ring: &[[f64; 2]], rect: [f64; 4]) -> Vec<[f64; 2]> {
     // (axis, bound, keep the side >= bound?)
-    let planes = [(0, rect[0], true), (0, rect[2], false), (1, rect[1], true), (1, rect[3], false)];
+    let planes = [
+        (0, rect[0], true),
+        (0, rect[2], false),
+        (1, rect[1], true),
+        (1, rect[3], false),
+    ];
     let mut poly = ring.to_vec();
     for (axis, bound, keep_above) in planes {
         if poly.is_empty() {
             break;
         }
-        let inside = |p: &[f64; 2]| if keep_above { p[axis] >= bound } else { p[axis] <= bound };
+        let inside = |p: &[f64; 2]| {
+            if keep_above {
+                p[axis] >= bound
+            } else {
+                p[axis] <= bound
+            }
+        };
         let mut out = Vec::with_capacity(poly.len() + 4);
         let mut prev = poly[poly.len() - 1];
         for &cur in &poly {
             let (ci, pi) = (inside(&cur), inside(&prev));
             if ci != pi {
                 let t = (bound - prev[axis]) / (cur[axis] - prev[axis]);
-                let mut x = [prev[0] + t * (cur[0] - prev[0]), prev[1] + t * (cur[1] - prev[1])];
+                let mut x = [
+                    prev[0] + t * (cur[0] - prev[0]),
+                    prev[1] + t * (cur[1] - prev[1]),
+                ];
                 x[axis] = bound;
                 out.push(x);
             }
@@ -410,11 +486,21 @@ mod tests {
         // A hole inside another: the even-odd rule would fill the inner one,
         // the area would subtract it.
         let square = |lo: f64, hi: f64| vec![[lo, lo], [hi, lo], [hi, hi], [lo, hi]];
-        for holes in [vec![square(2.0, 8.0), square(4.0, 6.0)], vec![square(4.0, 6.0), square(2.0, 8.0)]] {
+        for holes in [
+            vec![square(2.0, 8.0), square(4.0, 6.0)],
+            vec![square(4.0, 6.0), square(2.0, 8.0)],
+        ] {
             let e = Polygon::with_holes(square(0.0, 10.0), holes, w).unwrap_err();
             assert!(e.to_string().contains("lies inside hole"), "{e}");
         }
-        assert!(Polygon::with_holes(square(0.0, 10.0), vec![square(1.0, 3.0), square(5.0, 8.0)], w).is_ok());
+        assert!(
+            Polygon::with_holes(
+                square(0.0, 10.0),
+                vec![square(1.0, 3.0), square(5.0, 8.0)],
+                w
+            )
+            .is_ok()
+        );
     }
 
     #[test]
@@ -452,9 +538,18 @@ mod tests {
     #[test]
     fn concave_clip_area() {
         // An L: the unit square [0,2]^2 minus [1,2]^2.
-        let l =
-            Polygon::new(vec![[0.0, 0.0], [2.0, 0.0], [2.0, 1.0], [1.0, 1.0], [1.0, 2.0], [0.0, 2.0]], Material::Wall)
-                .unwrap();
+        let l = Polygon::new(
+            vec![
+                [0.0, 0.0],
+                [2.0, 0.0],
+                [2.0, 1.0],
+                [1.0, 1.0],
+                [1.0, 2.0],
+                [0.0, 2.0],
+            ],
+            Material::Wall,
+        )
+        .unwrap();
         assert_eq!(l.area_m2(), 3.0);
         assert!((l.area_in_rect_m2([0.5, 0.5, 1.5, 1.5]) - 0.75).abs() < 1e-12);
         assert_eq!(l.area_in_rect_m2([1.0, 1.0, 2.0, 2.0]), 0.0);

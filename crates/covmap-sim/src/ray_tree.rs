@@ -70,13 +70,19 @@ struct Node {
 }
 
 /// A box no ray enters (not even one along an axis through it).
-const NO_BOX: ([f64; 2], [f64; 2]) = ([f64::INFINITY, f64::NEG_INFINITY], [f64::INFINITY, f64::NEG_INFINITY]);
+const NO_BOX: ([f64; 2], [f64; 2]) = (
+    [f64::INFINITY, f64::NEG_INFINITY],
+    [f64::INFINITY, f64::NEG_INFINITY],
+);
 
 impl Node {
     /// A node of four unused lanes.
     fn empty() -> Self {
         let (x, y) = NO_BOX;
-        Self { x: [[x[0]; 4], [x[1]; 4]], y: [[y[0]; 4], [y[1]; 4]] }
+        Self {
+            x: [[x[0]; 4], [x[1]; 4]],
+            y: [[y[0]; 4], [y[1]; 4]],
+        }
     }
 
     /// Lane `k` becomes parry's box `b`, widened by [`slack`].
@@ -128,7 +134,12 @@ impl Ray {
     /// The ray from `o` along the unit vector `d`.
     pub(crate) fn new(o: [f64; 2], d: [f64; 2]) -> Self {
         let near = [usize::from(d[0] < 0.0), usize::from(d[1] < 0.0)];
-        Self { o, d, inv: [1.0 / d[0], 1.0 / d[1]], near }
+        Self {
+            o,
+            d,
+            inv: [1.0 / d[0], 1.0 / d[1]],
+            near,
+        }
     }
 }
 
@@ -161,15 +172,26 @@ impl RayTree {
         let (mut lines, mut faces) = (Vec::new(), Vec::new());
         for (a, b, material) in edges {
             let (a, b) = (Vector::new(a[0], a[1]), Vector::new(b[0], b[1]));
-            let count = ((b - a).length() / RAY_PIECE_M).ceil().clamp(1.0, MAX_PIECES as f64) as usize;
+            let count = ((b - a).length() / RAY_PIECE_M)
+                .ceil()
+                .clamp(1.0, MAX_PIECES as f64) as usize;
             for k in 0..count {
                 // Cut points computed from both ends, so the pieces meet exactly.
-                let at = |t: usize| if t == count { b } else { a + (b - a) * (t as f64 / count as f64) };
+                let at = |t: usize| {
+                    if t == count {
+                        b
+                    } else {
+                        a + (b - a) * (t as f64 / count as f64)
+                    }
+                };
                 let (p, q) = (at(k), at(k + 1));
                 let e = [q.x - p.x, q.y - p.y];
                 let len = e[0].hypot(e[1]);
                 lines.push(Line { a: [p.x, p.y], e });
-                faces.push(Face { n: [-e[1] / len, e[0] / len], material });
+                faces.push(Face {
+                    n: [-e[1] / len, e[0] / len],
+                    material,
+                });
             }
         }
         let boxes: Vec<Aabb> = lines
@@ -188,9 +210,18 @@ impl RayTree {
                 node.set_box(0, &boxes[0]);
                 (vec![node], vec![Links::new([LEAF; 4])], 1)
             }
-            _ => collapse(&read_pairs(&Bvh::from_leaves(BvhBuildStrategy::Binned, &boxes))),
+            _ => collapse(&read_pairs(&Bvh::from_leaves(
+                BvhBuildStrategy::Binned,
+                &boxes,
+            ))),
         };
-        Self { lines, faces, nodes, links, stack_len: 3 * levels + 1 }
+        Self {
+            lines,
+            faces,
+            nodes,
+            links,
+            stack_len: 3 * levels + 1,
+        }
     }
 
     /// The surface of piece `index`.
@@ -209,7 +240,12 @@ impl RayTree {
     }
 
     /// [`RayTree::first_hit`] with the stack borrowed from `stack`.
-    pub(crate) fn first_hit_with(&self, ray: &Ray, max_t: f64, stack: &mut RayStack) -> Option<(u32, f64)> {
+    pub(crate) fn first_hit_with(
+        &self,
+        ray: &Ray,
+        max_t: f64,
+        stack: &mut RayStack,
+    ) -> Option<(u32, f64)> {
         if stack.0.len() < self.stack_len {
             stack.0.resize(self.stack_len, (0, 0.0));
         }
@@ -438,14 +474,19 @@ struct Slabs {
 #[inline(always)]
 fn enter(node: &Node, ray: &Ray, best_t: f64) -> Slabs {
     let (nx, ny) = (ray.near[0] & 1, ray.near[1] & 1);
-    let slab = |side: [f64; 4], axis| (f64x4::from(side) - f64x4::splat(ray.o[axis])) * f64x4::splat(ray.inv[axis]);
+    let slab = |side: [f64; 4], axis| {
+        (f64x4::from(side) - f64x4::splat(ray.o[axis])) * f64x4::splat(ray.inv[axis])
+    };
     let (x_in, x_out) = (slab(node.x[nx], 0), slab(node.x[nx ^ 1], 0));
     let (y_in, y_out) = (slab(node.y[ny], 1), slab(node.y[ny ^ 1], 1));
     // `fast_max(b)` is `if a > b { a } else { b }`, lane by lane (no NaN here).
     let t_in = x_in.fast_max(y_in).fast_max(f64x4::ZERO);
     let t_out = x_out.fast_min(y_out);
     let entered = t_in.simd_le(t_out) & t_in.simd_lt(f64x4::splat(best_t));
-    Slabs { t_in: t_in.to_array(), entered: entered.to_bitmask() }
+    Slabs {
+        t_in: t_in.to_array(),
+        entered: entered.to_bitmask(),
+    }
 }
 
 /// [`enter`] for rays parallel to an axis (the origin may lie on a box's face,
@@ -455,13 +496,20 @@ fn enter_careful(node: &Node, ray: &Ray, best_t: f64) -> Slabs {
     let slab = |axis: usize, [lo, hi]: [f64; 2]| -> (f64, f64) {
         let o = ray.o[axis];
         if ray.d[axis] == 0.0 {
-            if lo <= o && o <= hi { (f64::NEG_INFINITY, f64::INFINITY) } else { (f64::INFINITY, f64::NEG_INFINITY) }
+            if lo <= o && o <= hi {
+                (f64::NEG_INFINITY, f64::INFINITY)
+            } else {
+                (f64::INFINITY, f64::NEG_INFINITY)
+            }
         } else {
             let (a, b) = ((lo - o) * ray.inv[axis], (hi - o) * ray.inv[axis]);
             (min(a, b), max(a, b))
         }
     };
-    let mut slabs = Slabs { t_in: [0.0; 4], entered: 0 };
+    let mut slabs = Slabs {
+        t_in: [0.0; 4],
+        entered: 0,
+    };
     for k in 0..4 {
         let (x_in, x_out) = slab(0, [node.x[0][k], node.x[1][k]]);
         let (y_in, y_out) = slab(1, [node.y[0][k], node.y[1][k]]);
@@ -511,11 +559,17 @@ mod tests {
     /// the same hit or miss, at the same distance.
     fn assert_matches_brute_force(tree: &RayTree, ray: &Ray, max_t: f64, stack: &mut RayStack) {
         let expected = tree.first_hit_brute_force(ray, max_t);
-        for got in [tree.first_hit(ray, max_t), tree.first_hit_with(ray, max_t, stack)] {
+        for got in [
+            tree.first_hit(ray, max_t),
+            tree.first_hit_with(ray, max_t, stack),
+        ] {
             match (got, expected) {
                 (None, None) => {}
                 (Some((_, t)), Some((_, t_expected))) => {
-                    assert!((t - t_expected).abs() <= 1e-9, "{ray:?} up to {max_t}: {t} against {t_expected}")
+                    assert!(
+                        (t - t_expected).abs() <= 1e-9,
+                        "{ray:?} up to {max_t}: {t} against {t_expected}"
+                    )
                 }
                 _ => panic!("{ray:?} up to {max_t}: {got:?} against {expected:?}"),
             }
@@ -530,7 +584,10 @@ mod tests {
         let mut hits = 0;
         for i in 0..n {
             // Origins also outside the world and inside obstacles.
-            let o = [x0 - 0.2 * w + 1.4 * w * rng.random::<f64>(), y0 - 0.2 * h + 1.4 * h * rng.random::<f64>()];
+            let o = [
+                x0 - 0.2 * w + 1.4 * w * rng.random::<f64>(),
+                y0 - 0.2 * h + 1.4 * h * rng.random::<f64>(),
+            ];
             let (s, c) = (rng.random::<f64>() * std::f64::consts::TAU).sin_cos();
             let max_t = [0.5, 5.0, 30.0, f64::INFINITY][i % 4];
             let ray = Ray::new(o, [c, s]);
@@ -558,7 +615,10 @@ mod tests {
             let world = World::builtin(name).unwrap();
             let tree = RayTree::new(edges(&world));
             let hits = random_rays(&tree, world.bounds_m(), 11 + i as u64, 20_000);
-            assert!(hits > 5_000, "{name}: only {hits} hits, the test is too weak");
+            assert!(
+                hits > 5_000,
+                "{name}: only {hits} hits, the test is too weak"
+            );
         }
     }
 
@@ -597,7 +657,12 @@ mod tests {
         let mut stack = RayStack::default();
         let mut hits = 0;
         for (a, b, _) in &edges {
-            for o in [*a, [0.5 * (a[0] + b[0]), 0.5 * (a[1] + b[1])], [a[0] + 0.25, a[1]], [a[0], a[1] - 0.5]] {
+            for o in [
+                *a,
+                [0.5 * (a[0] + b[0]), 0.5 * (a[1] + b[1])],
+                [a[0] + 0.25, a[1]],
+                [a[0], a[1] - 0.5],
+            ] {
                 for d in [[1.0, 0.0], [0.0, 1.0], [-1.0, 0.0], [0.0, -1.0]] {
                     let ray = Ray::new(o, d);
                     assert_matches_brute_force(&tree, &ray, 30.0, &mut stack);
@@ -615,21 +680,34 @@ mod tests {
         assert_eq!(hit, Some((0, 1.0)));
         assert_eq!(tree.face(0).material, Material::Glass);
         assert_eq!(tree.first_hit(&Ray::new([0.0, 1.5], [1.0, 0.0]), 5.0), None);
-        assert_eq!(tree.first_hit(&Ray::new([0.0, 0.5], [1.0, 0.0]), 1.0), None, "the range is exclusive");
+        assert_eq!(
+            tree.first_hit(&Ray::new([0.0, 0.5], [1.0, 0.0]), 1.0),
+            None,
+            "the range is exclusive"
+        );
         let empty = RayTree::new([]);
-        assert_eq!(empty.first_hit(&Ray::new([0.0, 0.0], [1.0, 0.0]), 5.0), None);
+        assert_eq!(
+            empty.first_hit(&Ray::new([0.0, 0.0], [1.0, 0.0]), 5.0),
+            None
+        );
     }
 
     /// An edge of a million kilometres is cut into at most `MAX_PIECES`,
     /// and rays still find it where it is.
     #[test]
     fn a_very_long_edge_takes_bounded_pieces() {
-        let tree = RayTree::new([([0.0, 0.0], [1e9, 0.0], Material::Wall), ([0.0, 1.0], [1.0, 2.0], Material::Wall)]);
+        let tree = RayTree::new([
+            ([0.0, 0.0], [1e9, 0.0], Material::Wall),
+            ([0.0, 1.0], [1.0, 2.0], Material::Wall),
+        ]);
         assert_eq!(tree.lines.len(), MAX_PIECES + 1);
         let mut stack = RayStack::default();
         let ray = Ray::new([3.5e8, 5.0], [0.0, -1.0]);
         assert_matches_brute_force(&tree, &ray, 10.0, &mut stack);
-        assert!(tree.first_hit(&ray, 10.0).is_some_and(|(_, t)| (t - 5.0).abs() < 1e-6));
+        assert!(
+            tree.first_hit(&ray, 10.0)
+                .is_some_and(|(_, t)| (t - 5.0).abs() < 1e-6)
+        );
     }
 
     #[test]
@@ -637,7 +715,11 @@ mod tests {
         let tree = RayTree::new(edges(&World::builtin("office").unwrap()));
         let mut stack = RayStack::default();
         let nan = f64::NAN;
-        for (o, d) in [([nan, 1.0], [0.6, 0.8]), ([1.0, 1.0], [nan, nan]), ([1.0, nan], [1.0, 0.0])] {
+        for (o, d) in [
+            ([nan, 1.0], [0.6, 0.8]),
+            ([1.0, 1.0], [nan, nan]),
+            ([1.0, nan], [1.0, 0.0]),
+        ] {
             assert_eq!(tree.first_hit_with(&Ray::new(o, d), 30.0, &mut stack), None);
         }
     }

@@ -28,7 +28,12 @@ pub struct RayHit {
 impl RayHit {
     /// A miss at `max_range_m`.
     pub fn miss(max_range_m: f64) -> Self {
-        Self { distance_m: max_range_m, incidence_rad: f64::NAN, normal: [0.0, 0.0], material: None }
+        Self {
+            distance_m: max_range_m,
+            incidence_rad: f64::NAN,
+            normal: [0.0, 0.0],
+            material: None,
+        }
     }
     /// Whether a surface was hit within the maximum range.
     pub fn is_hit(&self) -> bool {
@@ -57,7 +62,9 @@ impl World {
     /// assert!(!world.cast([0.0, 0.0], std::f64::consts::PI, 10.0).is_hit());
     /// ```
     pub fn cast(&self, origin_m: [f64; 2], angle_rad: f64, max_range_m: f64) -> RayHit {
-        self.cast_with(origin_m, angle_rad, max_range_m, |tree, ray| tree.first_hit(ray, max_range_m))
+        self.cast_with(origin_m, angle_rad, max_range_m, |tree, ray| {
+            tree.first_hit(ray, max_range_m)
+        })
     }
 
     /// [`World::cast`] finding the first hit with `first_hit`, which lets a
@@ -84,7 +91,12 @@ impl World {
                     n = [-n[0], -n[1]];
                     cos = -cos;
                 }
-                RayHit { distance_m: t, incidence_rad: (-cos).min(1.0).acos(), normal: n, material: Some(p.material) }
+                RayHit {
+                    distance_m: t,
+                    incidence_rad: (-cos).min(1.0).acos(),
+                    normal: n,
+                    material: Some(p.material),
+                }
             }
             _ => RayHit::miss(max_range_m),
         }
@@ -96,7 +108,12 @@ impl World {
     ///
     /// Errors on mismatched lengths, a non-finite origin or angle, or a maximum
     /// range that is not positive and finite.
-    pub fn cast_batch(&self, origins_m: &[[f64; 2]], angles_rad: &[f64], max_range_m: f64) -> Result<Vec<RayHit>> {
+    pub fn cast_batch(
+        &self,
+        origins_m: &[[f64; 2]],
+        angles_rad: &[f64],
+        max_range_m: f64,
+    ) -> Result<Vec<RayHit>> {
         validate_rays(origins_m, angles_rad, max_range_m)?;
         #[cfg(feature = "parallel")]
         if origins_m.len() >= PARALLEL_MIN_RAYS {
@@ -105,7 +122,9 @@ impl World {
                 .par_iter()
                 .zip(angles_rad.par_iter())
                 .with_min_len(1024)
-                .map_init(RayStack::default, |stack, (&o, &a)| self.cast_batched(o, a, max_range_m, stack))
+                .map_init(RayStack::default, |stack, (&o, &a)| {
+                    self.cast_batched(o, a, max_range_m, stack)
+                })
                 .collect());
         }
         Ok(self.cast_sequential(origins_m, angles_rad, max_range_m))
@@ -122,19 +141,41 @@ impl World {
         Ok(self.cast_sequential(origins_m, angles_rad, max_range_m))
     }
 
-    fn cast_sequential(&self, origins_m: &[[f64; 2]], angles_rad: &[f64], max_range_m: f64) -> Vec<RayHit> {
+    fn cast_sequential(
+        &self,
+        origins_m: &[[f64; 2]],
+        angles_rad: &[f64],
+        max_range_m: f64,
+    ) -> Vec<RayHit> {
         let mut stack = RayStack::default();
-        origins_m.iter().zip(angles_rad).map(|(&o, &a)| self.cast_batched(o, a, max_range_m, &mut stack)).collect()
+        origins_m
+            .iter()
+            .zip(angles_rad)
+            .map(|(&o, &a)| self.cast_batched(o, a, max_range_m, &mut stack))
+            .collect()
     }
 
     /// One ray of a batch, on the batch's stack.
-    fn cast_batched(&self, origin_m: [f64; 2], angle_rad: f64, max_range_m: f64, stack: &mut RayStack) -> RayHit {
-        self.cast_with(origin_m, angle_rad, max_range_m, |tree, ray| tree.first_hit_with(ray, max_range_m, stack))
+    fn cast_batched(
+        &self,
+        origin_m: [f64; 2],
+        angle_rad: f64,
+        max_range_m: f64,
+        stack: &mut RayStack,
+    ) -> RayHit {
+        self.cast_with(origin_m, angle_rad, max_range_m, |tree, ray| {
+            tree.first_hit_with(ray, max_range_m, stack)
+        })
     }
 }
 
 fn validate_rays(origins_m: &[[f64; 2]], angles_rad: &[f64], max_range_m: f64) -> Result<()> {
-    check_param("max_range_m", max_range_m, max_range_m > 0.0, "a positive, finite distance")?;
+    check_param(
+        "max_range_m",
+        max_range_m,
+        max_range_m > 0.0,
+        "a positive, finite distance",
+    )?;
     if origins_m.len() != angles_rad.len() {
         return Err(SimError::LengthMismatch {
             what: "ray origins and angles",
@@ -150,7 +191,11 @@ fn validate_rays(origins_m: &[[f64; 2]], angles_rad: &[f64], max_range_m: f64) -
         }
     }
     if let Some((index, &value)) = angles_rad.iter().enumerate().find(|(_, a)| !a.is_finite()) {
-        return Err(SimError::InvalidValue { what: "ray angle", index, value });
+        return Err(SimError::InvalidValue {
+            what: "ray angle",
+            index,
+            value,
+        });
     }
     Ok(())
 }
@@ -225,12 +270,21 @@ mod tests {
     fn batch_validates_and_matches_single_casts() {
         let w = room();
         assert!(w.cast_batch(&[[0.5, 0.5]], &[0.0, 1.0], 5.0).is_err());
-        assert!(matches!(w.cast_batch(&[[0.5, f64::NAN]], &[0.0], 5.0), Err(SimError::InvalidValue { index: 0, .. })));
+        assert!(matches!(
+            w.cast_batch(&[[0.5, f64::NAN]], &[0.0], 5.0),
+            Err(SimError::InvalidValue { index: 0, .. })
+        ));
         assert!(w.cast_batch(&[[0.5, 0.5]], &[f64::INFINITY], 5.0).is_err());
         assert!(w.cast_batch(&[[0.5, 0.5]], &[0.0], 0.0).is_err());
         let n = 10_000;
-        let origins: Vec<[f64; 2]> =
-            (0..n).map(|i| [0.2 + 3.6 * (i as f64 * 0.618).fract(), 0.1 + 1.8 * (i as f64 * 0.414).fract()]).collect();
+        let origins: Vec<[f64; 2]> = (0..n)
+            .map(|i| {
+                [
+                    0.2 + 3.6 * (i as f64 * 0.618).fract(),
+                    0.1 + 1.8 * (i as f64 * 0.414).fract(),
+                ]
+            })
+            .collect();
         let angles: Vec<f64> = (0..n).map(|i| i as f64 * 0.01).collect();
         let par = w.cast_batch(&origins, &angles, 6.0).unwrap();
         let seq = w.cast_batch_sequential(&origins, &angles, 6.0).unwrap();
@@ -261,7 +315,8 @@ mod tests {
                     let w = [a[0] - o[0], a[1] - o[1]];
                     let t = (w[0] * e[1] - w[1] * e[0]) / denom;
                     let u = (w[0] * d[1] - w[1] * d[0]) / denom;
-                    if t >= 0.0 && t < max && (0.0..=1.0).contains(&u) && best.is_none_or(|b| t < b) {
+                    if t >= 0.0 && t < max && (0.0..=1.0).contains(&u) && best.is_none_or(|b| t < b)
+                    {
                         best = Some(t);
                     }
                 }
@@ -277,18 +332,32 @@ mod tests {
         let [x0, y0, x1, y1] = w.bounds_m();
         let mut rng = crate::rng::sim_rng(3);
         let n = 10_000;
-        let origins: Vec<[f64; 2]> =
-            (0..n).map(|_| [x0 + (x1 - x0) * rng.random::<f64>(), y0 + (y1 - y0) * rng.random::<f64>()]).collect();
-        let angles: Vec<f64> = (0..n).map(|_| rng.random::<f64>() * std::f64::consts::TAU).collect();
+        let origins: Vec<[f64; 2]> = (0..n)
+            .map(|_| {
+                [
+                    x0 + (x1 - x0) * rng.random::<f64>(),
+                    y0 + (y1 - y0) * rng.random::<f64>(),
+                ]
+            })
+            .collect();
+        let angles: Vec<f64> = (0..n)
+            .map(|_| rng.random::<f64>() * std::f64::consts::TAU)
+            .collect();
         for max in [5.0, 30.0] {
             let batch = w.cast_batch(&origins, &angles, max).unwrap();
             let mut hits = 0;
             for (i, hit) in batch.iter().enumerate() {
                 let one = w.cast(origins[i], angles[i], max);
-                assert_eq!((hit.distance_m, hit.normal, hit.material), (one.distance_m, one.normal, one.material));
+                assert_eq!(
+                    (hit.distance_m, hit.normal, hit.material),
+                    (one.distance_m, one.normal, one.material)
+                );
                 match brute_force_distance(&w, origins[i], angles[i], max) {
                     Some(t) => {
-                        assert!(hit.is_hit() && (hit.distance_m - t).abs() <= 1e-9, "ray {i}: {hit:?}, expected {t}");
+                        assert!(
+                            hit.is_hit() && (hit.distance_m - t).abs() <= 1e-9,
+                            "ray {i}: {hit:?}, expected {t}"
+                        );
                         hits += 1;
                     }
                     None => assert!(!hit.is_hit(), "ray {i}: {hit:?}, expected a miss"),

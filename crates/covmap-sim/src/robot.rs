@@ -30,7 +30,12 @@ pub struct Robot {
 impl Robot {
     /// A disc of `radius_m` (positive, finite).
     pub fn new(radius_m: f64) -> Result<Self> {
-        check_param("radius_m", radius_m, radius_m > 0.0, "a positive, finite radius")?;
+        check_param(
+            "radius_m",
+            radius_m,
+            radius_m > 0.0,
+            "a positive, finite radius",
+        )?;
         Ok(Self { radius_m })
     }
 
@@ -44,7 +49,11 @@ impl Robot {
     /// at most `-radius_m`).
     pub fn clearance_m(&self, world: &World, position_m: [f64; 2]) -> f64 {
         let d = world.distance_to_boundary_m(position_m);
-        if world.contains_point(position_m) { -d - self.radius_m } else { d - self.radius_m }
+        if world.contains_point(position_m) {
+            -d - self.radius_m
+        } else {
+            d - self.radius_m
+        }
     }
 
     /// Whether the disc at the pose overlaps (or touches) an obstacle. A
@@ -89,7 +98,10 @@ impl Robot {
         let cast = length.min(out);
         let delta = [delta[0] / length * cast, delta[1] / length * cast];
         let ball = Ball::new(self.radius_m);
-        let options = ShapeCastOptions { max_time_of_impact: 1.0, ..ShapeCastOptions::default() };
+        let options = ShapeCastOptions {
+            max_time_of_impact: 1.0,
+            ..ShapeCastOptions::default()
+        };
         let hit = query::cast_shapes(
             &ParryPose::from_translation(vector(from_m)),
             Vector::new(delta[0], delta[1]),
@@ -129,7 +141,9 @@ mod tests {
     use crate::polygon::Polygon;
 
     fn block() -> World {
-        World::new(vec![Polygon::rectangle([2.0, -1.0], [4.0, 1.0], Material::Wall).unwrap()])
+        World::new(vec![
+            Polygon::rectangle([2.0, -1.0], [4.0, 1.0], Material::Wall).unwrap(),
+        ])
     }
 
     #[test]
@@ -165,15 +179,20 @@ mod tests {
         // A non-finite end collides, as a non-finite pose does, even with
         // nothing in the way.
         let empty = World::new(Vec::new());
-        for (from, to) in
-            [([f64::NAN, 1.3], [2.0, 1.3]), ([2.0, 1.3], [f64::NAN, 1.3]), ([0.0, 0.0], [f64::INFINITY, 0.0])]
-        {
+        for (from, to) in [
+            ([f64::NAN, 1.3], [2.0, 1.3]),
+            ([2.0, 1.3], [f64::NAN, 1.3]),
+            ([0.0, 0.0], [f64::INFINITY, 0.0]),
+        ] {
             assert!(r.move_collides(&empty, from, to), "{from:?} -> {to:?}");
         }
         // A goal far beyond the world: the wall still stops the disc, and
         // with nothing in the way the whole length is free.
         for far in [1e6, 1e155, 1e300] {
-            assert!((r.free_travel_m(&w, [0.0, 0.0], [far, 0.0]) - 1.5).abs() < 1e-6, "{far}");
+            assert!(
+                (r.free_travel_m(&w, [0.0, 0.0], [far, 0.0]) - 1.5).abs() < 1e-6,
+                "{far}"
+            );
             assert_eq!(r.free_travel_m(&w, [0.0, 1.6], [far, 1.6]), far, "{far}");
         }
     }

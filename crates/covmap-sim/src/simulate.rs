@@ -36,12 +36,18 @@ pub trait RangeSensor {
 /// assert_eq!(scans.len(), 10);
 /// assert_eq!(scans, simulate(&SonarRing::default(), &world, &poses, 42).unwrap());
 /// ```
-pub fn simulate<S: RangeSensor + Sync>(sensor: &S, world: &World, poses: &[Pose], seed: u64) -> Result<Vec<Scan>> {
+pub fn simulate<S: RangeSensor + Sync>(
+    sensor: &S,
+    world: &World,
+    poses: &[Pose],
+    seed: u64,
+) -> Result<Vec<Scan>> {
     sensor.validate()?;
     for p in poses {
         check_pose(p)?;
     }
-    let one = |(i, pose): (usize, &Pose)| sensor.scan(world, pose, &mut sim_rng_stream(seed, i as u64));
+    let one =
+        |(i, pose): (usize, &Pose)| sensor.scan(world, pose, &mut sim_rng_stream(seed, i as u64));
     #[cfg(feature = "parallel")]
     {
         use rayon::prelude::*;
@@ -58,7 +64,12 @@ pub(crate) fn check_pose(pose: &Pose) -> Result<()> {
     if pose.x_m.is_finite() && pose.y_m.is_finite() && pose.theta_rad.is_finite() {
         Ok(())
     } else {
-        Err(CovmapError::InvalidPose { x: pose.x_m, y: pose.y_m, theta: pose.theta_rad }.into())
+        Err(CovmapError::InvalidPose {
+            x: pose.x_m,
+            y: pose.y_m,
+            theta: pose.theta_rad,
+        }
+        .into())
     }
 }
 
@@ -71,14 +82,26 @@ mod tests {
     #[test]
     fn parallel_simulation_equals_the_sequential_loop() {
         let world = World::builtin("office").unwrap();
-        let poses: Vec<Pose> = (0..40).map(|i| Pose::new(1.0 + 0.7 * i as f64, 9.7, 0.1 * i as f64)).collect();
+        let poses: Vec<Pose> = (0..40)
+            .map(|i| Pose::new(1.0 + 0.7 * i as f64, 9.7, 0.1 * i as f64))
+            .collect();
         let sonar = SonarRing::default();
         let laser = Laser::sick_361();
         let scans = simulate(&sonar, &world, &poses, 11).unwrap();
         let lasers = simulate(&laser, &world, &poses, 11).unwrap();
         for (i, p) in poses.iter().enumerate() {
-            assert_eq!(scans[i], sonar.scan(&world, p, &mut sim_rng_stream(11, i as u64)).unwrap());
-            assert_eq!(lasers[i], laser.scan(&world, p, &mut sim_rng_stream(11, i as u64)).unwrap());
+            assert_eq!(
+                scans[i],
+                sonar
+                    .scan(&world, p, &mut sim_rng_stream(11, i as u64))
+                    .unwrap()
+            );
+            assert_eq!(
+                lasers[i],
+                laser
+                    .scan(&world, p, &mut sim_rng_stream(11, i as u64))
+                    .unwrap()
+            );
         }
         assert_ne!(scans, simulate(&sonar, &world, &poses, 12).unwrap());
         let bad = [Pose::new(1.0, f64::INFINITY, 0.0)];

@@ -124,7 +124,10 @@ impl SonarRing {
     /// -22.5, -7.5, 7.5, 22.5, 37.5 and 90 degrees.
     pub fn front_eight() -> Self {
         Self::with_bearings(
-            [-90.0, -37.5, -22.5, -7.5, 7.5, 22.5, 37.5, 90.0].iter().map(|d: &f64| d.to_radians()).collect(),
+            [-90.0, -37.5, -22.5, -7.5, 7.5, 22.5, 37.5, 90.0]
+                .iter()
+                .map(|d: &f64| d.to_radians())
+                .collect(),
         )
     }
 
@@ -153,7 +156,11 @@ impl SonarRing {
         let mut echo = f64::INFINITY;
         let mut specular: Option<(f64, RayHit)> = None;
         for k in 0..n {
-            let offset = if n == 1 { 0.0 } else { self.opening_angle_rad * (k as f64 / (n - 1) as f64 - 0.5) };
+            let offset = if n == 1 {
+                0.0
+            } else {
+                self.opening_angle_rad * (k as f64 / (n - 1) as f64 - 0.5)
+            };
             let angle = axis_rad + offset;
             let hit = world.cast(origin, angle, max);
             let Some(material) = hit.material else {
@@ -167,7 +174,9 @@ impl SonarRing {
         }
         let mut range = if echo.is_finite() {
             echo
-        } else if let (Some((angle, hit)), true) = (specular, u_multipath < self.multipath_probability) {
+        } else if let (Some((angle, hit)), true) =
+            (specular, u_multipath < self.multipath_probability)
+        {
             self.multipath(world, origin, angle, &hit)
         } else {
             max
@@ -219,29 +228,55 @@ impl RangeSensor for SonarRing {
     fn validate(&self) -> Result<()> {
         check_bearings(&self.bearings_rad, "sonar bearing")?;
         let a = self.opening_angle_rad;
-        check_param("opening_angle_rad", a, a > 0.0 && a < PI, "an angle in (0, pi) radians")?;
+        check_param(
+            "opening_angle_rad",
+            a,
+            a > 0.0 && a < PI,
+            "an angle in (0, pi) radians",
+        )?;
         let max = self.max_range_m;
         check_param("max_range_m", max, max > 0.0, "a positive distance")?;
         let min = self.min_range_m;
-        check_param("min_range_m", min, min >= 0.0 && min < max, "a distance in [0, max_range_m)")?;
+        check_param(
+            "min_range_m",
+            min,
+            min >= 0.0 && min < max,
+            "a distance in [0, max_range_m)",
+        )?;
         check_param(
             "rays_per_cone",
             self.rays_per_cone as f64,
             (1..=4096).contains(&self.rays_per_cone),
             "a ray count from 1 to 4096",
         )?;
-        check_param("noise_std_m", self.noise_std_m, self.noise_std_m >= 0.0, "a non-negative standard deviation")?;
-        check_param("noise_std_per_m", self.noise_std_per_m, self.noise_std_per_m >= 0.0, "a non-negative growth")?;
-        for (name, p) in
-            [("outlier_probability", self.outlier_probability), ("multipath_probability", self.multipath_probability)]
-        {
+        check_param(
+            "noise_std_m",
+            self.noise_std_m,
+            self.noise_std_m >= 0.0,
+            "a non-negative standard deviation",
+        )?;
+        check_param(
+            "noise_std_per_m",
+            self.noise_std_per_m,
+            self.noise_std_per_m >= 0.0,
+            "a non-negative growth",
+        )?;
+        for (name, p) in [
+            ("outlier_probability", self.outlier_probability),
+            ("multipath_probability", self.multipath_probability),
+        ] {
             check_param(name, p, (0.0..=1.0).contains(&p), "a probability in [0, 1]")?;
         }
         for (name, c) in [
             ("critical_angle_wall_rad", self.critical_angle_wall_rad),
             ("critical_angle_glass_rad", self.critical_angle_glass_rad),
         ] {
-            check_param(name, c, (0.0..=PI / 2.0).contains(&c), "an angle in [0, pi/2] radians")?;
+            check_param(
+                name,
+                c,
+                (0.0..=PI / 2.0).contains(&c),
+                "an angle in [0, pi/2] radians",
+            )?;
         }
         Ok(())
     }
@@ -254,11 +289,20 @@ impl RangeSensor for SonarRing {
             .bearings_rad
             .iter()
             .map(|&b| {
-                let draws = [rng.random(), rng.random(), rng.random(), rng.sample(StandardNormal)];
+                let draws = [
+                    rng.random(),
+                    rng.random(),
+                    rng.random(),
+                    rng.sample(StandardNormal),
+                ];
                 self.reading(world, origin, pose.theta_rad + b, draws)
             })
             .collect();
-        Ok(Scan { pose: *pose, ranges_m, bearings_rad: self.bearings_rad.clone() })
+        Ok(Scan {
+            pose: *pose,
+            ranges_m,
+            bearings_rad: self.bearings_rad.clone(),
+        })
     }
 }
 
@@ -290,7 +334,10 @@ mod tests {
     fn mean_std(v: &[f64]) -> (f64, f64) {
         let n = v.len() as f64;
         let m = v.iter().sum::<f64>() / n;
-        (m, (v.iter().map(|x| (x - m).powi(2)).sum::<f64>() / (n - 1.0)).sqrt())
+        (
+            m,
+            (v.iter().map(|x| (x - m).powi(2)).sum::<f64>() / (n - 1.0)).sqrt(),
+        )
     }
 
     #[test]
@@ -312,11 +359,17 @@ mod tests {
             Polygon::rectangle([1.5, 0.12], [1.6, 0.16], Material::Wall).unwrap(),
         ]);
         let s = quiet(vec![0.0]);
-        let r = s.scan(&world, &Pose::new(0.0, 0.0, 0.0), &mut sim_rng(1)).unwrap().ranges_m[0];
+        let r = s
+            .scan(&world, &Pose::new(0.0, 0.0, 0.0), &mut sim_rng(1))
+            .unwrap()
+            .ranges_m[0];
         assert!(r > 1.5 && r < 1.51, "{r}");
         let mut axis_only = s;
         axis_only.rays_per_cone = 1;
-        let r = axis_only.scan(&world, &Pose::new(0.0, 0.0, 0.0), &mut sim_rng(1)).unwrap().ranges_m[0];
+        let r = axis_only
+            .scan(&world, &Pose::new(0.0, 0.0, 0.0), &mut sim_rng(1))
+            .unwrap()
+            .ranges_m[0];
         assert!((r - 3.0).abs() < 1e-12);
     }
 
@@ -328,7 +381,9 @@ mod tests {
         let w = wall();
         let looking = |x: f64, incidence_deg: f64| {
             let heading = -(90f64 - incidence_deg).to_radians();
-            s.scan(&w, &Pose::new(x, 1.0, heading), &mut sim_rng(3)).unwrap().ranges_m[0]
+            s.scan(&w, &Pose::new(x, 1.0, heading), &mut sim_rng(3))
+                .unwrap()
+                .ranges_m[0]
         };
         assert_eq!(looking(0.0, 60.0), s.max_range_m);
         // At 40 degrees the wall echoes, at the nearest ray of the cone (32.5).
@@ -355,7 +410,10 @@ mod tests {
         s.multipath_probability = 1.0;
         s.rays_per_cone = 1;
         let heading = -(20f64).to_radians();
-        let r = s.scan(&world, &Pose::new(0.0, 0.5, heading), &mut sim_rng(1)).unwrap().ranges_m[0];
+        let r = s
+            .scan(&world, &Pose::new(0.0, 0.5, heading), &mut sim_rng(1))
+            .unwrap()
+            .ranges_m[0];
         let d1 = 0.5 / 20f64.to_radians().sin();
         assert!(r > d1 && r < s.max_range_m, "{r} vs first leg {d1}");
         // The mirror image of the origin in y = 0 gives the exact path.
@@ -365,7 +423,10 @@ mod tests {
         let back = q[0].hypot(q[1] - 0.5);
         assert!((r - 0.5 * (d1 + d2 + back)).abs() < 1e-6, "{r}");
         s.multipath_probability = 0.0;
-        let r = s.scan(&world, &Pose::new(0.0, 0.5, heading), &mut sim_rng(1)).unwrap().ranges_m[0];
+        let r = s
+            .scan(&world, &Pose::new(0.0, 0.5, heading), &mut sim_rng(1))
+            .unwrap()
+            .ranges_m[0];
         assert_eq!(r, s.max_range_m);
     }
 
@@ -380,7 +441,9 @@ mod tests {
         let w = wall();
         let pose = Pose::new(0.0, 2.0, -PI / 2.0);
         let mut rng = sim_rng(42);
-        let v: Vec<f64> = (0..20_000).map(|_| s.scan(&w, &pose, &mut rng).unwrap().ranges_m[0]).collect();
+        let v: Vec<f64> = (0..20_000)
+            .map(|_| s.scan(&w, &pose, &mut rng).unwrap().ranges_m[0])
+            .collect();
         let (m, sd) = mean_std(&v);
         // Standard error of the mean: 0.03 / sqrt(20000) = 2.1e-4; allow 5 of them.
         assert!((m - 2.0).abs() < 1.1e-3, "mean {m}");
@@ -388,9 +451,14 @@ mod tests {
         assert!((sd - 0.03).abs() < 0.03 * 0.02, "sd {sd}");
         // The spread grows with range: at 4 m, 0.05.
         let far = Pose::new(0.0, 4.0, -PI / 2.0);
-        let v: Vec<f64> = (0..20_000).map(|_| s.scan(&w, &far, &mut rng).unwrap().ranges_m[0]).collect();
+        let v: Vec<f64> = (0..20_000)
+            .map(|_| s.scan(&w, &far, &mut rng).unwrap().ranges_m[0])
+            .collect();
         let (m, sd) = mean_std(&v);
-        assert!((m - 4.0).abs() < 2e-3 && (sd - 0.05).abs() < 0.05 * 0.02, "{m} {sd}");
+        assert!(
+            (m - 4.0).abs() < 2e-3 && (sd - 0.05).abs() < 0.05 * 0.02,
+            "{m} {sd}"
+        );
     }
 
     #[test]
@@ -401,7 +469,9 @@ mod tests {
         let w = wall();
         let pose = Pose::new(0.0, 3.0, -PI / 2.0);
         let mut rng = sim_rng(5);
-        let v: Vec<f64> = (0..10_000).map(|_| s.scan(&w, &pose, &mut rng).unwrap().ranges_m[0]).collect();
+        let v: Vec<f64> = (0..10_000)
+            .map(|_| s.scan(&w, &pose, &mut rng).unwrap().ranges_m[0])
+            .collect();
         let short = v.iter().filter(|&&r| r < 3.0 - 1e-9).count() as f64 / v.len() as f64;
         // Binomial sd: sqrt(0.2 * 0.8 / 10000) = 0.004; allow 5 of them.
         assert!((short - 0.2).abs() < 0.02, "{short}");
@@ -419,14 +489,20 @@ mod tests {
         let pose = Pose::new(3.0, 1.2, 0.4);
         let a = s.scan(&w, &pose, &mut sim_rng(9)).unwrap();
         assert_eq!(a, s.scan(&w, &pose, &mut sim_rng(9)).unwrap());
-        assert_ne!(a.ranges_m, s.scan(&w, &pose, &mut sim_rng(10)).unwrap().ranges_m);
+        assert_ne!(
+            a.ranges_m,
+            s.scan(&w, &pose, &mut sim_rng(10)).unwrap().ranges_m
+        );
         assert_eq!(a.ranges_m.len(), 24);
         assert_eq!(SonarRing::front_eight().bearings_rad.len(), 8);
         let mut bad = s.clone();
         bad.outlier_probability = 1.5;
         assert!(matches!(
             bad.scan(&w, &pose, &mut sim_rng(1)),
-            Err(SimError::InvalidParameter { name: "outlier_probability", .. })
+            Err(SimError::InvalidParameter {
+                name: "outlier_probability",
+                ..
+            })
         ));
         let mut bad = s.clone();
         bad.min_range_m = 6.0;
@@ -437,6 +513,9 @@ mod tests {
         let mut bad = s.clone();
         bad.rays_per_cone = 0;
         assert!(bad.validate().is_err());
-        assert!(s.scan(&w, &Pose::new(f64::NAN, 0.0, 0.0), &mut sim_rng(1)).is_err());
+        assert!(
+            s.scan(&w, &Pose::new(f64::NAN, 0.0, 0.0), &mut sim_rng(1))
+                .is_err()
+        );
     }
 }

@@ -66,14 +66,34 @@ pub(crate) fn vector(p: [f64; 2]) -> Vector {
 impl World {
     /// A world of already validated polygons (an empty world is all free space).
     pub fn new(polygons: Vec<Polygon>) -> Self {
-        let bounds_m =
-            polygons.iter().fold([f64::INFINITY, f64::INFINITY, f64::NEG_INFINITY, f64::NEG_INFINITY], |b, p| {
+        let bounds_m = polygons.iter().fold(
+            [
+                f64::INFINITY,
+                f64::INFINITY,
+                f64::NEG_INFINITY,
+                f64::NEG_INFINITY,
+            ],
+            |b, p| {
                 let q = p.bounds_m();
-                [b[0].min(q[0]), b[1].min(q[1]), b[2].max(q[2]), b[3].max(q[3])]
-            });
+                [
+                    b[0].min(q[0]),
+                    b[1].min(q[1]),
+                    b[2].max(q[2]),
+                    b[3].max(q[3]),
+                ]
+            },
+        );
         let geometry = (!polygons.is_empty()).then(|| build_geometry(&polygons));
-        let bounds_m = if polygons.is_empty() { [0.0; 4] } else { bounds_m };
-        Self { polygons, bounds_m, geometry }
+        let bounds_m = if polygons.is_empty() {
+            [0.0; 4]
+        } else {
+            bounds_m
+        };
+        Self {
+            polygons,
+            bounds_m,
+            geometry,
+        }
     }
 
     /// A world of polygons given as vertex lists, all of one material. An
@@ -84,7 +104,9 @@ impl World {
             .enumerate()
             .map(|(index, v)| {
                 Polygon::new(v, material).map_err(|e| match e {
-                    SimError::InvalidPolygon { reason, .. } => SimError::InvalidPolygon { index, reason },
+                    SimError::InvalidPolygon { reason, .. } => {
+                        SimError::InvalidPolygon { index, reason }
+                    }
                     other => other,
                 })
             })
@@ -110,7 +132,9 @@ impl World {
     }
     /// Number of boundary segments (ring edges) the ray caster tests.
     pub fn segment_count(&self) -> usize {
-        self.geometry.as_ref().map_or(0, |g| g.segment_material.len())
+        self.geometry
+            .as_ref()
+            .map_or(0, |g| g.segment_material.len())
     }
     /// The sum of the polygons' areas, square metres (overlaps counted twice;
     /// the exact union inside a region is [`World::coverage`] times the cell area).
@@ -129,7 +153,9 @@ impl World {
         };
         let q = vector(p_m);
         let aabb = Aabb::new(q, q);
-        g.polygon_bvh.intersect_aabb(&aabb).any(|i| self.polygons[i as usize].contains(p_m))
+        g.polygon_bvh
+            .intersect_aabb(&aabb)
+            .any(|i| self.polygons[i as usize].contains(p_m))
     }
 
     /// Distance from the point to the nearest obstacle boundary, metres
@@ -143,7 +169,11 @@ impl World {
 
     /// Distance from the point to the nearest obstacle, metres: 0 inside one.
     pub fn distance_to_obstacle_m(&self, p_m: [f64; 2]) -> f64 {
-        if self.contains_point(p_m) { 0.0 } else { self.distance_to_boundary_m(p_m) }
+        if self.contains_point(p_m) {
+            0.0
+        } else {
+            self.distance_to_boundary_m(p_m)
+        }
     }
 }
 
@@ -200,7 +230,10 @@ mod tests {
         let good = vec![[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]];
         let bad = vec![[0.0, 0.0], [1.0, 0.0]];
         let e = World::from_vertex_lists(vec![good, bad], Material::Wall).unwrap_err();
-        assert!(matches!(e, SimError::InvalidPolygon { index: 1, .. }), "{e}");
+        assert!(
+            matches!(e, SimError::InvalidPolygon { index: 1, .. }),
+            "{e}"
+        );
     }
 
     #[test]

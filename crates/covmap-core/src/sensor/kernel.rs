@@ -78,10 +78,15 @@ impl KernelTable {
                     }
                     _ => (1.0, model.sigma(s)),
                 };
-                values.extend(kernel_values(mu, sigma, model.xi(s), bins).into_iter().map(|v| v as f32));
+                values.extend(
+                    kernel_values(mu, sigma, model.xi(s), bins)
+                        .into_iter()
+                        .map(|v| v as f32),
+                );
             }
         }
-        let (mut values_f64, mut k_ln_k) = (Aligned::zeroed(values.len()), Aligned::zeroed(values.len()));
+        let (mut values_f64, mut k_ln_k) =
+            (Aligned::zeroed(values.len()), Aligned::zeroed(values.len()));
         for ((k, m), &v) in values_f64.iter_mut().zip(k_ln_k.iter_mut()).zip(&values) {
             *k = f64::from(v);
             *m = x_ln_x(*k);
@@ -126,7 +131,11 @@ impl KernelTable {
             d,
             // slice(d_l) = (d_l - d + r/2) / slice depth; negative: free.
             slice_per_m: if echo { self.inv_slice } else { 0.0 },
-            slice_at_zero: if echo { (half - d) * self.inv_slice } else { -1.0 },
+            slice_at_zero: if echo {
+                (half - d) * self.inv_slice
+            } else {
+                -1.0
+            },
             bins: self.bins,
         }
     }
@@ -156,7 +165,10 @@ impl KernelTable {
             return None;
         }
         let d = measured_distance_m.min(self.model.max_range_m);
-        Some(self.at(self.reading(d, echo).offset(cell_distance_m)).to_vec())
+        Some(
+            self.at(self.reading(d, echo).offset(cell_distance_m))
+                .to_vec(),
+        )
     }
 }
 
@@ -275,8 +287,14 @@ mod tests {
             (1.0, 2.0, 0.0, 16),
             (1.0, 2.0, 0.05, 1),
         ] {
-            assert!(model.kernel_exact(d_l, d, r, bins).is_err(), "{d_l} {d} {r} {bins}");
-            assert!(model.kernel(d_l, d, r, bins).is_err(), "{d_l} {d} {r} {bins}");
+            assert!(
+                model.kernel_exact(d_l, d, r, bins).is_err(),
+                "{d_l} {d} {r} {bins}"
+            );
+            assert!(
+                model.kernel(d_l, d, r, bins).is_err(),
+                "{d_l} {d} {r} {bins}"
+            );
         }
     }
 

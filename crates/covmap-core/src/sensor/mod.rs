@@ -86,19 +86,52 @@ impl RangeModel {
     /// out to the maximum range.
     pub fn validate(&self) -> Result<()> {
         fn check(name: &'static str, value: f64, ok: bool, expected: &'static str) -> Result<()> {
-            if ok && value.is_finite() { Ok(()) } else { Err(CovmapError::InvalidParameter { name, value, expected }) }
+            if ok && value.is_finite() {
+                Ok(())
+            } else {
+                Err(CovmapError::InvalidParameter {
+                    name,
+                    value,
+                    expected,
+                })
+            }
         }
-        check("max_range_m", self.max_range_m, self.max_range_m > 0.0, "a positive distance")?;
-        check("band_m", self.band_m, self.band_m >= 0.0, "a non-negative distance")?;
+        check(
+            "max_range_m",
+            self.max_range_m,
+            self.max_range_m > 0.0,
+            "a positive distance",
+        )?;
+        check(
+            "band_m",
+            self.band_m,
+            self.band_m >= 0.0,
+            "a non-negative distance",
+        )?;
         check(
             "sigma_min",
             self.sigma_min,
             self.sigma_min >= MIN_SIGMA,
             "a standard deviation of at least 1e-6 (coverage)",
         )?;
-        check("sigma_per_m", self.sigma_per_m, self.sigma_per_m >= 0.0, "a non-negative growth")?;
-        check("xi_min", self.xi_min, self.xi_min > 0.0 && self.xi_min <= MAX_XI, "a positive weight of at most 1e6")?;
-        check("xi_per_m", self.xi_per_m, self.xi_per_m >= 0.0, "a non-negative growth")?;
+        check(
+            "sigma_per_m",
+            self.sigma_per_m,
+            self.sigma_per_m >= 0.0,
+            "a non-negative growth",
+        )?;
+        check(
+            "xi_min",
+            self.xi_min,
+            self.xi_min > 0.0 && self.xi_min <= MAX_XI,
+            "a positive weight of at most 1e6",
+        )?;
+        check(
+            "xi_per_m",
+            self.xi_per_m,
+            self.xi_per_m >= 0.0,
+            "a non-negative growth",
+        )?;
         check(
             "xi_per_m",
             self.xi_per_m,
@@ -127,7 +160,11 @@ impl RangeModel {
     /// How far along the beam a reading of `range_m` reaches, and whether it is
     /// an echo (`false`: no echo, clear up to the maximum range).
     pub fn reach(&self, range_m: f64) -> (f64, bool) {
-        if range_m >= self.max_range_m { (self.max_range_m, false) } else { (range_m + self.band_m, true) }
+        if range_m >= self.max_range_m {
+            (self.max_range_m, false)
+        } else {
+            (range_m + self.band_m, true)
+        }
     }
 
     /// The kernel the map multiplies in for a cell at `cell_distance_m` and a
@@ -202,9 +239,16 @@ impl RangeModel {
 /// Errors unless both distances of a kernel query are finite and
 /// non-negative.
 fn check_distances(cell_distance_m: f64, measured_distance_m: f64) -> Result<()> {
-    for (name, value) in [("cell_distance_m", cell_distance_m), ("measured_distance_m", measured_distance_m)] {
+    for (name, value) in [
+        ("cell_distance_m", cell_distance_m),
+        ("measured_distance_m", measured_distance_m),
+    ] {
         if !(value.is_finite() && value >= 0.0) {
-            return Err(CovmapError::InvalidParameter { name, value, expected: "a finite, non-negative distance" });
+            return Err(CovmapError::InvalidParameter {
+                name,
+                value,
+                expected: "a finite, non-negative distance",
+            });
         }
     }
     Ok(())
@@ -260,6 +304,7 @@ pub trait SensorModel {
         bins: usize,
     ) -> Result<Option<Vec<f32>>> {
         self.validate()?;
-        self.range_model().kernel(cell_distance_m, measured_distance_m, resolution_m, bins)
+        self.range_model()
+            .kernel(cell_distance_m, measured_distance_m, resolution_m, bins)
     }
 }

@@ -62,7 +62,9 @@ impl SensorModel for SonarModel {
         &self.range
     }
     fn footprint(&self) -> Footprint {
-        Footprint::Cone { half_angle_rad: 0.5 * self.opening_angle_rad }
+        Footprint::Cone {
+            half_angle_rad: 0.5 * self.opening_angle_rad,
+        }
     }
     fn validate(&self) -> Result<()> {
         self.range.validate()?;
@@ -93,14 +95,29 @@ mod tests {
 
     #[test]
     fn rejects_bad_parameters() {
-        let m = SonarModel { opening_angle_rad: std::f64::consts::PI, ..SonarModel::default() };
-        assert!(matches!(m.validate(), Err(CovmapError::InvalidParameter { name: "opening_angle_rad", .. })));
+        let m = SonarModel {
+            opening_angle_rad: std::f64::consts::PI,
+            ..SonarModel::default()
+        };
+        assert!(matches!(
+            m.validate(),
+            Err(CovmapError::InvalidParameter {
+                name: "opening_angle_rad",
+                ..
+            })
+        ));
         let mut m = SonarModel::default();
         m.range.xi_min = 0.0;
         assert!(m.validate().is_err());
         let mut m = SonarModel::default();
         m.range.sigma_end = 0.01;
-        assert!(matches!(m.validate(), Err(CovmapError::InvalidParameter { name: "sigma_end", .. })));
+        assert!(matches!(
+            m.validate(),
+            Err(CovmapError::InvalidParameter {
+                name: "sigma_end",
+                ..
+            })
+        ));
         let mut m = SonarModel::default();
         m.range.max_range_m = f64::NAN;
         assert!(m.validate().is_err());

@@ -102,7 +102,10 @@ pub struct Fig3Report {
 /// assert!(r.log_likelihood.is_finite());
 /// ```
 pub fn fig3(seed: u64) -> Result<Fig3Report> {
-    fig3_with(&Fig3Config { seed, ..Fig3Config::default() })
+    fig3_with(&Fig3Config {
+        seed,
+        ..Fig3Config::default()
+    })
 }
 
 /// Drive the sonar ring along [`corridor_path`] through the built-in
@@ -110,7 +113,12 @@ pub fn fig3(seed: u64) -> Result<Fig3Report> {
 /// [`OccupancyGrid`] baseline (both with `config.model`), and measure both
 /// against the exact ground truth on the cells the readings reached.
 pub fn fig3_with(config: &Fig3Config) -> Result<Fig3Report> {
-    check_param("resolution_m", config.resolution_m, config.resolution_m > 0.0, "a positive cell size")?;
+    check_param(
+        "resolution_m",
+        config.resolution_m,
+        config.resolution_m > 0.0,
+        "a positive cell size",
+    )?;
     let world = World::builtin("corridor")?;
     // Off the 5 cm lattice by 0.02 m and 0.03 m: every wall face cuts cells.
     let r = config.resolution_m;
@@ -155,7 +163,10 @@ pub fn fig3_with(config: &Fig3Config) -> Result<Fig3Report> {
                 n_part += 1;
             }
         }
-        MapErrors { all: all / n_all.max(1) as f64, partial: part / n_part.max(1) as f64 }
+        MapErrors {
+            all: all / n_all.max(1) as f64,
+            partial: part / n_part.max(1) as f64,
+        }
     };
     let bins = map.bins();
     let hist = map.histograms();
@@ -209,7 +220,11 @@ pub fn corridor_path(seed: u64, step_m: f64) -> Result<Vec<Pose>> {
         let points: Vec<[f64; 2]> = (0..=n)
             .map(|i| {
                 let t = i as f64 / n as f64;
-                let x = if k == 0 { x0 + t * (x1 - x0) } else { x1 - t * (x1 - x0) };
+                let x = if k == 0 {
+                    x0 + t * (x1 - x0)
+                } else {
+                    x1 - t * (x1 - x0)
+                };
                 // The weave fades in and out at the ends of each leg.
                 let fade = (std::f64::consts::PI * t).sin();
                 [x, 1.3 + fade * a * (TAU * x / l + ph).sin()]
@@ -241,8 +256,14 @@ mod tests {
         assert!(a.len() > 150 && a.len() < 190, "{}", a.len());
         // Poses 0.2 m apart (0.01 m resampling slack), except at the turn
         // between the legs, where the robot turns on the spot.
-        let gaps: Vec<f64> = a.windows(2).map(|w| (w[1].x_m - w[0].x_m).hypot(w[1].y_m - w[0].y_m)).collect();
-        let off = gaps.iter().filter(|&&d| !(0.19..0.215).contains(&d)).count();
+        let gaps: Vec<f64> = a
+            .windows(2)
+            .map(|w| (w[1].x_m - w[0].x_m).hypot(w[1].y_m - w[0].y_m))
+            .collect();
+        let off = gaps
+            .iter()
+            .filter(|&&d| !(0.19..0.215).contains(&d))
+            .count();
         assert_eq!(off, 1, "{gaps:?}");
         assert!(gaps.iter().all(|&d| d < 0.215));
         let world = World::builtin("corridor").unwrap();

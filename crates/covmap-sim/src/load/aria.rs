@@ -40,7 +40,11 @@ impl World {
     /// let err = World::from_aria_map_str("2D-Map\nLINES\n0 0 10\n", "bad.map", 0.1).unwrap_err();
     /// assert!(err.to_string().starts_with("bad.map, line 3"), "{err}");
     /// ```
-    pub fn from_aria_map_str(text: &str, name: impl AsRef<Path>, wall_thickness_m: f64) -> Result<World> {
+    pub fn from_aria_map_str(
+        text: &str,
+        name: impl AsRef<Path>,
+        wall_thickness_m: f64,
+    ) -> Result<World> {
         let path = name.as_ref();
         check_param(
             "wall_thickness_m",
@@ -51,7 +55,13 @@ impl World {
         let mut lines = text.lines().enumerate().map(|(i, l)| (i + 1, l.trim()));
         match lines.next() {
             Some((_, first)) if first.starts_with("2D-Map") => {}
-            _ => return Err(parse_error(path, "line 1", "an ARIA map starts with a `2D-Map` line")),
+            _ => {
+                return Err(parse_error(
+                    path,
+                    "line 1",
+                    "an ARIA map starts with a `2D-Map` line",
+                ));
+            }
         }
         let mut declared: Option<(usize, usize)> = None;
         let mut in_lines = false;
@@ -70,24 +80,31 @@ impl World {
                     continue;
                 }
                 let numbers: Vec<&str> = line.split_whitespace().collect();
-                let parsed: Option<Vec<f64>> =
-                    numbers.iter().map(|t| t.parse::<f64>().ok().filter(|v| v.is_finite())).collect();
+                let parsed: Option<Vec<f64>> = numbers
+                    .iter()
+                    .map(|t| t.parse::<f64>().ok().filter(|v| v.is_finite()))
+                    .collect();
                 let mm = match parsed {
                     Some(v) if v.len() == 4 => v,
                     _ => {
                         return Err(parse_error(
                             path,
                             format!("line {no}"),
-                            format!("expected a wall segment `x1 y1 x2 y2` in millimetres, found {line:?}"),
+                            format!(
+                                "expected a wall segment `x1 y1 x2 y2` in millimetres, found {line:?}"
+                            ),
                         ));
                     }
                 };
                 let a = [mm[0] / 1000.0, mm[1] / 1000.0];
                 let b = [mm[2] / 1000.0, mm[3] / 1000.0];
-                let wall = Polygon::wall(a, b, wall_thickness_m, Material::Wall).map_err(|e| match e {
-                    SimError::InvalidPolygon { reason, .. } => parse_error(path, format!("line {no}"), reason),
-                    other => other,
-                })?;
+                let wall =
+                    Polygon::wall(a, b, wall_thickness_m, Material::Wall).map_err(|e| match e {
+                        SimError::InvalidPolygon { reason, .. } => {
+                            parse_error(path, format!("line {no}"), reason)
+                        }
+                        other => other,
+                    })?;
                 polygons.push(wall);
                 continue;
             }
@@ -108,7 +125,11 @@ impl World {
             }
         }
         if !seen_lines || polygons.is_empty() {
-            return Err(parse_error(path, "LINES section", "no wall segment: the world would be empty"));
+            return Err(parse_error(
+                path,
+                "LINES section",
+                "no wall segment: the world would be empty",
+            ));
         }
         if let Some((n, no)) = declared
             && n != polygons.len()
@@ -116,7 +137,10 @@ impl World {
             return Err(parse_error(
                 path,
                 format!("line {no}"),
-                format!("NumLines declares {n} segments but the LINES section holds {}", polygons.len()),
+                format!(
+                    "NumLines declares {n} segments but the LINES section holds {}",
+                    polygons.len()
+                ),
             ));
         }
         Ok(World::new(polygons))
@@ -131,9 +155,11 @@ mod tests {
     fn errors_name_the_line() {
         let e = World::from_aria_map_str("LINES\n0 0 1 1\n", "a.map", 0.1).unwrap_err();
         assert!(e.to_string().contains("a.map, line 1"), "{e}");
-        let e = World::from_aria_map_str("2D-Map\nLINES\n0 0 1000 0\n5 5 5 5\n", "a.map", 0.1).unwrap_err();
+        let e = World::from_aria_map_str("2D-Map\nLINES\n0 0 1000 0\n5 5 5 5\n", "a.map", 0.1)
+            .unwrap_err();
         assert!(e.to_string().contains("a.map, line 4: wall from"), "{e}");
-        let e = World::from_aria_map_str("2D-Map\nNumLines: 3\nLINES\n0 0 1000 0\n", "a.map", 0.1).unwrap_err();
+        let e = World::from_aria_map_str("2D-Map\nNumLines: 3\nLINES\n0 0 1000 0\n", "a.map", 0.1)
+            .unwrap_err();
         assert!(e.to_string().contains("line 2: NumLines declares 3"), "{e}");
         let e = World::from_aria_map_str("2D-Map\nLINES\nDATA\n1 1\n", "a.map", 0.1).unwrap_err();
         assert!(e.to_string().contains("no wall segment"), "{e}");
@@ -150,8 +176,18 @@ mod tests {
         assert!(w.contains_point([2.04, 0.0]) && !w.contains_point([2.06, 0.0]));
         // A thickness no wall has is the parameter's fault, not the file's.
         for bad in [0.0, -0.1, 1e300, f64::NAN] {
-            let e = World::from_aria_map_str("2D-Map\nLINES\n0 0 2000 0\n", "a.map", bad).unwrap_err();
-            assert!(matches!(e, SimError::InvalidParameter { name: "wall_thickness_m", .. }), "{e}");
+            let e =
+                World::from_aria_map_str("2D-Map\nLINES\n0 0 2000 0\n", "a.map", bad).unwrap_err();
+            assert!(
+                matches!(
+                    e,
+                    SimError::InvalidParameter {
+                        name: "wall_thickness_m",
+                        ..
+                    }
+                ),
+                "{e}"
+            );
         }
     }
 }

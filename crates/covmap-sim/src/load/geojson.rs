@@ -51,7 +51,11 @@ impl World {
     pub fn from_geojson_str(text: &str, name: impl AsRef<Path>) -> Result<World> {
         let path = name.as_ref();
         let root: Value = serde_json::from_str(text).map_err(|e| {
-            parse_error(path, format!("line {}, column {}", e.line(), e.column()), format!("not valid JSON: {e}"))
+            parse_error(
+                path,
+                format!("line {}, column {}", e.line(), e.column()),
+                format!("not valid JSON: {e}"),
+            )
         })?;
         let mut polygons = Vec::new();
         match type_of(&root) {
@@ -59,13 +63,21 @@ impl World {
                 let features = root
                     .get("features")
                     .and_then(Value::as_array)
-                    .ok_or_else(|| parse_error(path, "top level", "a FeatureCollection needs a `features` array"))?;
+                    .ok_or_else(|| {
+                        parse_error(
+                            path,
+                            "top level",
+                            "a FeatureCollection needs a `features` array",
+                        )
+                    })?;
                 for (i, f) in features.iter().enumerate() {
                     feature(f, &format!("feature {i}"), path, &mut polygons)?;
                 }
             }
             Some("Feature") => feature(&root, "feature 0", path, &mut polygons)?,
-            Some("Polygon") | Some("MultiPolygon") => geometry(&root, Material::Wall, "", path, &mut polygons)?,
+            Some("Polygon") | Some("MultiPolygon") => {
+                geometry(&root, Material::Wall, "", path, &mut polygons)?
+            }
             other => {
                 return Err(parse_error(
                     path,
@@ -78,7 +90,11 @@ impl World {
             }
         }
         if polygons.is_empty() {
-            return Err(parse_error(path, "top level", "no polygon: the world would be empty"));
+            return Err(parse_error(
+                path,
+                "top level",
+                "no polygon: the world would be empty",
+            ));
         }
         Ok(World::new(polygons))
     }
@@ -123,15 +139,27 @@ fn type_of(v: &Value) -> Option<&str> {
 
 fn feature(f: &Value, place: &str, path: &Path, out: &mut Vec<Polygon>) -> Result<()> {
     if type_of(f) != Some("Feature") {
-        return Err(parse_error(path, place, "expected an object of type \"Feature\""));
+        return Err(parse_error(
+            path,
+            place,
+            "expected an object of type \"Feature\"",
+        ));
     }
     let material = match f.get("properties").and_then(|p| p.get("material")) {
         None | Some(Value::Null) => Material::Wall,
         Some(Value::String(s)) => Material::from_name(s).ok_or_else(|| {
-            parse_error(path, place, format!("unknown material {s:?} (expected \"wall\" or \"glass\")"))
+            parse_error(
+                path,
+                place,
+                format!("unknown material {s:?} (expected \"wall\" or \"glass\")"),
+            )
         })?,
         Some(other) => {
-            return Err(parse_error(path, place, format!("material must be a string, found {other}")));
+            return Err(parse_error(
+                path,
+                place,
+                format!("material must be a string, found {other}"),
+            ));
         }
     };
     let g = f
@@ -141,7 +169,13 @@ fn feature(f: &Value, place: &str, path: &Path, out: &mut Vec<Polygon>) -> Resul
     geometry(g, material, &format!("{place}, "), path, out)
 }
 
-fn geometry(g: &Value, material: Material, prefix: &str, path: &Path, out: &mut Vec<Polygon>) -> Result<()> {
+fn geometry(
+    g: &Value,
+    material: Material,
+    prefix: &str,
+    path: &Path,
+    out: &mut Vec<Polygon>,
+) -> Result<()> {
     let coords = g.get("coordinates");
     match type_of(g) {
         Some("Polygon") => {
@@ -150,10 +184,19 @@ fn geometry(g: &Value, material: Material, prefix: &str, path: &Path, out: &mut 
         }
         Some("MultiPolygon") => {
             let polys = coords.and_then(Value::as_array).ok_or_else(|| {
-                parse_error(path, prefix.trim_end_matches(", "), "MultiPolygon coordinates must be an array")
+                parse_error(
+                    path,
+                    prefix.trim_end_matches(", "),
+                    "MultiPolygon coordinates must be an array",
+                )
             })?;
             for (k, p) in polys.iter().enumerate() {
-                out.push(polygon(Some(p), material, &format!("{prefix}polygon {k}"), path)?);
+                out.push(polygon(
+                    Some(p),
+                    material,
+                    &format!("{prefix}polygon {k}"),
+                    path,
+                )?);
             }
         }
         other => {
@@ -167,16 +210,31 @@ fn geometry(g: &Value, material: Material, prefix: &str, path: &Path, out: &mut 
     Ok(())
 }
 
-fn polygon(coords: Option<&Value>, material: Material, place: &str, path: &Path) -> Result<Polygon> {
+fn polygon(
+    coords: Option<&Value>,
+    material: Material,
+    place: &str,
+    path: &Path,
+) -> Result<Polygon> {
     let rings = coords
         .and_then(Value::as_array)
         .filter(|r| !r.is_empty())
-        .ok_or_else(|| parse_error(path, place, "polygon coordinates must be a non-empty array of rings"))?;
+        .ok_or_else(|| {
+            parse_error(
+                path,
+                place,
+                "polygon coordinates must be a non-empty array of rings",
+            )
+        })?;
     let mut parsed = Vec::with_capacity(rings.len());
     for (r, ring) in rings.iter().enumerate() {
-        let positions = ring
-            .as_array()
-            .ok_or_else(|| parse_error(path, format!("{place}, ring {r}"), "a ring must be an array of positions"))?;
+        let positions = ring.as_array().ok_or_else(|| {
+            parse_error(
+                path,
+                format!("{place}, ring {r}"),
+                "a ring must be an array of positions",
+            )
+        })?;
         let mut pts = Vec::with_capacity(positions.len());
         for (i, p) in positions.iter().enumerate() {
             let xy = p.as_array().and_then(|a| {
@@ -210,19 +268,33 @@ mod tests {
     fn errors_name_the_place() {
         let e = World::from_geojson_str("{\"type\": \n [", "w.json").unwrap_err();
         assert!(e.to_string().starts_with("w.json, line 2"), "{e}");
-        let fc = |features: &str| format!(r#"{{"type": "FeatureCollection", "features": [{features}]}}"#);
+        let fc = |features: &str| {
+            format!(r#"{{"type": "FeatureCollection", "features": [{features}]}}"#)
+        };
         let ok = r#"{"type": "Feature", "geometry": {"type": "Polygon", "coordinates": [[[0,0],[1,0],[1,1]]]}}"#;
         let bad_pos = r#"{"type": "Feature", "geometry": {"type": "Polygon", "coordinates": [[[0,0],[1,"a"],[1,1]]]}}"#;
         let e = World::from_geojson_str(&fc(&format!("{ok}, {bad_pos}")), "w.json").unwrap_err();
-        assert!(e.to_string().contains("feature 1, polygon 0, ring 0, position 1"), "{e}");
+        assert!(
+            e.to_string()
+                .contains("feature 1, polygon 0, ring 0, position 1"),
+            "{e}"
+        );
         let glassy = r#"{"type": "Feature", "properties": {"material": "steel"}, "geometry": {"type": "Polygon", "coordinates": [[[0,0],[1,0],[1,1]]]}}"#;
         let e = World::from_geojson_str(&fc(glassy), "w.json").unwrap_err();
-        assert!(e.to_string().contains("feature 0: unknown material \"steel\""), "{e}");
+        assert!(
+            e.to_string()
+                .contains("feature 0: unknown material \"steel\""),
+            "{e}"
+        );
         let point = r#"{"type": "Feature", "geometry": {"type": "Point", "coordinates": [0, 0]}}"#;
         assert!(World::from_geojson_str(&fc(point), "w.json").is_err());
         let degenerate = r#"{"type": "Feature", "geometry": {"type": "MultiPolygon", "coordinates": [[[[0,0],[1,0],[1,1]]], [[[0,0],[1,1],[2,2]]]]}}"#;
         let e = World::from_geojson_str(&fc(degenerate), "w.json").unwrap_err();
-        assert!(e.to_string().contains("feature 0, polygon 1: exterior ring: zero area"), "{e}");
+        assert!(
+            e.to_string()
+                .contains("feature 0, polygon 1: exterior ring: zero area"),
+            "{e}"
+        );
         assert!(World::from_geojson_str(&fc(""), "w.json").is_err());
     }
 

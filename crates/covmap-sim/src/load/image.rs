@@ -50,14 +50,27 @@ impl ImageOptions {
     /// At `resolution_m` per pixel, origin at zero, no yaw, dark = occupied,
     /// threshold 0.65 (map_server's defaults).
     pub fn new(resolution_m: f64) -> Self {
-        Self { resolution_m, origin_m: [0.0, 0.0], yaw_rad: 0.0, negate: false, occupied_thresh: 0.65 }
+        Self {
+            resolution_m,
+            origin_m: [0.0, 0.0],
+            yaw_rad: 0.0,
+            negate: false,
+            occupied_thresh: 0.65,
+        }
     }
 
     fn validate(&self) -> Result<()> {
-        check_param("resolution_m", self.resolution_m, self.resolution_m > 0.0, "a positive pixel size")?;
-        for (name, v) in
-            [("origin_m[0]", self.origin_m[0]), ("origin_m[1]", self.origin_m[1]), ("yaw_rad", self.yaw_rad)]
-        {
+        check_param(
+            "resolution_m",
+            self.resolution_m,
+            self.resolution_m > 0.0,
+            "a positive pixel size",
+        )?;
+        for (name, v) in [
+            ("origin_m[0]", self.origin_m[0]),
+            ("origin_m[1]", self.origin_m[1]),
+            ("yaw_rad", self.yaw_rad),
+        ] {
             check_param(name, v, true, "a finite number")?;
         }
         check_param(
@@ -98,7 +111,11 @@ impl World {
     /// let err = World::from_image_bytes(b"P2\n4 2\n255\n255 0 0\n", "cut.pgm", &ImageOptions::new(0.5)).unwrap_err();
     /// assert!(err.to_string().starts_with("cut.pgm, pixel (3, 0)"), "{err}");
     /// ```
-    pub fn from_image_bytes(bytes: &[u8], name: impl AsRef<Path>, options: &ImageOptions) -> Result<World> {
+    pub fn from_image_bytes(
+        bytes: &[u8],
+        name: impl AsRef<Path>,
+        options: &ImageOptions,
+    ) -> Result<World> {
         let path = name.as_ref();
         options.validate()?;
         let grey = if bytes.starts_with(b"\x89PNG") {
@@ -106,7 +123,11 @@ impl World {
         } else if bytes.starts_with(b"P5") || bytes.starts_with(b"P2") {
             decode_pgm(bytes, path)?
         } else {
-            return Err(parse_error(path, "byte 0", "not a PGM (P5/P2) or PNG image"));
+            return Err(parse_error(
+                path,
+                "byte 0",
+                "not a PGM (P5/P2) or PNG image",
+            ));
         };
         world_from_grey(&grey, options, path)
     }
@@ -134,23 +155,43 @@ fn parse_ros_yaml(text: &str, path: &Path) -> Result<(String, ImageOptions)> {
             continue;
         }
         let Some((key, value)) = line.split_once(':') else {
-            return Err(parse_error(path, place, format!("expected `key: value`, found {line:?}")));
+            return Err(parse_error(
+                path,
+                place,
+                format!("expected `key: value`, found {line:?}"),
+            ));
         };
         let value = value.trim();
         let number = |v: &str| {
             v.parse::<f64>()
                 .ok()
                 .filter(|x| x.is_finite())
-                .ok_or_else(|| parse_error(path, &place, format!("`{}` must be a number, found {v:?}", key.trim())))
+                .ok_or_else(|| {
+                    parse_error(
+                        path,
+                        &place,
+                        format!("`{}` must be a number, found {v:?}", key.trim()),
+                    )
+                })
         };
         match key.trim() {
             "image" => image = Some(value.trim_matches(|c| c == '"' || c == '\'').to_string()),
             "resolution" => resolution = Some(number(value)?),
             "origin" => {
-                let inner = value.strip_prefix('[').and_then(|v| v.strip_suffix(']')).ok_or_else(|| {
-                    parse_error(path, &place, format!("origin must be `[x, y, yaw]`, found {value:?}"))
-                })?;
-                let parts = inner.split(',').map(|t| number(t.trim())).collect::<Result<Vec<f64>>>()?;
+                let inner = value
+                    .strip_prefix('[')
+                    .and_then(|v| v.strip_suffix(']'))
+                    .ok_or_else(|| {
+                        parse_error(
+                            path,
+                            &place,
+                            format!("origin must be `[x, y, yaw]`, found {value:?}"),
+                        )
+                    })?;
+                let parts = inner
+                    .split(',')
+                    .map(|t| number(t.trim()))
+                    .collect::<Result<Vec<f64>>>()?;
                 if parts.len() != 3 {
                     return Err(parse_error(
                         path,
@@ -164,7 +205,13 @@ fn parse_ros_yaml(text: &str, path: &Path) -> Result<(String, ImageOptions)> {
                 options.negate = match value {
                     "0" | "false" => false,
                     "1" | "true" => true,
-                    _ => return Err(parse_error(path, &place, format!("negate must be 0 or 1, found {value:?}"))),
+                    _ => {
+                        return Err(parse_error(
+                            path,
+                            &place,
+                            format!("negate must be 0 or 1, found {value:?}"),
+                        ));
+                    }
                 }
             }
             "occupied_thresh" => options.occupied_thresh = number(value)?,
@@ -172,7 +219,11 @@ fn parse_ros_yaml(text: &str, path: &Path) -> Result<(String, ImageOptions)> {
                 number(value)?;
             }
             "mode" if value != "trinary" => {
-                return Err(parse_error(path, &place, format!("only `mode: trinary` is supported, found {value:?}")));
+                return Err(parse_error(
+                    path,
+                    &place,
+                    format!("only `mode: trinary` is supported, found {value:?}"),
+                ));
             }
             _ => {}
         }
@@ -183,7 +234,9 @@ fn parse_ros_yaml(text: &str, path: &Path) -> Result<(String, ImageOptions)> {
     let [x, y, yaw] = origin.ok_or_else(|| missing("origin"))?;
     options.origin_m = [x, y];
     options.yaw_rad = yaw;
-    options.validate().map_err(|e| parse_error(path, "whole file", e.to_string()))?;
+    options
+        .validate()
+        .map_err(|e| parse_error(path, "whole file", e.to_string()))?;
     Ok((image, options))
 }
 
@@ -192,7 +245,9 @@ fn decode_png(bytes: &[u8], path: &Path) -> Result<Grey> {
     let mut decoder = png::Decoder::new(Cursor::new(bytes));
     decoder.set_transformations(png::Transformations::normalize_to_color8());
     let mut reader = decoder.read_info().map_err(err)?;
-    let size = reader.output_buffer_size().ok_or_else(|| parse_error(path, "PNG header", "image too large"))?;
+    let size = reader
+        .output_buffer_size()
+        .ok_or_else(|| parse_error(path, "PNG header", "image too large"))?;
     let mut buf = vec![0u8; size];
     let info = reader.next_frame(&mut buf).map_err(err)?;
     let (width, height) = (info.width as usize, info.height as usize);
@@ -215,9 +270,17 @@ fn decode_png(bytes: &[u8], path: &Path) -> Result<Grey> {
         }
     }
     if values.len() != width * height {
-        return Err(parse_error(path, "PNG data", "fewer pixels than the header declares"));
+        return Err(parse_error(
+            path,
+            "PNG data",
+            "fewer pixels than the header declares",
+        ));
     }
-    Ok(Grey { width, height, values })
+    Ok(Grey {
+        width,
+        height,
+        values,
+    })
 }
 
 fn decode_pgm(bytes: &[u8], path: &Path) -> Result<Grey> {
@@ -249,18 +312,36 @@ fn decode_pgm(bytes: &[u8], path: &Path) -> Result<Grey> {
             pos += 1;
         }
         let token = std::str::from_utf8(&bytes[start..pos]).unwrap_or("");
-        header[k] =
-            token.parse::<usize>().ok().filter(|&v| v > 0).ok_or_else(|| {
-                parse_error(path, format!("header line {line}"), format!("expected a positive {name}"))
+        header[k] = token
+            .parse::<usize>()
+            .ok()
+            .filter(|&v| v > 0)
+            .ok_or_else(|| {
+                parse_error(
+                    path,
+                    format!("header line {line}"),
+                    format!("expected a positive {name}"),
+                )
             })?;
     }
     let [width, height, maxval] = header;
     if maxval > 65535 {
-        return Err(parse_error(path, format!("header line {line}"), format!("maxval {maxval} exceeds 65535")));
+        return Err(parse_error(
+            path,
+            format!("header line {line}"),
+            format!("maxval {maxval} exceeds 65535"),
+        ));
     }
-    let count = width.checked_mul(height).filter(|&n| n <= 1 << 30).ok_or_else(|| {
-        parse_error(path, format!("header line {line}"), format!("{width} x {height} pixels is too large"))
-    })?;
+    let count = width
+        .checked_mul(height)
+        .filter(|&n| n <= 1 << 30)
+        .ok_or_else(|| {
+            parse_error(
+                path,
+                format!("header line {line}"),
+                format!("{width} x {height} pixels is too large"),
+            )
+        })?;
     let pixel = |i: usize| format!("pixel ({}, {})", i % width, i / width);
     let scale = 1.0 / maxval as f64;
     // Every pixel takes at least a byte of the file: a header that promises
@@ -269,7 +350,11 @@ fn decode_pgm(bytes: &[u8], path: &Path) -> Result<Grey> {
     if binary {
         // Exactly one whitespace byte ends the header.
         if !bytes.get(pos).is_some_and(u8::is_ascii_whitespace) {
-            return Err(parse_error(path, format!("header line {line}"), "expected whitespace after maxval"));
+            return Err(parse_error(
+                path,
+                format!("header line {line}"),
+                "expected whitespace after maxval",
+            ));
         }
         pos += 1;
         let wide = maxval > 255;
@@ -288,25 +373,47 @@ fn decode_pgm(bytes: &[u8], path: &Path) -> Result<Grey> {
                 }
             };
             if v > maxval {
-                return Err(parse_error(path, pixel(i), format!("value {v} exceeds maxval {maxval}")));
+                return Err(parse_error(
+                    path,
+                    pixel(i),
+                    format!("value {v} exceeds maxval {maxval}"),
+                ));
             }
             values.push(v as f64 * scale);
         }
     } else {
-        let text =
-            std::str::from_utf8(&bytes[pos..]).map_err(|_| parse_error(path, "pixel data", "P2 data must be ASCII"))?;
-        let mut tokens = text.lines().flat_map(|l| l.split('#').next().unwrap_or("").split_ascii_whitespace());
+        let text = std::str::from_utf8(&bytes[pos..])
+            .map_err(|_| parse_error(path, "pixel data", "P2 data must be ASCII"))?;
+        let mut tokens = text
+            .lines()
+            .flat_map(|l| l.split('#').next().unwrap_or("").split_ascii_whitespace());
         for i in 0..count {
             let token = tokens.next().ok_or_else(|| {
-                parse_error(path, pixel(i), format!("the data ends early ({width} x {height} pixels declared)"))
+                parse_error(
+                    path,
+                    pixel(i),
+                    format!("the data ends early ({width} x {height} pixels declared)"),
+                )
             })?;
-            let v = token.parse::<usize>().ok().filter(|&v| v <= maxval).ok_or_else(|| {
-                parse_error(path, pixel(i), format!("expected a value from 0 to {maxval}, found {token:?}"))
-            })?;
+            let v = token
+                .parse::<usize>()
+                .ok()
+                .filter(|&v| v <= maxval)
+                .ok_or_else(|| {
+                    parse_error(
+                        path,
+                        pixel(i),
+                        format!("expected a value from 0 to {maxval}, found {token:?}"),
+                    )
+                })?;
             values.push(v as f64 * scale);
         }
     }
-    Ok(Grey { width, height, values })
+    Ok(Grey {
+        width,
+        height,
+        values,
+    })
 }
 
 fn world_from_grey(grey: &Grey, o: &ImageOptions, path: &Path) -> Result<World> {
@@ -409,7 +516,8 @@ mod tests {
             255, 0, 0, 0,
             255, 255, 255, 255,
         ];
-        let w = World::from_image_bytes(&pgm_p5(4, 4, &px), "l.pgm", &ImageOptions::new(0.1)).unwrap();
+        let w =
+            World::from_image_bytes(&pgm_p5(4, 4, &px), "l.pgm", &ImageOptions::new(0.1)).unwrap();
         // Rows 0-1 merge; row 2 differs: two rectangles.
         assert_eq!(w.len(), 2);
         // Coverage on the pixel grid reproduces the image (row 0 of the grid is
@@ -420,7 +528,10 @@ mod tests {
             for col in 0..4 {
                 let dark = px[(3 - row) * 4 + col] == 0;
                 let expect = if dark { 1.0 } else { 0.0 };
-                assert!((cov[row * 4 + col] - expect).abs() < 1e-12, "({row}, {col})");
+                assert!(
+                    (cov[row * 4 + col] - expect).abs() < 1e-12,
+                    "({row}, {col})"
+                );
             }
         }
     }
@@ -429,10 +540,17 @@ mod tests {
     fn thresholds_negate_and_sixteen_bits() {
         // Values 100/255 -> p = 0.61 (free at 0.65, occupied at 0.5).
         let px = [100u8, 255];
-        assert!(World::from_image_bytes(&pgm_p5(2, 1, &px), "t.pgm", &ImageOptions::new(1.0)).is_err());
+        assert!(
+            World::from_image_bytes(&pgm_p5(2, 1, &px), "t.pgm", &ImageOptions::new(1.0)).is_err()
+        );
         let mut o = ImageOptions::new(1.0);
         o.occupied_thresh = 0.5;
-        assert_eq!(World::from_image_bytes(&pgm_p5(2, 1, &px), "t.pgm", &o).unwrap().len(), 1);
+        assert_eq!(
+            World::from_image_bytes(&pgm_p5(2, 1, &px), "t.pgm", &o)
+                .unwrap()
+                .len(),
+            1
+        );
         o.negate = true;
         let w = World::from_image_bytes(&pgm_p5(2, 1, &px), "t.pgm", &o).unwrap();
         assert_eq!(w.polygons()[0].bounds_m(), [1.0, 0.0, 2.0, 1.0]);
@@ -445,15 +563,26 @@ mod tests {
 
     #[test]
     fn malformed_images_name_the_place() {
-        let e = World::from_image_bytes(b"P5\n4 x\n255\n", "h.pgm", &ImageOptions::new(1.0)).unwrap_err();
+        let e = World::from_image_bytes(b"P5\n4 x\n255\n", "h.pgm", &ImageOptions::new(1.0))
+            .unwrap_err();
         assert!(e.to_string().starts_with("h.pgm, header line 2"), "{e}");
-        let e = World::from_image_bytes(&pgm_p5(4, 4, &[0; 9]), "s.pgm", &ImageOptions::new(1.0)).unwrap_err();
+        let e = World::from_image_bytes(&pgm_p5(4, 4, &[0; 9]), "s.pgm", &ImageOptions::new(1.0))
+            .unwrap_err();
         assert!(e.to_string().starts_with("s.pgm, pixel (1, 2)"), "{e}");
-        let e = World::from_image_bytes(b"P2 2 1 10 3 11", "v.pgm", &ImageOptions::new(1.0)).unwrap_err();
+        let e = World::from_image_bytes(b"P2 2 1 10 3 11", "v.pgm", &ImageOptions::new(1.0))
+            .unwrap_err();
         assert!(e.to_string().starts_with("v.pgm, pixel (1, 0)"), "{e}");
         assert!(World::from_image_bytes(b"GIF89a", "x.gif", &ImageOptions::new(1.0)).is_err());
-        assert!(World::from_image_bytes(&pgm_p5(1, 1, &[0]), "r.pgm", &ImageOptions::new(-1.0)).is_err());
-        let e = World::from_image_bytes(b"\x89PNG\r\n\x1a\nrubbish", "p.png", &ImageOptions::new(1.0)).unwrap_err();
+        assert!(
+            World::from_image_bytes(&pgm_p5(1, 1, &[0]), "r.pgm", &ImageOptions::new(-1.0))
+                .is_err()
+        );
+        let e = World::from_image_bytes(
+            b"\x89PNG\r\n\x1a\nrubbish",
+            "p.png",
+            &ImageOptions::new(1.0),
+        )
+        .unwrap_err();
         assert!(e.to_string().starts_with("p.png, PNG"), "{e}");
     }
 
@@ -485,10 +614,18 @@ mod tests {
         let yaml = "image: map.png\nresolution: 0.05 # metres\norigin: [1.0, -2.0, 0.0]\nnegate: 0\noccupied_thresh: 0.65\nfree_thresh: 0.196\n";
         let (image, opts) = parse_ros_yaml(yaml, Path::new("m.yaml")).unwrap();
         assert_eq!(image, "map.png");
-        assert_eq!((opts.resolution_m, opts.origin_m, opts.yaw_rad, opts.negate), (0.05, [1.0, -2.0], 0.0, false));
-        let e = parse_ros_yaml("image: m.png\norigin: [1, 2]\nresolution: 1\n", Path::new("m.yaml")).unwrap_err();
+        assert_eq!(
+            (opts.resolution_m, opts.origin_m, opts.yaw_rad, opts.negate),
+            (0.05, [1.0, -2.0], 0.0, false)
+        );
+        let e = parse_ros_yaml(
+            "image: m.png\norigin: [1, 2]\nresolution: 1\n",
+            Path::new("m.yaml"),
+        )
+        .unwrap_err();
         assert!(e.to_string().starts_with("m.yaml, line 2"), "{e}");
-        let e = parse_ros_yaml("image: m.png\norigin: [1, 2, 0]\n", Path::new("m.yaml")).unwrap_err();
+        let e =
+            parse_ros_yaml("image: m.png\norigin: [1, 2, 0]\n", Path::new("m.yaml")).unwrap_err();
         assert!(e.to_string().contains("missing key `resolution`"), "{e}");
         let e = parse_ros_yaml("image: m.png\nresolution: abc\n", Path::new("m.yaml")).unwrap_err();
         assert!(e.to_string().starts_with("m.yaml, line 2"), "{e}");

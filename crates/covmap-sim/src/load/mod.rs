@@ -19,7 +19,10 @@ use std::path::{Path, PathBuf};
 use crate::error::{Result, SimError};
 
 pub(crate) fn read_bytes(path: &Path) -> Result<Vec<u8>> {
-    std::fs::read(path).map_err(|source| SimError::Io { path: path.to_path_buf(), source })
+    std::fs::read(path).map_err(|source| SimError::Io {
+        path: path.to_path_buf(),
+        source,
+    })
 }
 
 pub(crate) fn read_text(path: &Path) -> Result<String> {
@@ -32,8 +35,16 @@ pub(crate) fn read_text(path: &Path) -> Result<String> {
 }
 
 /// A parse error at `place` of `path`.
-pub(crate) fn parse_error(path: &Path, place: impl Into<String>, reason: impl Into<String>) -> SimError {
-    SimError::Parse { path: PathBuf::from(path), place: place.into(), reason: reason.into() }
+pub(crate) fn parse_error(
+    path: &Path,
+    place: impl Into<String>,
+    reason: impl Into<String>,
+) -> SimError {
+    SimError::Parse {
+        path: PathBuf::from(path),
+        place: place.into(),
+        reason: reason.into(),
+    }
 }
 
 /// Write `bytes` to `path` atomically: a temporary file in the same directory,
@@ -44,9 +55,15 @@ pub(crate) fn parse_error(path: &Path, place: impl Into<String>, reason: impl In
 /// rename wins), and a temporary file left over by a crash is stepped
 /// around, never reused.
 pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<()> {
-    let io = |source| SimError::Io { path: path.to_path_buf(), source };
+    let io = |source| SimError::Io {
+        path: path.to_path_buf(),
+        source,
+    };
     if path.file_name().is_none() {
-        return Err(io(std::io::Error::new(std::io::ErrorKind::InvalidInput, "the path names no file")));
+        return Err(io(std::io::Error::new(
+            std::io::ErrorKind::InvalidInput,
+            "the path names no file",
+        )));
     }
     let (tmp, mut f) = create_temporary(path).map_err(io)?;
     let result = (|| {
@@ -76,9 +93,17 @@ fn create_temporary(path: &Path) -> std::io::Result<(std::path::PathBuf, std::fs
         let mut h = std::collections::hash_map::RandomState::new().build_hasher();
         h.write_u32(std::process::id());
         h.write_u64(CALLS.fetch_add(1, Ordering::Relaxed));
-        h.write_u128(std::time::SystemTime::now().duration_since(std::time::UNIX_EPOCH).map_or(0, |d| d.as_nanos()));
+        h.write_u128(
+            std::time::SystemTime::now()
+                .duration_since(std::time::UNIX_EPOCH)
+                .map_or(0, |d| d.as_nanos()),
+        );
         let tmp = path.with_file_name(format!(".covmap-{:016x}.tmp", h.finish()));
-        match std::fs::File::options().write(true).create_new(true).open(&tmp) {
+        match std::fs::File::options()
+            .write(true)
+            .create_new(true)
+            .open(&tmp)
+        {
             Ok(f) => return Ok((tmp, f)),
             Err(e) if e.kind() == std::io::ErrorKind::AlreadyExists => last = Some(e),
             Err(e) => return Err(e),
@@ -95,7 +120,8 @@ mod tests {
     /// write succeeds and the file holds one of them whole.
     #[test]
     fn concurrent_writes_of_one_path_each_land_whole() {
-        let dir = std::env::temp_dir().join(format!("covmap-sim-write-atomic-{}", std::process::id()));
+        let dir =
+            std::env::temp_dir().join(format!("covmap-sim-write-atomic-{}", std::process::id()));
         std::fs::create_dir_all(&dir).unwrap();
         let path = dir.join("out.bin");
         for _ in 0..5 {
@@ -114,10 +140,20 @@ mod tests {
             });
             let bytes = std::fs::read(&path).unwrap();
             assert_eq!(bytes.len(), 1 << 20);
-            assert!(bytes.iter().all(|&b| b == bytes[0]), "a file mixed from two writes");
+            assert!(
+                bytes.iter().all(|&b| b == bytes[0]),
+                "a file mixed from two writes"
+            );
         }
-        let left: Vec<_> = std::fs::read_dir(&dir).unwrap().map(|e| e.unwrap().file_name()).collect();
-        assert_eq!(left, [std::ffi::OsString::from("out.bin")], "temporary files left behind");
+        let left: Vec<_> = std::fs::read_dir(&dir)
+            .unwrap()
+            .map(|e| e.unwrap().file_name())
+            .collect();
+        assert_eq!(
+            left,
+            [std::ffi::OsString::from("out.bin")],
+            "temporary files left behind"
+        );
         std::fs::remove_dir_all(&dir).unwrap();
     }
 
@@ -126,7 +162,8 @@ mod tests {
     /// left alone.
     #[test]
     fn long_names_and_leftovers_do_not_stop_a_write() {
-        let dir = std::env::temp_dir().join(format!("covmap-sim-write-leftover-{}", std::process::id()));
+        let dir =
+            std::env::temp_dir().join(format!("covmap-sim-write-leftover-{}", std::process::id()));
         std::fs::create_dir_all(&dir).unwrap();
         let long = dir.join("a".repeat(255));
         write_atomic(&long, b"long").unwrap();
