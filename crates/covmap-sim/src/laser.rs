@@ -2,13 +2,12 @@
 
 use std::f64::consts::PI;
 
-use covmap_core::{LaserModel, Pose};
+use covmap_core::LaserModel;
 use rand::{Rng, RngExt};
 use rand_distr::StandardNormal;
 
 use crate::error::{Result, check_bearings, check_param};
-use crate::scan::Scan;
-use crate::simulate::{RangeSensor, check_pose};
+use crate::simulate::RangeSensor;
 use crate::world::World;
 
 /// A laser scanner: thin beams, small Gaussian noise.
@@ -114,29 +113,21 @@ impl RangeSensor for Laser {
         )
     }
 
-    fn scan<R: Rng + ?Sized>(&self, world: &World, pose: &Pose, rng: &mut R) -> Result<Scan> {
-        self.validate()?;
-        check_pose(pose)?;
-        let origin = [pose.x_m, pose.y_m];
+    fn read_beam<R: Rng + ?Sized>(
+        &self,
+        world: &World,
+        origin_m: [f64; 2],
+        direction_rad: f64,
+        rng: &mut R,
+    ) -> f64 {
+        let z: f64 = rng.sample(StandardNormal);
         let max = self.max_range_m;
-        let ranges_m = self
-            .bearings_rad
-            .iter()
-            .map(|&b| {
-                let z: f64 = rng.sample(StandardNormal);
-                let hit = world.cast(origin, pose.theta_rad + b, max);
-                if !hit.is_hit() {
-                    return max;
-                }
-                let r = (hit.distance_m + self.noise_std_m * z).max(0.0);
-                if r >= max { max } else { r }
-            })
-            .collect();
-        Ok(Scan {
-            pose: *pose,
-            ranges_m,
-            bearings_rad: self.bearings_rad.clone(),
-        })
+        let hit = world.cast(origin_m, direction_rad, max);
+        if !hit.is_hit() {
+            return max;
+        }
+        let r = (hit.distance_m + self.noise_std_m * z).max(0.0);
+        if r >= max { max } else { r }
     }
 }
 
@@ -146,6 +137,7 @@ mod tests {
     use crate::material::Material;
     use crate::polygon::Polygon;
     use crate::rng::sim_rng;
+    use covmap_core::Pose;
 
     #[test]
     fn layouts() {

@@ -29,7 +29,7 @@
 #![warn(missing_docs)]
 
 mod builtin;
-pub mod coverage;
+pub mod truth;
 mod error;
 pub mod experiments;
 mod laser;

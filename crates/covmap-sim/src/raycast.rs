@@ -114,10 +114,10 @@ impl World {
         angles_rad: &[f64],
         max_range_m: f64,
     ) -> Result<Vec<RayHit>> {
-        validate_rays(origins_m, angles_rad, max_range_m)?;
         #[cfg(feature = "parallel")]
         if origins_m.len() >= PARALLEL_MIN_RAYS {
             use rayon::prelude::*;
+            validate_rays(origins_m, angles_rad, max_range_m)?;
             return Ok(origins_m
                 .par_iter()
                 .zip(angles_rad.par_iter())
@@ -127,7 +127,7 @@ impl World {
                 })
                 .collect());
         }
-        Ok(self.cast_sequential(origins_m, angles_rad, max_range_m))
+        self.cast_batch_sequential(origins_m, angles_rad, max_range_m)
     }
 
     /// [`World::cast_batch`] on the calling thread only.

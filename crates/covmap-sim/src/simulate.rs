@@ -16,9 +16,37 @@ pub trait RangeSensor {
     fn max_range_m(&self) -> f64;
     /// Errors unless every parameter lies in its valid range.
     fn validate(&self) -> Result<()>;
-    /// One scan taken from `pose`, every random draw from `rng`. Errors on
-    /// invalid parameters or a non-finite pose.
-    fn scan<R: Rng + ?Sized>(&self, world: &World, pose: &Pose, rng: &mut R) -> Result<Scan>;
+    /// One reading along the absolute direction `direction_rad` from
+    /// `origin_m`, every random draw from `rng`. A sensor takes the same draws
+    /// for every reading, whatever the reading turns out to be, so that a
+    /// change of one reading never shifts the samples of the next. The
+    /// parameters are taken as valid: [`RangeSensor::scan`] checks them first.
+    fn read_beam<R: Rng + ?Sized>(
+        &self,
+        world: &World,
+        origin_m: [f64; 2],
+        direction_rad: f64,
+        rng: &mut R,
+    ) -> f64;
+
+    /// One scan taken from `pose`, a reading per bearing in bearing order,
+    /// every random draw from `rng`. Errors on invalid parameters or a
+    /// non-finite pose.
+    fn scan<R: Rng + ?Sized>(&self, world: &World, pose: &Pose, rng: &mut R) -> Result<Scan> {
+        self.validate()?;
+        check_pose(pose)?;
+        let origin_m = [pose.x_m, pose.y_m];
+        let ranges_m = self
+            .bearings_rad()
+            .iter()
+            .map(|&bearing| self.read_beam(world, origin_m, pose.theta_rad + bearing, rng))
+            .collect();
+        Ok(Scan {
+            pose: *pose,
+            ranges_m,
+            bearings_rad: self.bearings_rad().to_vec(),
+        })
+    }
 }
 
 /// One scan from each pose. Scan `i` draws from its own stream `i` of a

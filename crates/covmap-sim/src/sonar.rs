@@ -2,15 +2,14 @@
 
 use std::f64::consts::{PI, TAU};
 
-use covmap_core::{Pose, SonarModel};
+use covmap_core::SonarModel;
 use rand::{Rng, RngExt};
 use rand_distr::StandardNormal;
 
 use crate::error::{Result, check_bearings, check_param};
 use crate::material::Material;
 use crate::raycast::RayHit;
-use crate::scan::Scan;
-use crate::simulate::{RangeSensor, check_pose};
+use crate::simulate::RangeSensor;
 use crate::world::World;
 
 /// A ring of sonars and how they err.
@@ -281,28 +280,20 @@ impl RangeSensor for SonarRing {
         Ok(())
     }
 
-    fn scan<R: Rng + ?Sized>(&self, world: &World, pose: &Pose, rng: &mut R) -> Result<Scan> {
-        self.validate()?;
-        check_pose(pose)?;
-        let origin = [pose.x_m, pose.y_m];
-        let ranges_m = self
-            .bearings_rad
-            .iter()
-            .map(|&b| {
-                let draws = [
-                    rng.random(),
-                    rng.random(),
-                    rng.random(),
-                    rng.sample(StandardNormal),
-                ];
-                self.reading(world, origin, pose.theta_rad + b, draws)
-            })
-            .collect();
-        Ok(Scan {
-            pose: *pose,
-            ranges_m,
-            bearings_rad: self.bearings_rad.clone(),
-        })
+    fn read_beam<R: Rng + ?Sized>(
+        &self,
+        world: &World,
+        origin_m: [f64; 2],
+        direction_rad: f64,
+        rng: &mut R,
+    ) -> f64 {
+        let draws = [
+            rng.random(),
+            rng.random(),
+            rng.random(),
+            rng.sample(StandardNormal),
+        ];
+        self.reading(world, origin_m, direction_rad, draws)
     }
 }
 
@@ -312,6 +303,7 @@ mod tests {
     use crate::error::SimError;
     use crate::polygon::Polygon;
     use crate::rng::sim_rng;
+    use covmap_core::Pose;
 
     /// A long wall whose face is the line y = 0 (obstacle below), glass from x = 10 on.
     fn wall() -> World {

@@ -32,7 +32,7 @@ use crate::world::World;
 impl World {
     /// The exact coverage of every cell of `grid`: the fraction of the cell's
     /// area inside the union of the obstacles, in `[0, 1]`, row-major like the
-    /// core's maps. See the [module documentation](crate::coverage) for the method.
+    /// core's maps. See the [module documentation](crate::truth) for the method.
     ///
     /// # Example
     /// ```
