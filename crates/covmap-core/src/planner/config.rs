@@ -1,0 +1,159 @@
+//! The planner's settings, their defaults and the ranges they must lie in.
+
+use serde::{Deserialize, Serialize};
+
+use crate::error::{CovmapError, Result};
+use crate::gain::GainOptions;
+
+/// Settings of the planner. See the [module documentation](crate::planner).
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct PlannerConfig {
+    /// Weight of information against travel, in `[0, 1]`: 0 is greedy
+    /// nearest, 1 pure information gain.
+    pub alpha: f64,
+    /// Radius of the disc robot, metres.
+    pub robot_radius_m: f64,
+    /// Spacing of the candidate lattice, metres.
+    pub candidate_stride_m: f64,
+    /// Candidates closer than this along the path are not goals, metres.
+    pub min_travel_m: f64,
+    /// Candidates whose expected gain is at most this are not goals, nats.
+    pub min_gain_nats: f64,
+    /// Coverage on the ML map above which a cell blocks the robot.
+    pub blocked_coverage: f64,
+    /// A cell is unknown while its entropy is at least this fraction of the
+    /// prior's (`ln bins`, as the map computes it: in `f32`).
+    pub unknown_entropy_fraction: f64,
+    /// Whether the robot may plan through unknown cells.
+    pub unknown_is_free: bool,
+    /// Entropy below which a cell counts as explored, nats (the paper's
+    /// epsilon; its Fig. 7 uses 0.65).
+    pub epsilon: f64,
+    /// Settings of the gain computation.
+    pub gain: GainOptions,
+}
+
+impl Default for PlannerConfig {
+    fn default() -> Self {
+        Self {
+            alpha: 0.5,
+            robot_radius_m: 0.25,
+            candidate_stride_m: 0.5,
+            min_travel_m: 0.0,
+            min_gain_nats: 1.0,
+            blocked_coverage: 0.5,
+            unknown_entropy_fraction: 0.95,
+            unknown_is_free: false,
+            epsilon: 0.65,
+            gain: GainOptions::default(),
+        }
+    }
+}
+
+impl PlannerConfig {
+    /// Errors unless every setting lies in its valid range.
+    pub fn validate(&self) -> Result<()> {
+        let bad = |name, value, expected| {
+            Err(CovmapError::InvalidParameter {
+                name,
+                value,
+                expected,
+            })
+        };
+        if !(0.0..=1.0).contains(&self.alpha) {
+            return bad("alpha", self.alpha, "a weight in [0, 1]");
+        }
+        if !(self.robot_radius_m >= 0.0 && self.robot_radius_m.is_finite()) {
+            return bad(
+                "robot_radius_m",
+                self.robot_radius_m,
+                "a non-negative, finite radius",
+            );
+        }
+        if !(self.candidate_stride_m > 0.0 && self.candidate_stride_m.is_finite()) {
+            return bad(
+                "candidate_stride_m",
+                self.candidate_stride_m,
+                "a positive, finite spacing",
+            );
+        }
+        if !(self.min_travel_m >= 0.0 && self.min_travel_m.is_finite()) {
+            return bad(
+                "min_travel_m",
+                self.min_travel_m,
+                "a non-negative, finite distance",
+            );
+        }
+        if !(self.min_gain_nats >= 0.0 && self.min_gain_nats.is_finite()) {
+            return bad(
+                "min_gain_nats",
+                self.min_gain_nats,
+                "a non-negative, finite gain",
+            );
+        }
+        if !(0.0..1.0).contains(&self.blocked_coverage) {
+            return bad(
+                "blocked_coverage",
+                self.blocked_coverage,
+                "a coverage in [0, 1)",
+            );
+        }
+        if !(self.unknown_entropy_fraction > 0.0 && self.unknown_entropy_fraction <= 1.0) {
+            return bad(
+                "unknown_entropy_fraction",
+                self.unknown_entropy_fraction,
+                "a fraction in (0, 1]",
+            );
+        }
+        if !(self.epsilon > 0.0 && self.epsilon.is_finite()) {
+            return bad("epsilon", self.epsilon, "a positive, finite entropy");
+        }
+        if let Some(step) = self.gain.range_step_m
+            && !(step > 0.0 && step.is_finite())
+        {
+            return bad(
+                "gain.range_step_m",
+                step,
+                "a positive, finite step (at most the grid resolution)",
+            );
+        }
+        Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::planner::Planner;
+
+    #[test]
+    fn rejects_bad_config() {
+        assert!(
+            Planner::new(PlannerConfig {
+                alpha: 1.5,
+                ..PlannerConfig::default()
+            })
+            .is_err()
+        );
+        assert!(
+            Planner::new(PlannerConfig {
+                candidate_stride_m: 0.0,
+                ..PlannerConfig::default()
+            })
+            .is_err()
+        );
+        assert!(
+            Planner::new(PlannerConfig {
+                robot_radius_m: f64::NAN,
+                ..PlannerConfig::default()
+            })
+            .is_err()
+        );
+        let planner = Planner::new(PlannerConfig::default()).unwrap();
+        assert!(matches!(
+            planner.utilities(&[2.0, 3.0], &[1.0]),
+            Err(CovmapError::LengthMismatch { .. })
+        ));
+    }
+}

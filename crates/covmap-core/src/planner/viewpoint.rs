@@ -1,0 +1,283 @@
+//! The planner and its choice of the next viewpoint (paper eq. 14): the
+//! candidate lattice over the reachable free space, each candidate's expected
+//! information gain and path cost, and the utility that weighs them.
+
+use serde::{Deserialize, Serialize};
+
+use crate::coverage_map::CoverageMap;
+use crate::error::{CovmapError, Result};
+use crate::gain::{GainEvaluator, GainMethod};
+use crate::planner::config::PlannerConfig;
+use crate::scan::Pose;
+use crate::sensor::SensorModel;
+
+/// Every candidate considered, with its figures.
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct Candidates {
+    /// Candidate poses.
+    pub poses: Vec<Pose>,
+    /// Expected information gain of each, nats.
+    pub gains: Vec<f64>,
+    /// Path length from the robot to each, metres.
+    pub costs: Vec<f64>,
+    /// Eq. 14's utility of each (`-inf` for those that are no goal).
+    pub utilities: Vec<f64>,
+}
+
+/// The planner's answer.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Plan {
+    /// The chosen viewpoint, or `None` when no candidate is worth visiting.
+    pub pose: Option<Pose>,
+    /// The path to it: cell centres from the robot's cell to the goal's.
+    pub path: Vec<[f64; 2]>,
+    /// Index of the chosen candidate in `candidates`.
+    pub chosen: Option<usize>,
+    /// All candidates.
+    pub candidates: Candidates,
+}
+
+/// The decision-theoretic exploration planner.
+///
+/// # Example
+/// ```
+/// use covmap_core::planner::{Planner, PlannerConfig};
+/// use covmap_core::{CoverageMap, Grid, Pose, SonarModel};
+/// let sonar = SonarModel::default();
+/// let bearings: Vec<f64> = (0..24).map(|i| i as f64 * std::f64::consts::TAU / 24.0).collect();
+/// let mut map = CoverageMap::new(Grid::new([0.0, 0.0], 0.05, 200, 200).unwrap());
+/// let pose = Pose::new(5.0, 5.0, 0.0);
+/// map.integrate(&pose, &vec![3.0; 24], &bearings, &sonar).unwrap(); // a round room
+/// let planner = Planner::new(PlannerConfig::default()).unwrap();
+/// let plan = planner.next_viewpoint(&map, &pose, &bearings, &sonar).unwrap();
+/// let goal = plan.pose.unwrap();
+/// assert!(((goal.x_m - 5.0).powi(2) + (goal.y_m - 5.0).powi(2)).sqrt() < 3.0); // inside the room
+/// assert_eq!(plan.path.first().map(|p| map.grid().world_to_cell(p[0], p[1])), Some(map.grid().world_to_cell(5.0, 5.0)));
+/// ```
+#[derive(Clone, Debug, PartialEq)]
+pub struct Planner {
+    pub(super) config: PlannerConfig,
+}
+
+impl Planner {
+    /// A planner with `config`.
+    ///
+    /// # Errors
+    /// [`CovmapError::InvalidParameter`] naming the first setting outside its
+    /// valid range (see [`PlannerConfig::validate`]).
+    pub fn new(config: PlannerConfig) -> Result<Self> {
+        config.validate()?;
+        Ok(Self { config })
+    }
+
+    /// The settings.
+    pub fn config(&self) -> &PlannerConfig {
+        &self.config
+    }
+
+    /// Choose the next viewpoint for a robot at `pose` scanning with beams at
+    /// `bearings` through `model` (eq. 14).
+    ///
+    /// # Errors
+    /// As [`Self::reachability`] for the pose; [`CovmapError::InvalidBearing`]
+    /// for a bearing that is not finite (or not when added to the heading);
+    /// [`CovmapError::InvalidParameter`] for an invalid model or a
+    /// `gain.range_step_m` the map's resolution does not allow (see
+    /// [`GainEvaluator::new`]).
+    pub fn next_viewpoint<M: SensorModel + ?Sized>(
+        &self,
+        map: &CoverageMap,
+        pose: &Pose,
+        bearings: &[f64],
+        model: &M,
+    ) -> Result<Plan> {
+        let (free, reach) = self.free_and_reachable(map, pose)?;
+        let grid = map.grid();
+        let stride =
+            ((self.config.candidate_stride_m / grid.resolution_m()).round() as usize).max(1);
+        let mut indices = Vec::new();
+        for row in (stride / 2..grid.rows()).step_by(stride) {
+            for col in (stride / 2..grid.cols()).step_by(stride) {
+                let i = row * grid.cols() + col;
+                if free[i] && reach.reachable(i) && reach.cost(i) >= self.config.min_travel_m {
+                    indices.push(i);
+                }
+            }
+        }
+        let poses: Vec<Pose> = indices
+            .iter()
+            .map(|&i| {
+                let [x, y] = grid.cell_center(grid.cell(i));
+                Pose::new(x, y, pose.theta_rad)
+            })
+            .collect();
+        let evaluator = GainEvaluator::new(map, model, self.config.gain)?;
+        let gains = evaluator.evaluate(&poses, bearings, GainMethod::Fast)?;
+        let costs: Vec<f64> = indices.iter().map(|&i| reach.cost(i)).collect();
+        let utilities = self.utilities(&gains, &costs)?;
+        let chosen = (0..utilities.len())
+            .filter(|&k| utilities[k] > f64::NEG_INFINITY)
+            .max_by(|&a, &b| {
+                utilities[a]
+                    .total_cmp(&utilities[b])
+                    .then_with(|| b.cmp(&a))
+            });
+        Ok(Plan {
+            pose: chosen.map(|k| poses[k]),
+            path: chosen.map_or_else(Vec::new, |k| reach.path_to(indices[k])),
+            chosen,
+            candidates: Candidates {
+                poses,
+                gains,
+                costs,
+                utilities,
+            },
+        })
+    }
+
+    /// Eq. 14 over the candidates worth visiting; `-inf` for the others.
+    ///
+    /// Errors if `gains` and `costs` differ in length.
+    pub fn utilities(&self, gains: &[f64], costs: &[f64]) -> Result<Vec<f64>> {
+        if gains.len() != costs.len() {
+            return Err(CovmapError::LengthMismatch {
+                what: "gains and costs",
+                left: gains.len(),
+                right: costs.len(),
+            });
+        }
+        let worth = |k: usize| gains[k] > self.config.min_gain_nats;
+        let max_gain = (0..gains.len())
+            .filter(|&k| worth(k))
+            .map(|k| gains[k])
+            .fold(0.0, f64::max);
+        let max_cost = (0..gains.len())
+            .filter(|&k| worth(k))
+            .map(|k| costs[k])
+            .fold(0.0, f64::max);
+        let a = self.config.alpha;
+        Ok((0..gains.len())
+            .map(|k| {
+                if !worth(k) {
+                    return f64::NEG_INFINITY;
+                }
+                let g = if max_gain > 0.0 {
+                    gains[k] / max_gain
+                } else {
+                    0.0
+                };
+                let c = if max_cost > 0.0 {
+                    costs[k] / max_cost
+                } else {
+                    0.0
+                };
+                a * g - (1.0 - a) * c
+            })
+            .collect())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::planner::test_maps::{ring, room, walled_map};
+    use crate::sensor::SonarModel;
+
+    #[test]
+    fn never_picks_unreachable_or_colliding_poses() {
+        let (map, pose) = room();
+        let planner = Planner::new(PlannerConfig::default()).unwrap();
+        let plan = planner
+            .next_viewpoint(&map, &pose, &ring(), &SonarModel::default())
+            .unwrap();
+        let free = planner.free_space(&map);
+        let reach = planner.reachability(&map, &pose).unwrap();
+        for p in &plan.candidates.poses {
+            let i = map
+                .grid()
+                .index(map.grid().world_to_cell(p.x_m, p.y_m).unwrap())
+                .unwrap();
+            assert!(free[i] && reach.reachable(i));
+            // Inside the room's walls, minus the robot's radius.
+            assert!(
+                (p.x_m - 4.0).abs() < 2.0 - 0.2 && (p.y_m - 4.0).abs() < 2.0 - 0.2,
+                "{p:?}"
+            );
+        }
+        assert!(plan.pose.is_some());
+    }
+
+    #[test]
+    fn alpha_extremes() {
+        let (map, pose) = room();
+        let sonar = SonarModel::default();
+        let mut config = PlannerConfig {
+            alpha: 0.0,
+            min_travel_m: 0.3,
+            ..PlannerConfig::default()
+        };
+        let near = Planner::new(config)
+            .unwrap()
+            .next_viewpoint(&map, &pose, &ring(), &sonar)
+            .unwrap();
+        config.alpha = 1.0;
+        let far = Planner::new(config)
+            .unwrap()
+            .next_viewpoint(&map, &pose, &ring(), &sonar)
+            .unwrap();
+        let c = &near.candidates;
+        let worth: Vec<usize> = (0..c.gains.len())
+            .filter(|&k| c.gains[k] > config.min_gain_nats)
+            .collect();
+        let min_cost = worth
+            .iter()
+            .map(|&k| c.costs[k])
+            .fold(f64::INFINITY, f64::min);
+        let max_gain = worth.iter().map(|&k| c.gains[k]).fold(0.0, f64::max);
+        assert_eq!(c.costs[near.chosen.unwrap()], min_cost);
+        assert_eq!(far.candidates.gains[far.chosen.unwrap()], max_gain);
+        assert!(max_gain > c.gains[near.chosen.unwrap()]);
+    }
+
+    /// A robot standing too close to a wall may leave, but its own cell is no
+    /// goal, and no candidate is.
+    #[test]
+    fn a_robot_too_close_to_a_wall_never_picks_a_colliding_pose() {
+        // A wall along column 40 in unexplored space.
+        let map = walled_map(|_, col| col == 40, true);
+        // 0.15 m from the wall's face: inside the inflated wall, on the lattice.
+        let pose = Pose::new(1.875, 1.875, 0.0);
+        let start = map.grid().world_to_cell(pose.x_m, pose.y_m).unwrap();
+        let config = PlannerConfig {
+            alpha: 0.0,
+            candidate_stride_m: 0.25,
+            min_gain_nats: 0.0,
+            unknown_is_free: true,
+            ..PlannerConfig::default()
+        };
+        let planner = Planner::new(config).unwrap();
+        let free = planner.free_space(&map);
+        assert!(
+            !free[map.grid().index(start).unwrap()],
+            "the start must lie in the inflated wall"
+        );
+        let plan = planner
+            .next_viewpoint(&map, &pose, &ring(), &SonarModel::default())
+            .unwrap();
+        for p in &plan.candidates.poses {
+            let i = map
+                .grid()
+                .index(map.grid().world_to_cell(p.x_m, p.y_m).unwrap())
+                .unwrap();
+            assert!(free[i], "candidate {p:?} collides");
+        }
+        let goal = plan.pose.expect("free space around");
+        assert_ne!(map.grid().world_to_cell(goal.x_m, goal.y_m).unwrap(), start);
+        assert_eq!(
+            plan.path
+                .first()
+                .map(|c| map.grid().world_to_cell(c[0], c[1]).unwrap()),
+            Some(start)
+        );
+    }
+}
