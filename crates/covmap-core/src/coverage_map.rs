@@ -1,12 +1,14 @@
 //! The coverage map: one histogram over coverage values per cell.
 
+use std::borrow::Cow;
+
 use crate::aligned::Aligned;
 use crate::error::{CovmapError, Result};
 use crate::footprint::{CellVisitor, visit};
 use crate::grid::{Cell, Grid};
 use crate::histogram::{self, DEFAULT_BINS};
 use crate::scan::{Pose, validate_scan};
-use crate::sensor::{KernelTable, ReadingLookup, SensorModel};
+use crate::sensor::{KernelTable, RangeModel, ReadingLookup, SensorModel};
 
 /// A grid whose every cell holds a histogram over how much of it is covered.
 ///
@@ -178,6 +180,20 @@ impl CoverageMap {
     /// The kernel table of the last model integrated, if any.
     pub(crate) fn cached_table(&self) -> Option<&KernelTable> {
         self.table.as_deref()
+    }
+
+    /// The kernel table for `range` on this map: the cached one when it
+    /// serves, else a new one.
+    pub(crate) fn kernel_table(&self, range: &RangeModel) -> Result<Cow<'_, KernelTable>> {
+        let resolution = self.grid().resolution_m();
+        match self.cached_table() {
+            Some(t) if t.serves(range, resolution, self.bins()) => Ok(Cow::Borrowed(t)),
+            _ => Ok(Cow::Owned(KernelTable::new(
+                range,
+                resolution,
+                self.bins(),
+            )?)),
+        }
     }
 
     /// The grid.

@@ -1,0 +1,268 @@
+//! The evaluator of the expected gain: what every candidate needs, built once
+//! per map state, and the evaluation of candidates.
+
+use std::borrow::Cow;
+use std::sync::OnceLock;
+
+use super::fast::{Arith, LogCache, Queue};
+use super::readings::{ReadingDistribution, check_step, trace_readings};
+use super::schedule::in_groups;
+use super::{GainMethod, GainOptions, StopCoverage};
+use crate::coverage_map::CoverageMap;
+use crate::error::Result;
+use crate::footprint::visit;
+use crate::scan::{Pose, check_bearings, check_pose};
+use crate::sensor::{Footprint, KernelTable, RangeModel, SensorModel};
+
+/// Evaluates the expected information gain of candidate viewpoints on one map
+/// with one sensor model. Build it once per map state; it caches what every
+/// candidate needs.
+///
+/// # Example
+/// ```
+/// use covmap_core::gain::{GainEvaluator, GainMethod, GainOptions};
+/// use covmap_core::{CoverageMap, Grid, Pose, SonarModel};
+/// let map = CoverageMap::new(Grid::new([0.0, 0.0], 0.1, 60, 60).unwrap());
+/// let sonar = SonarModel::default();
+/// let eval = GainEvaluator::new(&map, &sonar, GainOptions::default()).unwrap();
+/// let bearings = [0.0, std::f64::consts::FRAC_PI_2];
+/// let poses = [Pose::new(3.0, 3.0, 0.0), Pose::new(0.5, 0.5, 3.14)];
+/// let fast = eval.evaluate(&poses, &bearings, GainMethod::Fast).unwrap();
+/// let exact = eval.evaluate(&poses, &bearings, GainMethod::Exact).unwrap();
+/// assert!(fast[0] > 0.0); // nothing is known yet: every reading teaches something
+/// assert!(fast[1] < fast[0]); // facing out of the map from a corner sees less
+/// assert!((fast[0] - exact[0]).abs() <= 1e-6 * exact[0]);
+/// ```
+pub struct GainEvaluator<'a> {
+    pub(super) map: &'a CoverageMap,
+    pub(super) table: Cow<'a, KernelTable>,
+    pub(super) range: RangeModel,
+    pub(super) footprint: Footprint,
+    pub(super) stop: Vec<f32>,
+    pub(super) step_m: f64,
+    pub(super) cache: OnceLock<LogCache>,
+    /// The widest arithmetic the processor offers (detected at run time).
+    pub(super) arith: Arith,
+}
+
+impl<'a> GainEvaluator<'a> {
+    /// An evaluator for `map` and `model`.
+    ///
+    /// # Errors
+    /// [`CovmapError::InvalidParameter`](crate::CovmapError::InvalidParameter)
+    /// if the model is invalid, or `options.range_step_m` is not between
+    /// [`MIN_STEP_FRACTION`](super::MIN_STEP_FRACTION) of the grid resolution
+    /// and the resolution.
+    pub fn new<M: SensorModel + ?Sized>(
+        map: &'a CoverageMap,
+        model: &M,
+        options: GainOptions,
+    ) -> Result<Self> {
+        model.validate()?;
+        let resolution = map.grid().resolution_m();
+        let step_m = options.range_step_m.unwrap_or(resolution);
+        check_step(step_m, resolution)?;
+        let range = *model.range_model();
+        let table = map.kernel_table(&range)?;
+        let stop = match options.stop_coverage {
+            StopCoverage::MaximumLikelihood => map.ml(),
+            StopCoverage::Mean => map.mean(),
+        };
+        Ok(Self {
+            map,
+            table,
+            range,
+            footprint: model.footprint(),
+            stop,
+            step_m,
+            cache: OnceLock::new(),
+            arith: Arith::detect(),
+        })
+    }
+
+    /// The map evaluated.
+    pub fn map(&self) -> &CoverageMap {
+        self.map
+    }
+
+    /// The expected information gain (nats) of scanning from each pose with
+    /// beams at `bearings` (relative to each pose's heading).
+    ///
+    /// # Errors
+    /// [`CovmapError::InvalidPose`](crate::CovmapError::InvalidPose) if a pose
+    /// is not finite,
+    /// [`CovmapError::PoseOutsideMap`](crate::CovmapError::PoseOutsideMap) if
+    /// one lies in no cell of the map,
+    /// [`CovmapError::InvalidBearing`](crate::CovmapError::InvalidBearing) if
+    /// a bearing, or its sum with a pose's heading, is not finite.
+    pub fn evaluate(
+        &self,
+        poses: &[Pose],
+        bearings: &[f64],
+        method: GainMethod,
+    ) -> Result<Vec<f64>> {
+        self.validate(poses, bearings)?;
+        if method == GainMethod::Fast {
+            self.cache
+                .get_or_init(|| LogCache::new(self.map, &self.table));
+        }
+        let beam = |pose: &Pose, b: f64, queue: &mut Queue| -> f64 {
+            let origin = [pose.x_m, pose.y_m];
+            let angle = pose.theta_rad + b;
+            match method {
+                GainMethod::Exact => self.exact_beam(origin, angle),
+                GainMethod::Fast => self.fast_beam(origin, angle, queue),
+            }
+        };
+        Ok(in_groups(self.map.grid(), poses, bearings, beam))
+    }
+
+    /// How many (beam, cell) pairs the fast evaluator visits for these
+    /// candidates: the cells of each beam's widest footprint. The unit of the
+    /// benchmarks' cost per pair.
+    pub fn pairs(&self, poses: &[Pose], bearings: &[f64]) -> Result<u64> {
+        self.validate(poses, bearings)?;
+        let reach = self.widest_reach();
+        let mut n = 0u64;
+        for pose in poses {
+            for &b in bearings {
+                visit(
+                    self.map.grid(),
+                    [pose.x_m, pose.y_m],
+                    pose.theta_rad + b,
+                    reach,
+                    self.footprint,
+                    &mut |_, _| n += 1,
+                );
+            }
+        }
+        Ok(n)
+    }
+
+    fn validate(&self, poses: &[Pose], bearings: &[f64]) -> Result<()> {
+        if poses.is_empty() {
+            // No direction to form: the bearings themselves.
+            return check_bearings(0.0, bearings);
+        }
+        for pose in poses {
+            check_pose(self.map.grid(), pose)?;
+            check_bearings(pose.theta_rad, bearings)?;
+        }
+        Ok(())
+    }
+
+    pub(super) fn distribution(&self, origin: [f64; 2], angle: f64) -> ReadingDistribution {
+        trace_readings(
+            self.map.grid(),
+            &self.stop,
+            origin,
+            angle,
+            &self.range,
+            self.step_m,
+        )
+    }
+
+    /// The widest reach of any hypothetical reading.
+    pub(super) fn widest_reach(&self) -> f64 {
+        let last = (self.range.max_range_m / self.step_m).ceil() * self.step_m;
+        self.range
+            .reach(self.range.max_range_m)
+            .0
+            .max(last + self.range.band_m)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::error::CovmapError;
+    use crate::gain::reading_distribution;
+    use crate::grid::Grid;
+    use crate::sensor::{LaserModel, SonarModel};
+
+    #[test]
+    fn rejects_bad_input() {
+        let map = CoverageMap::new(Grid::new([0.0, 0.0], 0.1, 10, 10).unwrap());
+        let sonar = SonarModel::default();
+        let eval = GainEvaluator::new(&map, &sonar, GainOptions::default()).unwrap();
+        assert!(
+            eval.evaluate(&[Pose::new(-1.0, 0.5, 0.0)], &[0.0], GainMethod::Fast)
+                .is_err()
+        );
+        assert!(
+            eval.evaluate(&[Pose::new(0.5, 0.5, f64::NAN)], &[0.0], GainMethod::Fast)
+                .is_err()
+        );
+        assert!(
+            eval.evaluate(
+                &[Pose::new(0.5, 0.5, 0.0)],
+                &[f64::INFINITY],
+                GainMethod::Exact
+            )
+            .is_err()
+        );
+        // The direction overflows although heading and bearing are finite.
+        let err = eval
+            .evaluate(&[Pose::new(0.5, 0.5, 1e308)], &[1e308], GainMethod::Fast)
+            .unwrap_err();
+        assert!(
+            matches!(err, CovmapError::InvalidBearing { index: 0, .. }),
+            "{err}"
+        );
+        for step in [0.2, 0.0, 5e-324, 0.05 / 1024.0, f64::NAN] {
+            let bad = GainOptions {
+                range_step_m: Some(step),
+                ..GainOptions::default()
+            };
+            assert!(GainEvaluator::new(&map, &sonar, bad).is_err(), "{step}");
+        }
+        let finest = GainOptions {
+            range_step_m: Some(0.1 / 1024.0),
+            ..GainOptions::default()
+        };
+        assert!(GainEvaluator::new(&map, &sonar, finest).is_ok());
+        // The public trace validates what the evaluator validates once.
+        let (grid, range, stop) = (map.grid(), sonar.range, map.ml());
+        assert!(reading_distribution(grid, &stop[1..], [0.5, 0.5], 0.0, &range, 0.1).is_err());
+        assert!(reading_distribution(grid, &stop, [1.5, 0.5], 0.0, &range, 0.1).is_err());
+        assert!(reading_distribution(grid, &stop, [0.5, 0.5], f64::NAN, &range, 0.1).is_err());
+        assert!(reading_distribution(grid, &stop, [0.5, 0.5], 0.0, &range, 0.0).is_err());
+    }
+
+    /// A maximum range far beyond the map gives readings only as far as the
+    /// map reaches: no slot is allocated past it, and the gains are those of
+    /// the same sensor on the map.
+    #[test]
+    fn a_range_far_beyond_the_map_is_traced_to_the_map_edge() {
+        let grid = Grid::new([0.0, 0.0], 0.1, 30, 40).unwrap();
+        let mut map = CoverageMap::new(grid);
+        let mut laser = LaserModel::default();
+        laser.range.max_range_m = 1e12;
+        laser.range.sigma_per_m = 0.0;
+        laser.range.xi_per_m = 0.0;
+        let bearings: Vec<f64> = (0..8).map(|k| f64::from(k) * 0.8).collect();
+        map.integrate(
+            &Pose::new(2.0, 1.5, 0.1),
+            &[1.0, 0.7, 3.0, 0.4, 2.0, 0.9, 1e13, 1.2],
+            &bearings,
+            &laser,
+        )
+        .unwrap();
+        let d = reading_distribution(map.grid(), &map.ml(), [2.0, 1.5], 0.3, &laser.range, 0.1)
+            .unwrap();
+        assert!(
+            d.probabilities.len() <= 60,
+            "{} slots",
+            d.probabilities.len()
+        );
+        let total: f64 = d.probabilities.iter().sum::<f64>() + d.no_echo;
+        assert!((total - 1.0).abs() < 1e-12);
+        let eval = GainEvaluator::new(&map, &laser, GainOptions::default()).unwrap();
+        let poses = [Pose::new(1.0, 1.0, 0.0), Pose::new(3.5, 2.5, 2.0)];
+        let fast = eval.evaluate(&poses, &bearings, GainMethod::Fast).unwrap();
+        let exact = eval.evaluate(&poses, &bearings, GainMethod::Exact).unwrap();
+        for (f, e) in fast.iter().zip(&exact) {
+            assert!(*e > 0.0 && (f - e).abs() <= 1e-6 * e, "{f} {e}");
+        }
+    }
+}

@@ -1,0 +1,158 @@
+//! The forward model of readings: `p(d | map)`, the readings a beam is
+//! predicted to give (see the [module documentation](super)).
+
+use crate::error::{CovmapError, Result};
+use crate::footprint::visit;
+use crate::grid::Grid;
+use crate::scan::{Pose, check_pose};
+use crate::sensor::{Footprint, RangeModel};
+
+/// The predicted readings of one beam: `probabilities[j]` is the probability of
+/// reading `j * step_m` (all below the maximum range), `no_echo` that of no echo.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ReadingDistribution {
+    /// Spacing of the readings, metres.
+    pub step_m: f64,
+    /// Probability of each reading.
+    pub probabilities: Vec<f64>,
+    /// Probability of no echo.
+    pub no_echo: f64,
+}
+
+/// Predict the readings of a beam from `origin` along `angle_rad` by tracing
+/// its axis through `stop` (one coverage value per cell); see the
+/// [gain module documentation](crate::gain). Readings past the map's far
+/// corner cannot occur and get no slot.
+///
+/// Errors if `stop` does not hold one value per cell, the origin is not
+/// finite or lies outside the grid, the angle is not finite, the range model
+/// is invalid, or `step_m` is not a step between [`MIN_STEP_FRACTION`] of
+/// the grid resolution and the resolution.
+pub fn reading_distribution(
+    grid: &Grid,
+    stop: &[f32],
+    origin: [f64; 2],
+    angle_rad: f64,
+    range: &RangeModel,
+    step_m: f64,
+) -> Result<ReadingDistribution> {
+    if stop.len() != grid.len() {
+        return Err(CovmapError::LengthMismatch {
+            what: "stop coverage and grid cells",
+            left: stop.len(),
+            right: grid.len(),
+        });
+    }
+    check_pose(grid, &Pose::new(origin[0], origin[1], angle_rad))?;
+    range.validate()?;
+    check_step(step_m, grid.resolution_m())?;
+    Ok(trace_readings(grid, stop, origin, angle_rad, range, step_m))
+}
+
+/// The finest spacing of hypothetical readings, as a fraction of the grid
+/// resolution (the kernels resolve a reading to 1/32 of a cell).
+pub const MIN_STEP_FRACTION: f64 = 1.0 / 1024.0;
+
+/// Errors unless `step_m` lies between [`MIN_STEP_FRACTION`] of
+/// `resolution_m` and `resolution_m`.
+pub(super) fn check_step(step_m: f64, resolution_m: f64) -> Result<()> {
+    if step_m >= MIN_STEP_FRACTION * resolution_m && step_m <= resolution_m {
+        Ok(())
+    } else {
+        Err(CovmapError::InvalidParameter {
+            name: "range_step_m",
+            value: step_m,
+            expected: "a step between 1/1024 of the grid resolution and the resolution",
+        })
+    }
+}
+
+/// [`reading_distribution`] of valid inputs.
+pub(super) fn trace_readings(
+    grid: &Grid,
+    stop: &[f32],
+    origin: [f64; 2],
+    angle_rad: f64,
+    range: &RangeModel,
+    step_m: f64,
+) -> ReadingDistribution {
+    let r = grid.resolution_m();
+    // A reading ends at most half a cell past the centre of a cell the beam
+    // crosses, so none lies beyond the map's farthest corner plus a cell.
+    let [x0, y0, x1, y1] = grid.bounds_m();
+    let far = (origin[0] - x0)
+        .max(x1 - origin[0])
+        .hypot((origin[1] - y0).max(y1 - origin[1]));
+    let limit = ((far + r) / step_m).ceil() + 1.0;
+    let wanted = (range.max_range_m / step_m).ceil();
+    let slots = if wanted > limit {
+        // Every one of these readings lies below the maximum range.
+        limit as usize
+    } else {
+        // The readings `j * step_m` below the maximum range.
+        let n = wanted as usize;
+        (0..=n)
+            .rev()
+            .find(|&j| (j as f64) * step_m < range.max_range_m)
+            .map_or(0, |j| j + 1)
+    };
+    let mut probabilities = vec![0.0; slots];
+    let mut through = 1.0f64;
+    let mut trace = |i: usize, d_l: f64| {
+        let c = f64::from(stop[i]);
+        if c <= 0.0 || through <= 0.0 {
+            return;
+        }
+        let d = (d_l + 0.5 * r - c * r).max(0.0);
+        let j = (d / step_m).round() as usize;
+        if j < slots {
+            probabilities[j] += through * c;
+            through *= 1.0 - c;
+        }
+    };
+    visit(
+        grid,
+        origin,
+        angle_rad,
+        range.max_range_m,
+        Footprint::Ray,
+        &mut trace,
+    );
+    ReadingDistribution {
+        step_m,
+        probabilities,
+        no_echo: through,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::sensor::SonarModel;
+
+    #[test]
+    fn readings_sum_to_one() {
+        let grid = Grid::new([0.0, 0.0], 0.05, 100, 100).unwrap();
+        let mut stop = vec![0.0; grid.len()];
+        for row in 0..100 {
+            stop[grid.index(crate::Cell { row, col: 60 }).unwrap()] = 0.4;
+            stop[grid.index(crate::Cell { row, col: 80 }).unwrap()] = 1.0;
+        }
+        let range = SonarModel::default().range;
+        let d = reading_distribution(&grid, &stop, [1.025, 2.525], 0.0, &range, 0.05).unwrap();
+        let total: f64 = d.probabilities.iter().sum::<f64>() + d.no_echo;
+        assert!((total - 1.0).abs() < 1e-12);
+        assert_eq!(d.no_echo, 0.0, "the full wall stops every beam");
+        // The partial cell at x in [3.0, 3.05) reflects 40 %, at 3.05 - 0.4 * 0.05 = 3.03.
+        let j = ((3.03 - 1.025) / 0.05f64).round() as usize;
+        assert!(
+            (d.probabilities[j] - 0.4).abs() < 1e-7,
+            "{:?}",
+            &d.probabilities[35..45]
+        );
+        let open =
+            reading_distribution(&grid, &vec![0.0; grid.len()], [1.0, 1.0], 0.3, &range, 0.05)
+                .unwrap();
+        assert_eq!(open.no_echo, 1.0);
+    }
+}
