@@ -1,5 +1,6 @@
-//! The decision-theoretic choice of the next viewpoint (MODEL.md section 4, paper
-//! eq. 14), reachability and path costs for a disc robot, and termination.
+//! The decision-theoretic choice of the next viewpoint ([the model](crate::model),
+//! section 4, paper eq. 14), reachability and path costs for a disc robot, and
+//! termination.
 //!
 //! # Traversability
 //! A cell is *blocked* when its coverage on the ML map exceeds

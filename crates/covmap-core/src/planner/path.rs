@@ -91,7 +91,7 @@ pub fn shortest_paths(grid: &Grid, passable: &[bool], start: Cell) -> Result<Rea
     }
     let start = grid.index(start)?;
     let (rows, cols) = (grid.rows() as i64, grid.cols() as i64);
-    let r = grid.resolution_m();
+    let resolution_m = grid.resolution_m();
     let mut cost = vec![f64::INFINITY; grid.len()];
     let mut previous = vec![usize::MAX; grid.len()];
     let mut heap = BinaryHeap::new();
@@ -107,19 +107,20 @@ pub fn shortest_paths(grid: &Grid, passable: &[bool], start: Cell) -> Result<Rea
         (-1, 1, std::f64::consts::SQRT_2),
         (-1, -1, std::f64::consts::SQRT_2),
     ];
-    while let Some(Entry(c, i)) = heap.pop() {
-        if c > cost[i] {
+    while let Some(Entry(cost_m, index)) = heap.pop() {
+        if cost_m > cost[index] {
             continue;
         }
-        let (row, col) = ((i / grid.cols()) as i64, (i % grid.cols()) as i64);
+        let cell = grid.cell(index);
+        let (row, col) = (cell.row as i64, cell.col as i64);
         for &(dr, dc, len) in &STEPS {
             let (nr, nc) = (row + dr, col + dc);
             if nr < 0 || nc < 0 || nr >= rows || nc >= cols {
                 continue;
             }
-            let n = (nr * cols + nc) as usize;
+            let neighbour = (nr * cols + nc) as usize;
             // No corner cutting: a diagonal step needs both side cells free.
-            if !passable[n]
+            if !passable[neighbour]
                 || (dr != 0
                     && dc != 0
                     && !(passable[(row * cols + nc) as usize]
@@ -127,11 +128,11 @@ pub fn shortest_paths(grid: &Grid, passable: &[bool], start: Cell) -> Result<Rea
             {
                 continue;
             }
-            let next = c + len * r;
-            if next < cost[n] {
-                cost[n] = next;
-                previous[n] = i;
-                heap.push(Entry(next, n));
+            let next = cost_m + len * resolution_m;
+            if next < cost[neighbour] {
+                cost[neighbour] = next;
+                previous[neighbour] = index;
+                heap.push(Entry(next, neighbour));
             }
         }
     }

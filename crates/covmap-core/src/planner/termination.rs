@@ -35,12 +35,12 @@ impl Planner {
         let reach = shortest_paths(map.grid(), &passable, start)?;
         let entropy = map.entropy();
         let mut status = ExplorationStatus::default();
-        for (i, &h) in entropy.iter().enumerate() {
+        for (i, &cell_entropy) in entropy.iter().enumerate() {
             if !reach.reachable(i) {
                 continue;
             }
             status.reachable_cells += 1;
-            if f64::from(h) < self.config.epsilon {
+            if f64::from(cell_entropy) < self.config.epsilon {
                 status.certain_cells += 1;
             } else if map.stagnated_at(i) {
                 status.stagnated_cells += 1;

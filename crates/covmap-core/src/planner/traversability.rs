@@ -22,8 +22,8 @@ impl Planner {
         let offsets = self.disc_offsets(grid);
         let mut free = vec![true; grid.len()];
         for (i, _) in blocked.iter().enumerate().filter(|(_, b)| **b) {
-            for n in cells_at(grid, i, &offsets) {
-                free[n] = false;
+            for covered in cells_at(grid, i, &offsets) {
+                free[covered] = false;
             }
         }
         (free, blocked)
@@ -50,9 +50,9 @@ impl Planner {
         let entropy = map.entropy();
         ml.iter()
             .zip(&entropy)
-            .map(|(&c, &h)| {
-                f64::from(c) > self.config.blocked_coverage
-                    || (unknown_blocks && f64::from(h) >= unknown_entropy)
+            .map(|(&coverage, &cell_entropy)| {
+                f64::from(coverage) > self.config.blocked_coverage
+                    || (unknown_blocks && f64::from(cell_entropy) >= unknown_entropy)
             })
             .collect()
     }
@@ -84,8 +84,8 @@ impl Planner {
         passable[start_index] = true;
         // The disc overlaps a cell exactly when the cell, inflated, takes in
         // the disc's centre: the same offsets.
-        for n in cells_at(grid, start_index, &self.disc_offsets(grid)) {
-            passable[n] |= !blocked[n];
+        for overlapped in cells_at(grid, start_index, &self.disc_offsets(grid)) {
+            passable[overlapped] |= !blocked[overlapped];
         }
         let reach = shortest_paths(grid, &passable, start)?;
         Ok((free, reach))
@@ -98,8 +98,8 @@ impl Planner {
 /// disc there would overlap it).
 fn disc_offsets(radius: f64) -> Vec<(i64, i64)> {
     let reach = (radius + 0.5).ceil() as i64;
-    // Distance from a centre `d` cells away to the nearest point of a cell.
-    let gap = |d: i64| (d.abs() as f64 - 0.5).max(0.0);
+    // Distance from a centre `offset` cells away to the nearest point of a cell.
+    let gap = |offset: i64| (offset.abs() as f64 - 0.5).max(0.0);
     let mut offsets = Vec::new();
     for dr in -reach..=reach {
         for dc in -reach..=reach {
@@ -111,14 +111,16 @@ fn disc_offsets(radius: f64) -> Vec<(i64, i64)> {
     offsets
 }
 
-/// Row-major indices of the cells at `offsets` from cell `i` that lie on `grid`.
+/// Row-major indices of the cells at `offsets` from the cell at `index` that
+/// lie on `grid`.
 fn cells_at<'o>(
     grid: &Grid,
-    i: usize,
+    index: usize,
     offsets: &'o [(i64, i64)],
 ) -> impl Iterator<Item = usize> + 'o {
     let (rows, cols) = (grid.rows() as i64, grid.cols() as i64);
-    let (row, col) = ((i / grid.cols()) as i64, (i % grid.cols()) as i64);
+    let cell = grid.cell(index);
+    let (row, col) = (cell.row as i64, cell.col as i64);
     offsets.iter().filter_map(move |&(dr, dc)| {
         let (nr, nc) = (row + dr, col + dc);
         (nr >= 0 && nc >= 0 && nr < rows && nc < cols).then_some((nr * cols + nc) as usize)

@@ -155,23 +155,23 @@ impl Planner {
             .filter(|&k| worth(k))
             .map(|k| costs[k])
             .fold(0.0, f64::max);
-        let a = self.config.alpha;
+        let alpha = self.config.alpha;
         Ok((0..gains.len())
             .map(|k| {
                 if !worth(k) {
                     return f64::NEG_INFINITY;
                 }
-                let g = if max_gain > 0.0 {
+                let gain = if max_gain > 0.0 {
                     gains[k] / max_gain
                 } else {
                     0.0
                 };
-                let c = if max_cost > 0.0 {
+                let cost = if max_cost > 0.0 {
                     costs[k] / max_cost
                 } else {
                     0.0
                 };
-                a * g - (1.0 - a) * c
+                alpha * gain - (1.0 - alpha) * cost
             })
             .collect())
     }
