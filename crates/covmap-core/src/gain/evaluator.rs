@@ -5,14 +5,16 @@ use std::borrow::Cow;
 use std::sync::OnceLock;
 
 use super::fast::{Arith, LogCache, Queue};
-use super::readings::{ReadingDistribution, check_step, trace_readings};
 use super::schedule::in_groups;
-use super::{GainMethod, GainOptions, StopCoverage};
+use super::{GainMethod, GainOptions};
 use crate::coverage_map::CoverageMap;
 use crate::error::Result;
 use crate::footprint::visit;
 use crate::scan::{Pose, check_bearings, check_pose};
-use crate::sensor::{Footprint, KernelTable, RangeModel, SensorModel};
+use crate::sensor::{
+    Footprint, KernelTable, RangeModel, ReadingDistribution, SensorModel, StopCoverage, check_step,
+    trace_readings,
+};
 
 /// Evaluates the expected information gain of candidate viewpoints on one map
 /// with one sensor model. Build it once per map state; it caches what every

@@ -13,17 +13,11 @@
 //!
 //! # The model of `p(d | c)`
 //! Beams are independent (as the map's cells are): each beam's readings are
-//! predicted on their own and the gains add up. A beam's reading is predicted by
-//! tracing its axis through the map cell by cell ([`StopCoverage`] picks the
-//! coverage value of each cell: the ML map by default, as in the paper). A cell
-//! of coverage `c` stops the beam with probability `c`; if it does, the beam is
-//! taken to end where an obstacle filling the far `c` of the cell would stop it,
-//! `d = d_l + r/2 - c r` (so that the reading reproduces the cell's coverage
-//! under the sensor model). Readings are discretised on a grid of
-//! `range_step_m` (the grid resolution by default); readings at or beyond the
-//! maximum range, and beams that reach it or leave the map unstopped, are "no
-//! echo". A cone sensor is traced along its axis. No extra noise blur is added:
-//! the sensor's uncertainty enters through the kernels.
+//! predicted on their own, by the sensor's forward model
+//! ([`reading_distribution`]: the beam's axis traced through the map, each
+//! cell stopping it with the probability of its coverage, [`StopCoverage`]
+//! choosing which; see [`crate::sensor`]), and the gains add up. The
+//! sensor's uncertainty enters through the kernels.
 //!
 //! # Two evaluators
 //! [`GainMethod::Exact`] is the equation as written: for every discretised
@@ -46,10 +40,13 @@ mod evaluator;
 mod exact;
 mod fast;
 mod options;
-mod readings;
 mod schedule;
 
 pub use evaluator::GainEvaluator;
 pub use exact::{entropy, information_gain};
-pub use options::{GainMethod, GainOptions, StopCoverage};
-pub use readings::{MIN_STEP_FRACTION, ReadingDistribution, reading_distribution};
+pub use options::{GainMethod, GainOptions};
+// The forward model of readings lived here before it moved beside the sensor
+// model; its old paths keep working.
+pub use crate::sensor::{
+    MIN_STEP_FRACTION, ReadingDistribution, StopCoverage, reading_distribution,
+};

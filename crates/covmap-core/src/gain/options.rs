@@ -3,6 +3,8 @@
 
 use serde::{Deserialize, Serialize};
 
+use crate::sensor::StopCoverage;
+
 /// Which evaluator computes the expected gain.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
@@ -12,19 +14,6 @@ pub enum GainMethod {
     /// The production evaluator: equal to `Exact` up to rounding.
     #[default]
     Fast,
-}
-
-/// Which coverage value of a cell stops a predicted beam.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
-#[serde(rename_all = "snake_case")]
-pub enum StopCoverage {
-    /// The most probable coverage (the paper's choice). A cell still at the
-    /// uniform prior reads 0: unknown space is predicted to let beams through,
-    /// which makes looking into it worth a lot.
-    #[default]
-    MaximumLikelihood,
-    /// The expected coverage: unknown space (0.5) stops beams quickly.
-    Mean,
 }
 
 /// Settings of the expected-gain computation.

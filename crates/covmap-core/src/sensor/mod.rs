@@ -34,14 +34,33 @@
 //! Cells more than `band_m` behind the end point are not touched. A reading at or
 //! beyond `max_range_m` is "no echo": every cell of the footprint up to
 //! `max_range_m` gets the free kernel (with `d = max_range_m`) and none is marked.
+//!
+//! # Predicted readings, `p(d | map)`
+//! The forward model, for the expected information gain ([`crate::gain`])
+//! and for learning a sensor model from a map. Beams are independent (as the
+//! map's cells are): each beam's readings are predicted on their own. A
+//! beam's reading is predicted by tracing its axis through the map cell by
+//! cell ([`StopCoverage`] picks the coverage value of each cell: the ML map
+//! by default, as in the paper). A cell of coverage `c` stops the beam with
+//! probability `c`; if it does, the beam is taken to end where an obstacle
+//! filling the far `c` of the cell would stop it, `d = d_l + r/2 - c r` (so
+//! that the reading reproduces the cell's coverage under the sensor model).
+//! Readings are discretised on a grid of `range_step_m` (the grid resolution
+//! by default); readings at or beyond the maximum range, and beams that reach
+//! it or leave the map unstopped, are "no echo". A cone sensor is traced
+//! along its axis. No extra noise blur is added: the sensor's uncertainty
+//! enters through the kernels ([`reading_distribution`]).
 
 mod kernel;
 mod laser;
+mod readings;
 mod sonar;
 
 pub use kernel::KernelTable;
 pub(crate) use kernel::ReadingLookup;
 pub use laser::LaserModel;
+pub use readings::{MIN_STEP_FRACTION, ReadingDistribution, StopCoverage, reading_distribution};
+pub(crate) use readings::{check_step, trace_readings};
 pub use sonar::SonarModel;
 
 use serde::{Deserialize, Serialize};

@@ -1,11 +1,26 @@
-//! The forward model of readings: `p(d | map)`, the readings a beam is
-//! predicted to give (see the [module documentation](super)).
+//! The forward model of readings, `p(d | map)`: which readings a beam is
+//! predicted to give on a map (see the [module documentation](super)).
+
+use serde::{Deserialize, Serialize};
 
 use crate::error::{CovmapError, Result};
 use crate::footprint::visit;
 use crate::grid::Grid;
 use crate::scan::{Pose, check_pose};
 use crate::sensor::{Footprint, RangeModel};
+
+/// Which coverage value of a cell stops a predicted beam.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum StopCoverage {
+    /// The most probable coverage (the paper's choice). A cell still at the
+    /// uniform prior reads 0: unknown space is predicted to let beams through,
+    /// which makes looking into it worth a lot.
+    #[default]
+    MaximumLikelihood,
+    /// The expected coverage: unknown space (0.5) stops beams quickly.
+    Mean,
+}
 
 /// The predicted readings of one beam: `probabilities[j]` is the probability of
 /// reading `j * step_m` (all below the maximum range), `no_echo` that of no echo.
@@ -21,8 +36,8 @@ pub struct ReadingDistribution {
 
 /// Predict the readings of a beam from `origin` along `angle_rad` by tracing
 /// its axis through `stop` (one coverage value per cell); see the
-/// [gain module documentation](crate::gain). Readings past the map's far
-/// corner cannot occur and get no slot.
+/// [module documentation](crate::sensor). Readings past the map's far corner
+/// cannot occur and get no slot.
 ///
 /// Errors if `stop` does not hold one value per cell, the origin is not
 /// finite or lies outside the grid, the angle is not finite, the range model
@@ -55,7 +70,7 @@ pub const MIN_STEP_FRACTION: f64 = 1.0 / 1024.0;
 
 /// Errors unless `step_m` lies between [`MIN_STEP_FRACTION`] of
 /// `resolution_m` and `resolution_m`.
-pub(super) fn check_step(step_m: f64, resolution_m: f64) -> Result<()> {
+pub(crate) fn check_step(step_m: f64, resolution_m: f64) -> Result<()> {
     if step_m >= MIN_STEP_FRACTION * resolution_m && step_m <= resolution_m {
         Ok(())
     } else {
@@ -68,7 +83,7 @@ pub(super) fn check_step(step_m: f64, resolution_m: f64) -> Result<()> {
 }
 
 /// [`reading_distribution`] of valid inputs.
-pub(super) fn trace_readings(
+pub(crate) fn trace_readings(
     grid: &Grid,
     stop: &[f32],
     origin: [f64; 2],
