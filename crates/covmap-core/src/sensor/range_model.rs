@@ -1,0 +1,227 @@
+//! The inverse model along one direction, shared by every range sensor.
+
+use serde::{Deserialize, Serialize};
+
+use super::KernelTable;
+use super::kernel;
+use crate::error::{CovmapError, Result};
+
+/// The parameters shared by every range sensor: the inverse model along one
+/// direction (see the [module documentation](super)).
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RangeModel {
+    /// Readings at or beyond this distance mean "no echo", metres.
+    pub max_range_m: f64,
+    /// How far behind the end point cells are updated (as covered), metres.
+    pub band_m: f64,
+    /// Standard deviation of the coverage mean at zero distance, outside the end band.
+    pub sigma_min: f64,
+    /// Growth of that standard deviation per metre of distance `s = min(d_l, d)`.
+    pub sigma_per_m: f64,
+    /// The constant standard deviation inside the end band (the largest of all).
+    pub sigma_end: f64,
+    /// Weight of the uniform component at zero distance (must be positive).
+    pub xi_min: f64,
+    /// Growth of the uniform weight per metre of distance `s = min(d_l, d)`.
+    pub xi_per_m: f64,
+}
+
+/// The smallest `sigma_min`: a standard deviation of coverage (which spans
+/// 0 to 1) a millionth wide is already a spike between the bins; far below
+/// it (near 1e-308) the density's scale would overflow.
+const MIN_SIGMA: f64 = 1e-6;
+/// The largest uniform weight `xi` anywhere up to the maximum range: beyond
+/// it the kernel is uniform to far below `f32` precision anyway, and the sum
+/// that normalises it could overflow.
+const MAX_XI: f64 = 1e6;
+
+impl RangeModel {
+    /// Errors unless every parameter lies in its valid range: the distances
+    /// positive (`band_m` non-negative), `sigma_min` at least 1e-6,
+    /// `sigma_end` no smaller than `sigma` anywhere outside the band, `xi_min`
+    /// positive, the growths non-negative, and the uniform weight at most 1e6
+    /// out to the maximum range.
+    pub fn validate(&self) -> Result<()> {
+        fn check(name: &'static str, value: f64, ok: bool, expected: &'static str) -> Result<()> {
+            if ok && value.is_finite() {
+                Ok(())
+            } else {
+                Err(CovmapError::InvalidParameter {
+                    name,
+                    value,
+                    expected,
+                })
+            }
+        }
+        check(
+            "max_range_m",
+            self.max_range_m,
+            self.max_range_m > 0.0,
+            "a positive distance",
+        )?;
+        check(
+            "band_m",
+            self.band_m,
+            self.band_m >= 0.0,
+            "a non-negative distance",
+        )?;
+        check(
+            "sigma_min",
+            self.sigma_min,
+            self.sigma_min >= MIN_SIGMA,
+            "a standard deviation of at least 1e-6 (coverage)",
+        )?;
+        check(
+            "sigma_per_m",
+            self.sigma_per_m,
+            self.sigma_per_m >= 0.0,
+            "a non-negative growth",
+        )?;
+        check(
+            "xi_min",
+            self.xi_min,
+            self.xi_min > 0.0 && self.xi_min <= MAX_XI,
+            "a positive weight of at most 1e6",
+        )?;
+        check(
+            "xi_per_m",
+            self.xi_per_m,
+            self.xi_per_m >= 0.0,
+            "a non-negative growth",
+        )?;
+        check(
+            "xi_per_m",
+            self.xi_per_m,
+            self.xi(self.max_range_m) <= MAX_XI,
+            "a growth that keeps xi_min + xi_per_m * max_range_m at most 1e6",
+        )?;
+        let widest = self.sigma(self.max_range_m);
+        check(
+            "sigma_end",
+            self.sigma_end,
+            self.sigma_end >= widest,
+            "a standard deviation no smaller than sigma anywhere outside the band (sigma_min + sigma_per_m * max_range_m)",
+        )
+    }
+
+    /// `sigma` outside the end band at distance `s_m = min(d_l, d)`.
+    pub fn sigma(&self, s_m: f64) -> f64 {
+        self.sigma_min + self.sigma_per_m * s_m
+    }
+
+    /// The uniform weight at distance `s_m = min(d_l, d)`.
+    pub fn xi(&self, s_m: f64) -> f64 {
+        self.xi_min + self.xi_per_m * s_m
+    }
+
+    /// How far along the beam a reading of `range_m` reaches, and whether it is
+    /// an echo (`false`: no echo, clear up to the maximum range).
+    pub fn reach(&self, range_m: f64) -> (f64, bool) {
+        if range_m >= self.max_range_m {
+            (self.max_range_m, false)
+        } else {
+            (range_m + self.band_m, true)
+        }
+    }
+
+    /// The kernel the map multiplies in for a cell at `cell_distance_m` and a
+    /// reading of `measured_distance_m`, on a grid of `resolution_m` with `bins`
+    /// bins, or `None` where the cell is not updated. It comes from the same
+    /// precomputed table the update uses (built anew on every call: for
+    /// looking at kernels, not for loops).
+    ///
+    /// Errors if the model is invalid, the resolution is not finite or below
+    /// [`crate::MIN_RESOLUTION_M`], the bin count is not supported, or a
+    /// distance is NaN, infinite or negative.
+    pub fn kernel(
+        &self,
+        cell_distance_m: f64,
+        measured_distance_m: f64,
+        resolution_m: f64,
+        bins: usize,
+    ) -> Result<Option<Vec<f32>>> {
+        check_distances(cell_distance_m, measured_distance_m)?;
+        let table = KernelTable::new(self, resolution_m, bins)?;
+        Ok(table.kernel_at(cell_distance_m, measured_distance_m))
+    }
+
+    /// The exact (unquantised) kernel for a cell at `cell_distance_m` and a
+    /// reading of `measured_distance_m`, on a grid of `resolution_m` with `bins`
+    /// bins: the histogram the update multiplies in, normalised to sum 1, or
+    /// `None` where the cell is not updated (further than the band behind the
+    /// end point). This is the reference the kernel table is tested against.
+    ///
+    /// Errors as [`Self::kernel`] does.
+    pub fn kernel_exact(
+        &self,
+        cell_distance_m: f64,
+        measured_distance_m: f64,
+        resolution_m: f64,
+        bins: usize,
+    ) -> Result<Option<Vec<f64>>> {
+        check_distances(cell_distance_m, measured_distance_m)?;
+        self.validate()?;
+        kernel::check_resolution(resolution_m)?;
+        crate::histogram::check_bins(bins)?;
+        Ok(self.exact_kernel(cell_distance_m, measured_distance_m, resolution_m, bins))
+    }
+
+    /// [`Self::kernel_exact`] of valid inputs.
+    fn exact_kernel(
+        &self,
+        cell_distance_m: f64,
+        measured_distance_m: f64,
+        resolution_m: f64,
+        bins: usize,
+    ) -> Option<Vec<f64>> {
+        let (reach, echo) = self.reach(measured_distance_m);
+        if cell_distance_m > reach {
+            return None;
+        }
+        let d = measured_distance_m.min(self.max_range_m);
+        let s = cell_distance_m.max(0.0).min(d);
+        let o = cell_distance_m - d;
+        let half = 0.5 * resolution_m;
+        let (mu, sigma) = if !echo || o < -half {
+            (0.0, self.sigma(s))
+        } else if o <= half {
+            (0.5 + o / resolution_m, self.sigma_end)
+        } else {
+            (1.0, self.sigma(s))
+        };
+        Some(kernel_values(mu, sigma, self.xi(s), bins))
+    }
+}
+
+/// Errors unless both distances of a kernel query are finite and
+/// non-negative.
+fn check_distances(cell_distance_m: f64, measured_distance_m: f64) -> Result<()> {
+    for (name, value) in [
+        ("cell_distance_m", cell_distance_m),
+        ("measured_distance_m", measured_distance_m),
+    ] {
+        if !(value.is_finite() && value >= 0.0) {
+            return Err(CovmapError::InvalidParameter {
+                name,
+                value,
+                expected: "a finite, non-negative distance",
+            });
+        }
+    }
+    Ok(())
+}
+
+/// `xi + N(x_b; mu, sigma)` at the bin values `x_b = b / (bins - 1)`, normalised.
+pub(crate) fn kernel_values(mu: f64, sigma: f64, xi: f64, bins: usize) -> Vec<f64> {
+    let norm = 1.0 / (sigma * (2.0 * std::f64::consts::PI).sqrt());
+    let mut k: Vec<f64> = (0..bins)
+        .map(|b| {
+            let z = (crate::histogram::bin_value(b, bins) - mu) / sigma;
+            xi + norm * (-0.5 * z * z).exp()
+        })
+        .collect();
+    let sum: f64 = k.iter().sum();
+    k.iter_mut().for_each(|v| *v /= sum);
+    k
+}
