@@ -1,0 +1,381 @@
+//! The entropy history of each cell, for the paper's termination rule: has a
+//! cell's entropy stopped changing?
+
+use super::CoverageMap;
+use crate::error::{CovmapError, Result};
+use crate::footprint::visit;
+use crate::grid::Cell;
+use crate::histogram;
+use crate::scan::Pose;
+use crate::sensor::SensorModel;
+
+/// Measurements of a cell an entropy change is judged over.
+pub const STAGNATION_MEASUREMENTS: usize = 5;
+/// Entropy change (nats) below which a cell has stagnated.
+pub const STAGNATION_NATS: f32 = 0.001;
+
+/// The entropies of each cell after its last measurements, for the paper's
+/// termination rule.
+#[derive(Clone, Debug)]
+pub(super) struct History {
+    /// A ring of the last `STAGNATION_MEASUREMENTS + 1` entropies of each cell.
+    entropies: Vec<[f32; STAGNATION_MEASUREMENTS + 1]>,
+    /// Measurements of each cell so far.
+    count: Vec<u32>,
+    /// The scan that last touched each cell.
+    stamp: Vec<u32>,
+    scan: u32,
+}
+
+/// The persistent part of a map's entropy history, to save a map with it and
+/// load it again ([`CoverageMap::history_state`],
+/// [`CoverageMap::restore_history`]).
+///
+/// Cell `i`'s last `STAGNATION_MEASUREMENTS + 1` entropies are a ring at
+/// `entropies[i * (STAGNATION_MEASUREMENTS + 1)..][..STAGNATION_MEASUREMENTS + 1]`:
+/// slot `k` holds the entropy (nats) after the cell's measurement `n`
+/// (counting from 0) with `n % (STAGNATION_MEASUREMENTS + 1) == k`, and slots
+/// not written yet hold 0. `count[i]` is the number of measurements of cell
+/// `i`. Both are row-major over the cells.
+///
+/// # Example
+/// ```
+/// use covmap_core::{CoverageMap, Grid, LaserModel, Pose};
+/// let grid = Grid::new([0.0, 0.0], 0.05, 4, 40).unwrap();
+/// let mut map = CoverageMap::new(grid);
+/// map.track_history(true);
+/// map.integrate(&Pose::new(0.01, 0.1, 0.0), &[1.0], &[0.0], &LaserModel::default()).unwrap();
+/// let state = map.history_state().unwrap();
+/// // Saved and loaded: the histograms and the history.
+/// let mut loaded = CoverageMap::from_histograms(grid, map.bins(), map.histograms().to_vec()).unwrap();
+/// loaded.restore_history(state.clone()).unwrap();
+/// assert!(loaded.tracks_history());
+/// assert_eq!(loaded.measurement_counts(), map.measurement_counts());
+/// assert_eq!(loaded.history_state(), Some(state));
+/// ```
+#[derive(Clone, Debug, PartialEq)]
+pub struct HistoryState {
+    /// Each cell's ring of its last `STAGNATION_MEASUREMENTS + 1` entropies,
+    /// nats, `grid.len() * (STAGNATION_MEASUREMENTS + 1)` values.
+    pub entropies: Vec<f32>,
+    /// Measurements of each cell, `grid.len()` values.
+    pub count: Vec<u32>,
+}
+
+impl CoverageMap {
+    /// Keep (or stop keeping) each cell's entropy after its last measurements,
+    /// for [`CoverageMap::stagnated`]. A scan that updates a cell counts as one
+    /// measurement of it, however many of its beams do. Off by default: it
+    /// costs an entropy per touched cell per scan. Turning it on starts an
+    /// empty history.
+    pub fn track_history(&mut self, on: bool) {
+        self.history = on.then(|| {
+            Box::new(History {
+                entropies: vec![[0.0; STAGNATION_MEASUREMENTS + 1]; self.grid.len()],
+                count: vec![0; self.grid.len()],
+                stamp: vec![0; self.grid.len()],
+                scan: 0,
+            })
+        });
+    }
+
+    /// Whether the history is kept.
+    pub fn tracks_history(&self) -> bool {
+        self.history.is_some()
+    }
+
+    /// Measurements of `cell` since the history was turned on (0 while it is
+    /// off).
+    pub fn measurements(&self, cell: Cell) -> Result<u32> {
+        let i = self.grid.index(cell)?;
+        Ok(self.history.as_ref().map_or(0, |h| h.count[i]))
+    }
+
+    /// Measurements of every cell since the history was turned on, row-major.
+    pub fn measurement_counts(&self) -> Vec<u32> {
+        self.history
+            .as_ref()
+            .map_or_else(|| vec![0; self.grid.len()], |h| h.count.clone())
+    }
+
+    /// The entropy history (`None` while it is off), to be handed to
+    /// [`CoverageMap::restore_history`] of a map loaded from this one's
+    /// histograms.
+    pub fn history_state(&self) -> Option<HistoryState> {
+        self.history.as_ref().map(|h| HistoryState {
+            entropies: h.entropies.as_flattened().to_vec(),
+            count: h.count.clone(),
+        })
+    }
+
+    /// Track the history and make it `state` (from
+    /// [`CoverageMap::history_state`] of a map with the same grid), so that
+    /// further scans continue it as they would have continued the original.
+    ///
+    /// A state whose lengths do not fit the grid, or with an entropy that is
+    /// not finite and non-negative, is an error and leaves the map exactly as
+    /// it was.
+    pub fn restore_history(&mut self, state: HistoryState) -> Result<()> {
+        const LEN: usize = STAGNATION_MEASUREMENTS + 1;
+        let cells = self.grid.len();
+        if state.count.len() != cells {
+            return Err(CovmapError::LengthMismatch {
+                what: "history measurement counts and grid cells",
+                left: state.count.len(),
+                right: cells,
+            });
+        }
+        if state.entropies.len() != cells * LEN {
+            return Err(CovmapError::LengthMismatch {
+                what: "history entropies and grid cells x (STAGNATION_MEASUREMENTS + 1)",
+                left: state.entropies.len(),
+                right: cells * LEN,
+            });
+        }
+        // No histogram's entropy exceeds the prior's, `ln bins` (with room
+        // for the rounding of an `f32` entropy).
+        let most = (self.bins as f32).ln() * (1.0 + 1e-5) + 1e-6;
+        let impossible = |v: &f32| !(v.is_finite() && *v >= 0.0 && *v <= most);
+        if let Some((i, &value)) = state
+            .entropies
+            .iter()
+            .enumerate()
+            .find(|(_, v)| impossible(v))
+        {
+            return Err(CovmapError::InvalidHistory {
+                cell: i / LEN,
+                value: f64::from(value),
+            });
+        }
+        let entropies = state
+            .entropies
+            .chunks_exact(LEN)
+            .map(|ring| std::array::from_fn(|k| ring[k]))
+            .collect();
+        // No scan of this map has stamped a cell yet: the per-scan bookkeeping starts afresh.
+        self.history = Some(Box::new(History {
+            entropies,
+            count: state.count,
+            stamp: vec![0; cells],
+            scan: 0,
+        }));
+        Ok(())
+    }
+
+    /// Whether `cell`'s entropy changed by less than [`STAGNATION_NATS`] over
+    /// its last [`STAGNATION_MEASUREMENTS`] measurements (false while the
+    /// history is off or too short).
+    pub fn stagnated(&self, cell: Cell) -> Result<bool> {
+        Ok(self.stagnated_at(self.grid.index(cell)?))
+    }
+
+    /// [`CoverageMap::stagnated`] for every cell, row-major.
+    pub fn stagnation(&self) -> Vec<bool> {
+        (0..self.grid.len()).map(|i| self.stagnated_at(i)).collect()
+    }
+
+    /// [`CoverageMap::stagnated`] by row-major index (below `grid.len()`).
+    pub(crate) fn stagnated_at(&self, index: usize) -> bool {
+        let Some(h) = &self.history else { return false };
+        let n = h.count[index] as usize;
+        if n <= STAGNATION_MEASUREMENTS {
+            return false;
+        }
+        let ring = &h.entropies[index];
+        let len = STAGNATION_MEASUREMENTS + 1;
+        (ring[(n - 1) % len] - ring[(n - 1 - STAGNATION_MEASUREMENTS) % len]).abs()
+            < STAGNATION_NATS
+    }
+
+    pub(super) fn record_history<M: SensorModel + ?Sized>(
+        &mut self,
+        pose: &Pose,
+        ranges: &[f64],
+        bearings: &[f64],
+        model: &M,
+    ) {
+        let Self {
+            grid,
+            bins,
+            data,
+            history,
+            ..
+        } = self;
+        let Some(h) = history.as_deref_mut() else {
+            return;
+        };
+        h.scan = h.scan.wrapping_add(1).max(1);
+        let scan = h.scan;
+        let range = model.range_model();
+        let mut touched = Vec::new();
+        for (&r, &bearing) in ranges.iter().zip(bearings) {
+            let (reach, _) = range.reach(r);
+            visit(
+                grid,
+                [pose.x_m, pose.y_m],
+                pose.theta_rad + bearing,
+                reach,
+                model.footprint(),
+                &mut |i, _| {
+                    if h.stamp[i] != scan {
+                        h.stamp[i] = scan;
+                        touched.push(i);
+                    }
+                },
+            );
+        }
+        let len = STAGNATION_MEASUREMENTS + 1;
+        for i in touched {
+            let n = h.count[i] as usize;
+            h.entropies[i][n % len] = histogram::entropy(&data[i * *bins..(i + 1) * *bins]);
+            h.count[i] = h.count[i].saturating_add(1);
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::grid::Grid;
+    use crate::sensor::{LaserModel, SonarModel};
+
+    #[test]
+    fn stagnation_needs_five_measurements_of_little_change() {
+        let g = Grid::new([0.0, 0.0], 0.05, 4, 40).unwrap();
+        let mut map = CoverageMap::new(g);
+        map.track_history(true);
+        let laser = LaserModel::default();
+        let pose = Pose::new(0.01, 0.1, 0.0);
+        let cell = g.world_to_cell(0.5, 0.1).unwrap();
+        for k in 0..5 {
+            map.integrate(&pose, &[1.0], &[0.0], &laser).unwrap();
+            assert_eq!(map.measurements(cell).unwrap(), k + 1);
+            assert!(
+                !map.stagnated(cell).unwrap(),
+                "not after {} measurements",
+                k + 1
+            );
+        }
+        // Many readings per scan: the cell's entropy has settled.
+        for _ in 0..40 {
+            map.integrate(&pose, &vec![1.0; 50], &[0.0; 50], &laser)
+                .unwrap();
+        }
+        assert!(map.stagnated(cell).unwrap());
+        let all = map.stagnation();
+        for (i, &stagnated) in all.iter().enumerate() {
+            assert_eq!(stagnated, map.stagnated(g.cell(i)).unwrap());
+        }
+        assert!(
+            all.iter().any(|&s| !s),
+            "cells the beam never reached have no history"
+        );
+        let untouched = g.world_to_cell(1.9, 0.1).unwrap();
+        assert_eq!(map.measurements(untouched).unwrap(), 0);
+        assert!(!map.stagnated(untouched).unwrap());
+        assert!(map.stagnated(Cell { row: 4, col: 0 }).is_err());
+    }
+
+    /// The scans of the history tests: one beam, then many beams per scan, so
+    /// that the cells along the beam settle and stagnate.
+    fn settling_scans(map: &mut CoverageMap, scans: std::ops::Range<usize>) {
+        let laser = LaserModel::default();
+        let sonar = SonarModel::default();
+        for k in scans {
+            let pose = Pose::new(0.01 + 0.002 * (k % 3) as f64, 0.1, 0.0);
+            let beams = if k < 5 { 1 } else { 50 };
+            if k % 4 == 3 {
+                map.integrate(&pose, &vec![1.2; beams], &vec![0.1; beams], &sonar)
+                    .unwrap();
+            } else {
+                map.integrate(&pose, &vec![1.0; beams], &vec![0.0; beams], &laser)
+                    .unwrap();
+            }
+        }
+    }
+
+    #[test]
+    fn restored_history_continues_like_the_original() {
+        let g = Grid::new([0.0, 0.0], 0.05, 4, 40).unwrap();
+        let total = 45;
+        // Before any cell has five measurements, and after the rings have wrapped.
+        for split in [3, 20] {
+            let mut original = CoverageMap::new(g);
+            original.track_history(true);
+            settling_scans(&mut original, 0..split);
+            let state = original.history_state().unwrap();
+            assert!(
+                state.count.iter().any(|&n| n as usize == split),
+                "a cell measured by every scan"
+            );
+
+            let mut loaded =
+                CoverageMap::from_histograms(g, original.bins(), original.histograms().to_vec())
+                    .unwrap();
+            assert!(!loaded.tracks_history());
+            loaded.restore_history(state.clone()).unwrap();
+            assert!(loaded.tracks_history());
+            assert_eq!(loaded.history_state().as_ref(), Some(&state));
+            assert_eq!(loaded.stagnation(), original.stagnation());
+            assert_eq!(loaded.measurement_counts(), original.measurement_counts());
+
+            settling_scans(&mut original, split..total);
+            settling_scans(&mut loaded, split..total);
+            assert_eq!(loaded.histograms(), original.histograms());
+            assert_eq!(loaded.measurement_counts(), original.measurement_counts());
+            assert_eq!(loaded.history_state(), original.history_state());
+            let stagnation = original.stagnation();
+            assert_eq!(loaded.stagnation(), stagnation);
+            assert!(
+                stagnation.iter().any(|&s| s) && stagnation.iter().any(|&s| !s),
+                "split {split}"
+            );
+        }
+    }
+
+    #[test]
+    fn restore_history_rejects_bad_state_and_leaves_map_unchanged() {
+        let g = Grid::new([0.0, 0.0], 0.05, 4, 40).unwrap();
+        let mut tracked = CoverageMap::new(g);
+        tracked.track_history(true);
+        settling_scans(&mut tracked, 0..8);
+        let good = tracked.history_state().unwrap();
+        let mut untracked = CoverageMap::new(g);
+        assert_eq!(untracked.history_state(), None);
+
+        let len = STAGNATION_MEASUREMENTS + 1;
+        let with = |edit: &dyn Fn(&mut HistoryState)| {
+            let mut s = good.clone();
+            edit(&mut s);
+            s
+        };
+        let cases = [
+            with(&|s| s.count.truncate(g.len() - 1)),
+            with(&|s| s.count.push(0)),
+            with(&|s| s.entropies.truncate(g.len() * len - 1)),
+            with(&|s| s.entropies.truncate(g.len() * (len - 1))),
+            with(&|s| s.entropies[7 * len + 2] = f32::NAN),
+            with(&|s| s.entropies[7 * len + 2] = f32::INFINITY),
+            with(&|s| s.entropies[7 * len + 2] = -0.5),
+            // More than the prior's ln 16 = 2.77 nats.
+            with(&|s| s.entropies[7 * len + 2] = 2.8),
+        ];
+        for map in [&mut tracked, &mut untracked] {
+            let (histograms, history) = (map.histograms().to_vec(), map.history_state());
+            for bad in &cases {
+                let err = map.restore_history(bad.clone()).unwrap_err();
+                if bad.count.len() != g.len() || bad.entropies.len() != g.len() * len {
+                    assert!(matches!(err, CovmapError::LengthMismatch { .. }), "{err}");
+                } else {
+                    assert!(
+                        matches!(err, CovmapError::InvalidHistory { cell: 7, .. }),
+                        "{err}"
+                    );
+                }
+                assert_eq!(map.histograms(), &histograms[..]);
+                assert_eq!(map.history_state(), history);
+                assert_eq!(map.tracks_history(), history.is_some());
+            }
+        }
+    }
+}

@@ -1,0 +1,224 @@
+//! The map's storage and what is read out of it: histograms, the ML, mean
+//! and entropy maps.
+
+use std::borrow::Cow;
+
+use super::history::History;
+use crate::aligned::Aligned;
+use crate::error::{CovmapError, Result};
+use crate::grid::{Cell, Grid};
+use crate::histogram::{self, DEFAULT_BINS};
+use crate::sensor::{KernelTable, RangeModel};
+
+/// A grid whose every cell holds a histogram over how much of it is covered.
+///
+/// Storage is one contiguous `f32` array, row-major over cells with the bins of
+/// a cell adjacent: cell `i`'s histogram is `[i * bins, (i + 1) * bins)`. At the
+/// default 16 bins that is one 64-byte cache line per cell.
+///
+/// Invariants, after any sequence of updates: every histogram sums to 1 within
+/// `1e-5`, every bin is finite and at least [`histogram::bin_floor`].
+///
+/// # Example
+/// ```
+/// use covmap_core::{CoverageMap, Grid, LaserModel, Pose};
+/// let grid = Grid::new([0.0, 0.0], 0.05, 100, 100).unwrap();
+/// let mut map = CoverageMap::new(grid);
+/// let laser = LaserModel::default();
+/// // One beam along +x from (1, 2.525) that ends at x = 3.04.
+/// let updated = map.integrate(&Pose::new(1.0, 2.525, 0.0), &[2.04], &[0.0], &laser).unwrap();
+/// assert!(updated > 40);
+/// let ml = map.ml();
+/// let cell = |x: f64| grid.index(grid.world_to_cell(x, 2.525).unwrap()).unwrap();
+/// assert_eq!(ml[cell(2.0)], 0.0); // the beam passed: empty
+/// assert_eq!(ml[cell(3.1)], 1.0); // just behind the end point: covered
+/// assert!(map.entropy()[cell(2.0)] < map.entropy()[cell(0.5)]); // untouched cells keep the prior
+/// ```
+#[derive(Clone, Debug)]
+pub struct CoverageMap {
+    pub(super) grid: Grid,
+    pub(super) bins: usize,
+    pub(super) floor: f32,
+    /// The histograms, cell-major, starting on a cache line so that a 16-bin
+    /// histogram is exactly one line.
+    pub(super) data: Aligned<f32>,
+    /// The last sensor model's kernels, rebuilt when the model changes.
+    pub(super) table: Option<Box<KernelTable>>,
+    /// Per-cell entropy history, when tracked.
+    pub(super) history: Option<Box<History>>,
+}
+
+impl CoverageMap {
+    /// A map at the uniform prior with [`DEFAULT_BINS`] bins.
+    ///
+    /// # Panics
+    /// If the histograms (64 bytes a cell) cannot be allocated;
+    /// [`Self::with_bins`] returns an error instead.
+    pub fn new(grid: Grid) -> Self {
+        Self::with_bins(grid, DEFAULT_BINS)
+            .expect("the default bin count is valid and the map fits in memory")
+    }
+
+    /// A map at the uniform prior with `bins` bins per cell (2 to 256).
+    ///
+    /// Errors if the bin count is not supported, or the histograms
+    /// (`4 * bins` bytes a cell) cannot be allocated.
+    pub fn with_bins(grid: Grid, bins: usize) -> Result<Self> {
+        histogram::check_bins(bins)?;
+        let p = 1.0 / bins as f32;
+        let data = Aligned::try_filled(p, grid.len() * bins).ok_or_else(|| {
+            CovmapError::InvalidGrid(format!(
+                "{} x {} cells of {bins} bins need {} bytes, more than can be allocated",
+                grid.rows(),
+                grid.cols(),
+                grid.len() as u128 * bins as u128 * 4
+            ))
+        })?;
+        Ok(Self {
+            grid,
+            bins,
+            floor: histogram::bin_floor(bins),
+            data,
+            table: None,
+            history: None,
+        })
+    }
+
+    /// A map from stored histograms (`grid.len() * bins` values, cell-major).
+    /// Each histogram must be finite, non-negative and sum to 1 within `1e-3`.
+    /// Histograms that already satisfy the map's invariants (sum within `1e-5`
+    /// of 1, no bin below the floor) are kept bit for bit, so a map saved and
+    /// loaded is the same map; the others are renormalised and floored.
+    pub fn from_histograms(grid: Grid, bins: usize, mut data: Vec<f32>) -> Result<Self> {
+        histogram::check_bins(bins)?;
+        if data.len() != grid.len() * bins {
+            return Err(CovmapError::LengthMismatch {
+                what: "histogram values and grid cells x bins",
+                left: data.len(),
+                right: grid.len() * bins,
+            });
+        }
+        let floor = histogram::bin_floor(bins);
+        for (i, h) in data.chunks_exact(bins).enumerate() {
+            let sum: f32 = h.iter().sum();
+            if h.iter().any(|v| !(v.is_finite() && *v >= 0.0)) || (sum - 1.0).abs() > 1e-3 {
+                return Err(CovmapError::InvalidHistogram(format!(
+                    "cell {i}: bins must be finite, non-negative and sum to 1 (sum {sum})"
+                )));
+            }
+        }
+        let uniform = vec![1.0; bins];
+        for h in data.chunks_exact_mut(bins) {
+            let sum: f32 = h.iter().sum();
+            if (sum - 1.0).abs() > 1e-5 || h.iter().any(|&v| v < floor) {
+                histogram::update(h, &uniform, floor);
+            }
+        }
+        Ok(Self {
+            grid,
+            bins,
+            floor,
+            data: Aligned::from_slice(&data),
+            table: None,
+            history: None,
+        })
+    }
+
+    /// The kernel table of the last model integrated, if any.
+    pub(crate) fn cached_table(&self) -> Option<&KernelTable> {
+        self.table.as_deref()
+    }
+
+    /// The kernel table for `range` on this map: the cached one when it
+    /// serves, else a new one.
+    pub(crate) fn kernel_table(&self, range: &RangeModel) -> Result<Cow<'_, KernelTable>> {
+        let resolution = self.grid().resolution_m();
+        match self.cached_table() {
+            Some(t) if t.serves(range, resolution, self.bins()) => Ok(Cow::Borrowed(t)),
+            _ => Ok(Cow::Owned(KernelTable::new(
+                range,
+                resolution,
+                self.bins(),
+            )?)),
+        }
+    }
+
+    /// The grid.
+    pub fn grid(&self) -> &Grid {
+        &self.grid
+    }
+    /// Bins per cell.
+    pub fn bins(&self) -> usize {
+        self.bins
+    }
+    /// The coverage value of each bin, `b / (bins - 1)`.
+    pub fn bin_values(&self) -> Vec<f64> {
+        (0..self.bins)
+            .map(|b| histogram::bin_value(b, self.bins))
+            .collect()
+    }
+    /// All histograms, cell-major (`grid.len() * bins` values).
+    pub fn histograms(&self) -> &[f32] {
+        &self.data
+    }
+    /// One cell's histogram.
+    pub fn histogram(&self, cell: Cell) -> Result<&[f32]> {
+        let i = self.grid.index(cell)?;
+        Ok(&self.data[i * self.bins..(i + 1) * self.bins])
+    }
+
+    /// The maximum-likelihood map: each cell's most probable coverage value.
+    ///
+    /// Ties go to the lower bin, so a cell still at the uniform prior reads 0:
+    /// use [`CoverageMap::entropy`] (`ln(bins)` at the prior) to tell unknown
+    /// cells from empty ones.
+    pub fn ml(&self) -> Vec<f32> {
+        let scale = 1.0 / (self.bins - 1) as f32;
+        self.data
+            .chunks_exact(self.bins)
+            .map(|h| histogram::argmax(h) as f32 * scale)
+            .collect()
+    }
+    /// The mean map: each cell's expected coverage.
+    pub fn mean(&self) -> Vec<f32> {
+        self.data
+            .chunks_exact(self.bins)
+            .map(histogram::mean)
+            .collect()
+    }
+    /// The entropy map, nats: `ln(bins)` at the prior, 0 when certain.
+    pub fn entropy(&self) -> Vec<f32> {
+        self.data
+            .chunks_exact(self.bins)
+            .map(histogram::entropy)
+            .collect()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn from_histograms_validates() {
+        let g = Grid::new([0.0, 0.0], 0.1, 2, 2).unwrap();
+        assert!(CoverageMap::from_histograms(g, 4, vec![0.25; 15]).is_err());
+        let mut d = vec![0.25; 16];
+        d[3] = f32::NAN;
+        assert!(CoverageMap::from_histograms(g, 4, d).is_err());
+        let m = CoverageMap::from_histograms(g, 4, vec![0.25; 16]).unwrap();
+        assert_eq!(m.entropy()[0], 4f32.ln());
+    }
+
+    /// A 16-bin histogram is one cache line, not two halves of neighbours.
+    #[test]
+    fn histograms_start_on_a_cache_line() {
+        let g = Grid::new([0.0, 0.0], 0.1, 7, 9).unwrap();
+        let fresh = CoverageMap::new(g);
+        let loaded = CoverageMap::from_histograms(g, 16, fresh.histograms().to_vec()).unwrap();
+        for map in [&fresh, &loaded, &loaded.clone()] {
+            assert_eq!(map.histograms().as_ptr() as usize % 64, 0);
+            assert_eq!(map.histograms().len(), 63 * 16);
+        }
+    }
+}

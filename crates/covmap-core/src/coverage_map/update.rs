@@ -1,0 +1,231 @@
+//! Bayes' rule for a scan: each beam's kernels multiplied into the cells of
+//! its footprint.
+
+use super::CoverageMap;
+use crate::error::Result;
+use crate::footprint::{CellVisitor, visit};
+use crate::histogram;
+use crate::scan::{Pose, validate_scan};
+use crate::sensor::{KernelTable, ReadingLookup, SensorModel};
+
+impl CoverageMap {
+    /// Integrate one scan taken from `pose`: reading `ranges[i]` (metres) along
+    /// `pose.theta_rad + bearings[i]`. Returns the number of cell updates.
+    ///
+    /// Everything is validated before anything changes: a non-finite pose, a
+    /// pose outside the map, a NaN, infinite or negative range, a non-finite
+    /// bearing, mismatched lengths or an invalid model is an error and leaves
+    /// the map exactly as it was. Beams leaving the map update the part inside.
+    pub fn integrate<M: SensorModel + ?Sized>(
+        &mut self,
+        pose: &Pose,
+        ranges: &[f64],
+        bearings: &[f64],
+        model: &M,
+    ) -> Result<usize> {
+        model.validate()?;
+        validate_scan(&self.grid, pose, ranges, bearings)?;
+        let range = model.range_model();
+        let resolution = self.grid.resolution_m();
+        if !self
+            .table
+            .as_ref()
+            .is_some_and(|t| t.serves(range, resolution, self.bins))
+        {
+            self.table = Some(Box::new(KernelTable::new(range, resolution, self.bins)?));
+        }
+        // Pick the update once per scan, so the per-cell loop is straight code.
+        let updates = match self.bins {
+            8 => self.apply::<8, M>(pose, ranges, bearings, model),
+            16 => self.apply::<16, M>(pose, ranges, bearings, model),
+            32 => self.apply::<32, M>(pose, ranges, bearings, model),
+            _ => self.apply::<0, M>(pose, ranges, bearings, model),
+        };
+        if self.history.is_some() {
+            self.record_history(pose, ranges, bearings, model);
+        }
+        Ok(updates)
+    }
+
+    /// Multiply the kernels of a validated scan into the map, `N` bins per
+    /// cell (`N = 0`: any number).
+    fn apply<const N: usize, M: SensorModel + ?Sized>(
+        &mut self,
+        pose: &Pose,
+        ranges: &[f64],
+        bearings: &[f64],
+        model: &M,
+    ) -> usize {
+        let Self {
+            grid,
+            bins,
+            floor,
+            data,
+            table,
+            ..
+        } = self;
+        let Some(table) = table.as_deref() else {
+            return 0;
+        };
+        let range = model.range_model();
+        let footprint = model.footprint();
+        let mut updates = 0;
+        for (&r, &bearing) in ranges.iter().zip(bearings) {
+            let (reach, echo) = range.reach(r);
+            let mut beam = BeamUpdate::<N> {
+                data,
+                table,
+                bins: *bins,
+                floor: *floor,
+                lookup: table.reading(r.min(range.max_range_m), echo),
+                updates: 0,
+            };
+            visit(
+                grid,
+                [pose.x_m, pose.y_m],
+                pose.theta_rad + bearing,
+                reach,
+                footprint,
+                &mut beam,
+            );
+            updates += beam.updates;
+        }
+        updates
+    }
+}
+
+/// The per-cell work of one beam: look the kernel up, multiply it in.
+struct BeamUpdate<'a, const N: usize> {
+    data: &'a mut [f32],
+    table: &'a KernelTable,
+    bins: usize,
+    floor: f32,
+    lookup: ReadingLookup,
+    updates: usize,
+}
+
+impl<const N: usize> CellVisitor for BeamUpdate<'_, N> {
+    #[inline(always)]
+    fn cell(&mut self, index: usize, d_l: f64, _enter_m: f64) {
+        let h = &mut self.data[index * self.bins..(index + 1) * self.bins];
+        let k = self.table.at(self.lookup.offset(d_l));
+        if N == 0 {
+            histogram::update_any(h, k, self.floor)
+        } else {
+            histogram::update_fixed::<N>(h, k, self.floor)
+        }
+        self.updates += 1;
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::error::CovmapError;
+    use crate::grid::Grid;
+    use crate::sensor::{LaserModel, SonarModel};
+
+    fn grid() -> Grid {
+        Grid::new([0.0, 0.0], 0.05, 60, 80).unwrap()
+    }
+
+    #[test]
+    fn bad_input_leaves_map_unchanged() {
+        let mut map = CoverageMap::new(grid());
+        let sonar = SonarModel::default();
+        map.integrate(&Pose::new(2.0, 1.5, 0.3), &[1.0, 2.0], &[0.0, 1.0], &sonar)
+            .unwrap();
+        let before = map.histograms().to_vec();
+        let p = Pose::new(2.0, 1.5, 0.0);
+        let cases: Vec<(Pose, Vec<f64>, Vec<f64>)> = vec![
+            (p, vec![1.0, f64::NAN], vec![0.0, 1.0]),
+            (p, vec![1.0, -0.1], vec![0.0, 1.0]),
+            (p, vec![f64::INFINITY], vec![0.0]),
+            (p, vec![1.0], vec![f64::NAN]),
+            (p, vec![1.0, 2.0], vec![0.0]),
+            (Pose::new(f64::NAN, 1.0, 0.0), vec![1.0], vec![0.0]),
+            (Pose::new(1.0, 1.0, f64::INFINITY), vec![1.0], vec![0.0]),
+            (Pose::new(-0.01, 1.0, 0.0), vec![1.0], vec![0.0]),
+            (Pose::new(4.0, 1.0, 0.0), vec![1.0], vec![0.0]),
+            // Heading plus bearing overflows.
+            (Pose::new(2.0, 1.5, 1e308), vec![1.0], vec![1e308]),
+        ];
+        for (pose, r, b) in cases {
+            assert!(
+                map.integrate(&pose, &r, &b, &sonar).is_err(),
+                "{pose:?} {r:?} {b:?}"
+            );
+            assert_eq!(map.histograms(), &before[..]);
+        }
+        // Parameters of the right sign whose kernels cannot be computed: a
+        // subnormal sigma overflows the density's scale, a huge uniform
+        // weight the normalising sum.
+        // Each error names the parameter at fault.
+        type Break = (fn(&mut SonarModel), &'static str);
+        let breaks: [Break; 5] = [
+            (|m| m.range.sigma_min = -1.0, "sigma_min"),
+            (
+                |m| (m.range.sigma_min, m.range.sigma_per_m) = (1e-310, 0.0),
+                "sigma_min",
+            ),
+            (
+                |m| (m.range.xi_min, m.range.xi_per_m) = (2e6, 0.0),
+                "xi_min",
+            ),
+            (|m| m.range.xi_min = 1e308, "xi_min"),
+            (|m| m.range.xi_per_m = 1e306, "xi_per_m"),
+        ];
+        for (brk, at_fault) in breaks {
+            let mut bad = sonar;
+            brk(&mut bad);
+            let err = map.integrate(&p, &[1.0], &[0.0], &bad).unwrap_err();
+            assert!(
+                matches!(err, CovmapError::InvalidParameter { name, .. } if name == at_fault),
+                "{err}"
+            );
+            assert_eq!(map.histograms(), &before[..]);
+        }
+    }
+
+    #[test]
+    fn a_million_identical_readings_leave_no_zero_bin() {
+        let g = Grid::new([0.0, 0.0], 0.05, 4, 40).unwrap();
+        let mut map = CoverageMap::new(g);
+        let laser = LaserModel::default();
+        let pose = Pose::new(0.01, 0.1, 0.0);
+        let ranges = vec![1.0; 1000];
+        let bearings = vec![0.0; 1000];
+        for _ in 0..1000 {
+            map.integrate(&pose, &ranges, &bearings, &laser).unwrap();
+        }
+        for h in map.histograms().chunks_exact(16) {
+            assert!(h.iter().all(|&v| v > 0.0 && v.is_finite()));
+            assert!((h.iter().sum::<f32>() - 1.0).abs() < 1e-5);
+        }
+        // And a cell that has seen a million "empty" readings still changes its
+        // mind when the world changes.
+        let cell = g.world_to_cell(0.5, 0.1).unwrap();
+        assert_eq!(map.ml()[g.index(cell).unwrap()], 0.0);
+        let short = vec![0.49; 100];
+        map.integrate(&pose, &short, &bearings[..100], &laser)
+            .unwrap();
+        assert!(map.mean()[g.index(cell).unwrap()] > 0.5);
+    }
+
+    #[test]
+    fn model_change_rebuilds_kernels() {
+        let mut a = CoverageMap::new(grid());
+        let mut b = CoverageMap::new(grid());
+        let p = Pose::new(2.0, 1.5, 0.0);
+        let sonar = SonarModel::default();
+        let mut wide = sonar;
+        wide.range.xi_min = 0.5;
+        a.integrate(&p, &[1.0], &[0.0], &sonar).unwrap();
+        a.integrate(&p, &[1.0], &[0.0], &wide).unwrap();
+        b.integrate(&p, &[1.0], &[0.0], &wide).unwrap();
+        b.integrate(&p, &[1.0], &[0.0], &sonar).unwrap();
+        for (x, y) in a.histograms().iter().zip(b.histograms()) {
+            assert!((x - y).abs() < 1e-6);
+        }
+    }
+}
