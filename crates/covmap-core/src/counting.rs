@@ -5,7 +5,7 @@ use serde::{Deserialize, Serialize};
 use crate::error::{CovmapError, Result};
 use crate::footprint::visit;
 use crate::grid::Grid;
-use crate::scan::{Pose, validate_scan};
+use crate::pose::{Pose, validate_scan};
 use crate::sensor::SensorModel;
 
 /// Per-cell scan counts, the exploration baseline of the paper's Table I.
@@ -123,8 +123,7 @@ impl ScanCounts {
         bearings: &[f64],
         model: &M,
     ) -> Result<()> {
-        model.validate()?;
-        validate_scan(&self.grid, pose, ranges, bearings)?;
+        validate_scan(&self.grid, pose, ranges, bearings, model)?;
         self.count(pose, ranges, bearings, model);
         Ok(())
     }

@@ -35,13 +35,16 @@ pub mod histogram;
 mod numeric;
 mod occupancy;
 pub mod planner;
-mod scan;
+mod pose;
 pub mod sensor;
+
+// The old name of `pose`, for the planner until it imports `crate::pose`.
+use pose as scan;
 
 pub use counting::ScanCounts;
 pub use coverage_map::{CoverageMap, HistoryState, STAGNATION_MEASUREMENTS, STAGNATION_NATS};
 pub use error::{CovmapError, Result};
 pub use grid::{Cell, Grid, MAX_CELLS, MAX_CELLS_FROM_ZERO, MIN_RESOLUTION_M};
 pub use occupancy::{OccupancyGrid, OccupancyModel};
-pub use scan::Pose;
+pub use pose::Pose;
 pub use sensor::{Footprint, KernelTable, LaserModel, RangeModel, SensorModel, SonarModel};

@@ -6,7 +6,7 @@ use crate::counting::ScanCounts;
 use crate::error::{CovmapError, Result};
 use crate::footprint::visit;
 use crate::grid::Grid;
-use crate::scan::{Pose, validate_scan};
+use crate::pose::{Pose, validate_scan};
 use crate::sensor::SensorModel;
 
 /// The inverse model of the occupancy baseline.
@@ -171,8 +171,7 @@ impl OccupancyGrid {
         bearings: &[f64],
         model: &M,
     ) -> Result<()> {
-        model.validate()?;
-        validate_scan(self.grid(), pose, ranges, bearings)?;
+        validate_scan(self.grid(), pose, ranges, bearings, model)?;
         let (l_occ, l_free) = (logit(self.model.p_occupied), logit(self.model.p_free));
         let limit = self.model.log_odds_limit as f32;
         let range = model.range_model();

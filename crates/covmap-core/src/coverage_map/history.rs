@@ -6,7 +6,7 @@ use crate::error::{CovmapError, Result};
 use crate::footprint::visit;
 use crate::grid::Cell;
 use crate::histogram;
-use crate::scan::Pose;
+use crate::pose::Pose;
 use crate::sensor::SensorModel;
 
 /// Measurements of a cell an entropy change is judged over.

@@ -5,7 +5,7 @@ use super::CoverageMap;
 use crate::error::Result;
 use crate::footprint::{CellVisitor, visit};
 use crate::histogram;
-use crate::scan::{Pose, validate_scan};
+use crate::pose::{Pose, validate_scan};
 use crate::sensor::{KernelTable, ReadingLookup, SensorModel};
 
 impl CoverageMap {
@@ -23,8 +23,7 @@ impl CoverageMap {
         bearings: &[f64],
         model: &M,
     ) -> Result<usize> {
-        model.validate()?;
-        validate_scan(&self.grid, pose, ranges, bearings)?;
+        validate_scan(&self.grid, pose, ranges, bearings, model)?;
         let range = model.range_model();
         let resolution = self.grid.resolution_m();
         if !self

@@ -10,7 +10,7 @@ use super::{GainMethod, GainOptions};
 use crate::coverage_map::CoverageMap;
 use crate::error::Result;
 use crate::footprint::visit;
-use crate::scan::{Pose, check_bearings, check_pose};
+use crate::pose::{Pose, check_bearings, check_pose};
 use crate::sensor::{
     Footprint, KernelTable, RangeModel, ReadingDistribution, SensorModel, StopCoverage, check_step,
     trace_readings,

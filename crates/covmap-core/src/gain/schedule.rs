@@ -8,7 +8,7 @@
 //! neither on scheduling nor on the company a candidate keeps.
 
 use crate::grid::Grid;
-use crate::scan::Pose;
+use crate::pose::Pose;
 
 /// Candidates evaluated together.
 const GROUP: usize = 16;
@@ -85,7 +85,7 @@ mod tests {
     use crate::coverage_map::CoverageMap;
     use crate::gain::{GainEvaluator, GainMethod, GainOptions};
     use crate::grid::Grid;
-    use crate::scan::Pose;
+    use crate::pose::Pose;
     use crate::sensor::SonarModel;
 
     #[test]

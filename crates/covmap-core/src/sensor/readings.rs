@@ -6,7 +6,7 @@ use serde::{Deserialize, Serialize};
 use crate::error::{CovmapError, Result};
 use crate::footprint::visit;
 use crate::grid::Grid;
-use crate::scan::{Pose, check_pose};
+use crate::pose::{Pose, check_pose};
 use crate::sensor::{Footprint, RangeModel};
 
 /// Which coverage value of a cell stops a predicted beam.

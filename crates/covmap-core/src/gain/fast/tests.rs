@@ -5,7 +5,7 @@ use super::Arith;
 use crate::coverage_map::CoverageMap;
 use crate::gain::{GainEvaluator, GainMethod, GainOptions, StopCoverage};
 use crate::grid::Grid;
-use crate::scan::Pose;
+use crate::pose::Pose;
 use crate::sensor::{LaserModel, SensorModel, SonarModel};
 
 #[test]

@@ -4,6 +4,7 @@ use serde::{Deserialize, Serialize};
 
 use crate::error::{CovmapError, Result};
 use crate::grid::{Cell, Grid};
+use crate::sensor::SensorModel;
 
 /// A robot pose in the plane: position in metres, heading in radians.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
@@ -37,15 +38,18 @@ impl From<[f64; 3]> for Pose {
     }
 }
 
-/// Check a scan against a grid: finite pose inside the map, equal lengths,
-/// finite non-negative ranges, finite bearings whose beam directions (heading
-/// plus bearing) are finite too.
-pub(crate) fn validate_scan(
+/// Check a scan against a grid before any map changes: a valid sensor model,
+/// a finite pose inside the map, equal lengths, finite non-negative ranges,
+/// finite bearings whose beam directions (heading plus bearing) are finite
+/// too.
+pub(crate) fn validate_scan<M: SensorModel + ?Sized>(
     grid: &Grid,
     pose: &Pose,
     ranges: &[f64],
     bearings: &[f64],
+    model: &M,
 ) -> Result<()> {
+    model.validate()?;
     check_pose(grid, pose)?;
     if ranges.len() != bearings.len() {
         return Err(CovmapError::LengthMismatch {
