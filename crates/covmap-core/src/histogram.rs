@@ -6,6 +6,7 @@
 //! one or the other.
 
 use crate::error::{CovmapError, Result};
+use crate::numeric::x_ln_x;
 
 /// The fewest bins a histogram may have.
 pub const MIN_BINS: usize = 2;
@@ -16,8 +17,8 @@ pub const MAX_BINS: usize = 256;
 /// model can (see BENCHMARKS.md for the measured cost of 8, 16 and 32 bins).
 pub const DEFAULT_BINS: usize = 16;
 
-/// The smallest probability a bin keeps after an update (the argument, the bin
-/// count, is kept for future floors that depend on it).
+/// The smallest probability a bin keeps after an update, whatever the bin
+/// count.
 ///
 /// Every kernel is positive (its uniform part `xi > 0`), so in exact arithmetic
 /// no bin ever reaches 0; in `f32` a long run of identical readings would
@@ -28,9 +29,42 @@ pub const DEFAULT_BINS: usize = 16;
 /// where updates stop being exactly order independent. It stays above the
 /// `f32` normal range (1.2e-38) times the smallest kernel value, so the update
 /// never computes with subnormal numbers for sane models.
+pub const BIN_FLOOR: f32 = 1e-30;
+
+/// [`BIN_FLOOR`], which does not depend on the bin count: the form callers
+/// written before the constant existed use.
 pub fn bin_floor(_bins: usize) -> f32 {
-    1e-30
+    BIN_FLOOR
 }
+
+/// Evaluates `$body` with the constant `$n` set to the bin count `$bins` if
+/// it is one of the counts with a path of their own (8, 16, 32), else to 0
+/// (any count). Fixed at compile time, so that the per-cell loops the body
+/// calls are straight vector code; picked once per scan or beam, outside
+/// those loops.
+macro_rules! with_bins {
+    ($bins:expr, |$n:ident| $body:expr) => {
+        match $bins {
+            8 => {
+                const $n: usize = 8;
+                $body
+            }
+            16 => {
+                const $n: usize = 16;
+                $body
+            }
+            32 => {
+                const $n: usize = 32;
+                $body
+            }
+            _ => {
+                const $n: usize = 0;
+                $body
+            }
+        }
+    };
+}
+pub(crate) use with_bins;
 
 /// Errors unless `bins` lies in `[MIN_BINS, MAX_BINS]`.
 pub fn check_bins(bins: usize) -> Result<()> {
@@ -53,16 +87,22 @@ pub fn bin_value(b: usize, bins: usize) -> f64 {
 
 /// Multiply `h` by `k` bin by bin, renormalise, and floor each bin.
 ///
-/// Dispatches on the length; the hot loops pick [`update_fixed`] once per scan
+/// Dispatches on the length; the hot loops pick [`update_bins`] once per scan
 /// instead.
 #[inline]
 pub(crate) fn update(h: &mut [f32], k: &[f32], floor: f32) {
     debug_assert_eq!(h.len(), k.len());
-    match h.len() {
-        16 => update_fixed::<16>(h, k, floor),
-        8 => update_fixed::<8>(h, k, floor),
-        32 => update_fixed::<32>(h, k, floor),
-        _ => update_any(h, k, floor),
+    with_bins!(h.len(), |N| update_bins::<N>(h, k, floor))
+}
+
+/// [`update`] for `N` bins ([`update_fixed`]), or any number for `N = 0`
+/// ([`update_any`]).
+#[inline(always)]
+pub(crate) fn update_bins<const N: usize>(h: &mut [f32], k: &[f32], floor: f32) {
+    if N == 0 {
+        update_any(h, k, floor)
+    } else {
+        update_fixed::<N>(h, k, floor)
     }
 }
 
@@ -71,7 +111,7 @@ pub(crate) fn update(h: &mut [f32], k: &[f32], floor: f32) {
 /// four lanes, added in a fixed order, so the result depends only on the
 /// inputs.
 #[inline(always)]
-pub(crate) fn update_fixed<const N: usize>(h: &mut [f32], k: &[f32], floor: f32) {
+fn update_fixed<const N: usize>(h: &mut [f32], k: &[f32], floor: f32) {
     let (Ok(h), Ok(k)) = (<&mut [f32; N]>::try_from(h), <&[f32; N]>::try_from(k)) else {
         unreachable!("the caller passes slices of N bins")
     };
@@ -98,7 +138,7 @@ pub(crate) fn update_fixed<const N: usize>(h: &mut [f32], k: &[f32], floor: f32)
 
 /// [`update`] for any bin count.
 #[inline]
-pub(crate) fn update_any(h: &mut [f32], k: &[f32], floor: f32) {
+fn update_any(h: &mut [f32], k: &[f32], floor: f32) {
     let mut sum = 0.0f32;
     for (v, &kv) in h.iter_mut().zip(k) {
         *v *= kv;
@@ -110,12 +150,19 @@ pub(crate) fn update_any(h: &mut [f32], k: &[f32], floor: f32) {
     }
 }
 
-/// Shannon entropy in nats; `0 * ln 0` counts as 0.
+/// Shannon entropy in nats, in `f32` (the map's entropy); `0 * ln 0` counts
+/// as 0.
 pub fn entropy(h: &[f32]) -> f32 {
     -h.iter()
         .filter(|&&p| p > 0.0)
         .map(|&p| p * p.ln())
         .sum::<f32>()
+}
+
+/// [`entropy`] in `f64`, each bin's `p ln p` from its definition: the
+/// reference the exact gain is computed with.
+pub fn entropy_f64(h: &[f32]) -> f64 {
+    -h.iter().map(|&p| x_ln_x(f64::from(p))).sum::<f64>()
 }
 
 /// The index of the most probable bin (the first on ties).

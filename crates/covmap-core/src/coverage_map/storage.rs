@@ -17,7 +17,7 @@ use crate::sensor::{KernelTable, RangeModel};
 /// default 16 bins that is one 64-byte cache line per cell.
 ///
 /// Invariants, after any sequence of updates: every histogram sums to 1 within
-/// `1e-5`, every bin is finite and at least [`histogram::bin_floor`].
+/// `1e-5`, every bin is finite and at least [`histogram::BIN_FLOOR`].
 ///
 /// # Example
 /// ```
@@ -77,7 +77,7 @@ impl CoverageMap {
         Ok(Self {
             grid,
             bins,
-            floor: histogram::bin_floor(bins),
+            floor: histogram::BIN_FLOOR,
             data,
             table: None,
             history: None,
@@ -98,7 +98,7 @@ impl CoverageMap {
                 right: grid.len() * bins,
             });
         }
-        let floor = histogram::bin_floor(bins);
+        let floor = histogram::BIN_FLOOR;
         for (i, h) in data.chunks_exact(bins).enumerate() {
             let sum: f32 = h.iter().sum();
             if h.iter().any(|v| !(v.is_finite() && *v >= 0.0)) || (sum - 1.0).abs() > 1e-3 {

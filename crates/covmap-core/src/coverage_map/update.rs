@@ -4,7 +4,7 @@
 use super::CoverageMap;
 use crate::error::Result;
 use crate::footprint::{CellVisitor, visit};
-use crate::histogram;
+use crate::histogram::{self, with_bins};
 use crate::pose::{Pose, validate_scan};
 use crate::sensor::{KernelTable, ReadingLookup, SensorModel};
 
@@ -34,12 +34,8 @@ impl CoverageMap {
             self.table = Some(Box::new(KernelTable::new(range, resolution, self.bins)?));
         }
         // Pick the update once per scan, so the per-cell loop is straight code.
-        let updates = match self.bins {
-            8 => self.apply::<8, M>(pose, ranges, bearings, model),
-            16 => self.apply::<16, M>(pose, ranges, bearings, model),
-            32 => self.apply::<32, M>(pose, ranges, bearings, model),
-            _ => self.apply::<0, M>(pose, ranges, bearings, model),
-        };
+        let updates = with_bins!(self.bins, |N| self
+            .apply::<N, M>(pose, ranges, bearings, model));
         if self.history.is_some() {
             self.record_history(pose, ranges, bearings, model);
         }
@@ -108,11 +104,7 @@ impl<const N: usize> CellVisitor for BeamUpdate<'_, N> {
     fn cell(&mut self, index: usize, d_l: f64, _enter_m: f64) {
         let h = &mut self.data[index * self.bins..(index + 1) * self.bins];
         let k = self.table.at(self.lookup.offset(d_l));
-        if N == 0 {
-            histogram::update_any(h, k, self.floor)
-        } else {
-            histogram::update_fixed::<N>(h, k, self.floor)
-        }
+        histogram::update_bins::<N>(h, k, self.floor);
         self.updates += 1;
     }
 }

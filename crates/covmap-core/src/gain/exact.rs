@@ -3,12 +3,8 @@
 
 use super::GainEvaluator;
 use crate::footprint::visit;
+use crate::histogram::entropy_f64;
 use crate::numeric::x_ln_x;
-
-/// Entropy of a histogram in nats, in `f64`.
-pub fn entropy(h: &[f32]) -> f64 {
-    -h.iter().map(|&p| x_ln_x(f64::from(p))).sum::<f64>()
-}
 
 /// `I(h | k) = H(h) - H(h')`, `h'` the normalised product of `h` and kernel
 /// `k`, straight from the definitions (eq. 11-12).
@@ -23,7 +19,7 @@ pub fn information_gain(h: &[f32], k: &[f32]) -> f64 {
         .zip(k)
         .map(|(&a, &b)| x_ln_x(f64::from(a) * f64::from(b) / z))
         .sum::<f64>();
-    entropy(h) - posterior_entropy
+    entropy_f64(h) - posterior_entropy
 }
 
 impl GainEvaluator<'_> {

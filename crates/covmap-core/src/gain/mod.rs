@@ -43,7 +43,7 @@ mod options;
 mod schedule;
 
 pub use evaluator::GainEvaluator;
-pub use exact::{entropy, information_gain};
+pub use exact::information_gain;
 pub use options::{GainMethod, GainOptions};
 // The forward model of readings lived here before it moved beside the sensor
 // model; its old paths keep working.

@@ -8,6 +8,7 @@ use super::cache::LogCache;
 use crate::coverage_map::CoverageMap;
 use crate::footprint::{CellVisitor, ROW_BLOCK, visit};
 use crate::gain::GainEvaluator;
+use crate::histogram::with_bins;
 use crate::sensor::{KernelTable, ReadingLookup};
 
 impl GainEvaluator<'_> {
@@ -73,12 +74,7 @@ impl GainEvaluator<'_> {
         };
         // Fix the bin count at compile time for the common sizes, so that the
         // per-cell gain is straight vector code.
-        match self.map.bins() {
-            8 => self.run::<8>(&beam, queue),
-            16 => self.run::<16>(&beam, queue),
-            32 => self.run::<32>(&beam, queue),
-            _ => self.run::<0>(&beam, queue),
-        }
+        with_bins!(self.map.bins(), |N| self.run::<N>(&beam, queue))
     }
 
     /// One beam's sum with `N` bins and the arithmetic `A`, which `has`
