@@ -34,6 +34,7 @@ mod grid;
 pub mod histogram;
 mod numeric;
 mod occupancy;
+mod parallel;
 pub mod planner;
 mod pose;
 pub mod sensor;

@@ -8,6 +8,7 @@
 //! neither on scheduling nor on the company a candidate keeps.
 
 use crate::grid::Grid;
+use crate::parallel;
 use crate::pose::Pose;
 
 /// Candidates evaluated together.
@@ -66,15 +67,9 @@ pub(super) fn in_groups<S: Default>(
         }
         totals
     };
-    #[cfg(feature = "parallel")]
-    let parts: Vec<(usize, f64)> = {
-        use rayon::prelude::*;
-        order.par_chunks(GROUP).flat_map_iter(group).collect()
-    };
-    #[cfg(not(feature = "parallel"))]
-    let parts: Vec<(usize, f64)> = order.chunks(GROUP).flat_map(group).collect();
+    let groups: Vec<&[(u64, usize)]> = order.chunks(GROUP).collect();
     let mut gains = vec![0.0; poses.len()];
-    for (k, g) in parts {
+    for (k, g) in parallel::map(groups, group).into_iter().flatten() {
         gains[k] = g;
     }
     gains

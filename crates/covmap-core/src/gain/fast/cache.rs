@@ -6,6 +6,7 @@ use super::batch::plain_gain;
 use crate::aligned::Aligned;
 use crate::coverage_map::CoverageMap;
 use crate::numeric::x_ln_x_of_f32;
+use crate::parallel;
 use crate::sensor::KernelTable;
 
 /// `h ln h` of every bin of every histogram, in `f64` (through the
@@ -59,13 +60,7 @@ impl LogCache {
             .zip(prior.chunks_mut(CELLS))
             .zip(h.chunks(CELLS * bins))
             .collect();
-        #[cfg(feature = "parallel")]
-        {
-            use rayon::prelude::*;
-            pieces.into_par_iter().for_each(fill);
-        }
-        #[cfg(not(feature = "parallel"))]
-        pieces.into_iter().for_each(fill);
+        parallel::map(pieces, fill);
         let prior_gain = if prior.contains(&1) {
             prior_gains(bins, table)
         } else {
