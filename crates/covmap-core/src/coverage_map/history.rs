@@ -88,23 +88,23 @@ impl CoverageMap {
     /// off).
     pub fn measurements(&self, cell: Cell) -> Result<u32> {
         let i = self.grid.index(cell)?;
-        Ok(self.history.as_ref().map_or(0, |h| h.count[i]))
+        Ok(self.history.as_ref().map_or(0, |history| history.count[i]))
     }
 
     /// Measurements of every cell since the history was turned on, row-major.
     pub fn measurement_counts(&self) -> Vec<u32> {
         self.history
             .as_ref()
-            .map_or_else(|| vec![0; self.grid.len()], |h| h.count.clone())
+            .map_or_else(|| vec![0; self.grid.len()], |history| history.count.clone())
     }
 
     /// The entropy history (`None` while it is off), to be handed to
     /// [`CoverageMap::restore_history`] of a map loaded from this one's
     /// histograms.
     pub fn history_state(&self) -> Option<HistoryState> {
-        self.history.as_ref().map(|h| HistoryState {
-            entropies: h.entropies.as_flattened().to_vec(),
-            count: h.count.clone(),
+        self.history.as_ref().map(|history| HistoryState {
+            entropies: history.entropies.as_flattened().to_vec(),
+            count: history.count.clone(),
         })
     }
 
@@ -176,17 +176,21 @@ impl CoverageMap {
 
     /// [`CoverageMap::stagnated`] by row-major index (below `grid.len()`).
     pub(crate) fn stagnated_at(&self, index: usize) -> bool {
-        let Some(h) = &self.history else { return false };
-        let n = h.count[index] as usize;
-        if n <= STAGNATION_MEASUREMENTS {
+        let Some(history) = &self.history else {
+            return false;
+        };
+        let measured = history.count[index] as usize;
+        if measured <= STAGNATION_MEASUREMENTS {
             return false;
         }
-        let ring = &h.entropies[index];
+        let ring = &history.entropies[index];
         let len = STAGNATION_MEASUREMENTS + 1;
-        (ring[(n - 1) % len] - ring[(n - 1 - STAGNATION_MEASUREMENTS) % len]).abs()
+        (ring[(measured - 1) % len] - ring[(measured - 1 - STAGNATION_MEASUREMENTS) % len]).abs()
             < STAGNATION_NATS
     }
 
+    /// Count a validated scan as one measurement of every cell it updates,
+    /// and keep their entropies, if the history is kept.
     pub(super) fn record_history<M: SensorModel + ?Sized>(
         &mut self,
         pose: &Pose,
@@ -201,11 +205,11 @@ impl CoverageMap {
             history,
             ..
         } = self;
-        let Some(h) = history.as_deref_mut() else {
+        let Some(history) = history.as_deref_mut() else {
             return;
         };
-        h.scan = h.scan.wrapping_add(1).max(1);
-        let scan = h.scan;
+        history.scan = history.scan.wrapping_add(1).max(1);
+        let scan = history.scan;
         let range = model.range_model();
         let mut touched = Vec::new();
         for (&r, &bearing) in ranges.iter().zip(bearings) {
@@ -217,8 +221,8 @@ impl CoverageMap {
                 reach,
                 model.footprint(),
                 &mut |i, _| {
-                    if h.stamp[i] != scan {
-                        h.stamp[i] = scan;
+                    if history.stamp[i] != scan {
+                        history.stamp[i] = scan;
                         touched.push(i);
                     }
                 },
@@ -226,9 +230,10 @@ impl CoverageMap {
         }
         let len = STAGNATION_MEASUREMENTS + 1;
         for i in touched {
-            let n = h.count[i] as usize;
-            h.entropies[i][n % len] = histogram::entropy(&data[i * *bins..(i + 1) * *bins]);
-            h.count[i] = h.count[i].saturating_add(1);
+            let measured = history.count[i] as usize;
+            history.entropies[i][measured % len] =
+                histogram::entropy(&data[i * *bins..(i + 1) * *bins]);
+            history.count[i] = history.count[i].saturating_add(1);
         }
     }
 }

@@ -38,7 +38,6 @@ use crate::sensor::{KernelTable, RangeModel};
 pub struct CoverageMap {
     pub(super) grid: Grid,
     pub(super) bins: usize,
-    pub(super) floor: f32,
     /// The histograms, cell-major, starting on a cache line so that a 16-bin
     /// histogram is exactly one line.
     pub(super) data: Aligned<f32>,
@@ -77,7 +76,6 @@ impl CoverageMap {
         Ok(Self {
             grid,
             bins,
-            floor: histogram::BIN_FLOOR,
             data,
             table: None,
             history: None,
@@ -117,30 +115,16 @@ impl CoverageMap {
         Ok(Self {
             grid,
             bins,
-            floor,
             data: Aligned::from_slice(&data),
             table: None,
             history: None,
         })
     }
 
-    /// The kernel table of the last model integrated, if any.
-    pub(crate) fn cached_table(&self) -> Option<&KernelTable> {
-        self.table.as_deref()
-    }
-
-    /// The kernel table for `range` on this map: the cached one when it
-    /// serves, else a new one.
+    /// The kernel table for `range` on this map: the one of the last model
+    /// integrated when it serves, else a new one.
     pub(crate) fn kernel_table(&self, range: &RangeModel) -> Result<Cow<'_, KernelTable>> {
-        let resolution = self.grid().resolution_m();
-        match self.cached_table() {
-            Some(t) if t.serves(range, resolution, self.bins()) => Ok(Cow::Borrowed(t)),
-            _ => Ok(Cow::Owned(KernelTable::new(
-                range,
-                resolution,
-                self.bins(),
-            )?)),
-        }
+        cached_or_new(self.table.as_deref(), range, &self.grid, self.bins)
     }
 
     /// The grid.
@@ -192,6 +176,21 @@ impl CoverageMap {
             .chunks_exact(self.bins)
             .map(histogram::entropy)
             .collect()
+    }
+}
+
+/// The kernel table for `range` on `grid` with `bins` bins: `cached` when it
+/// serves, else a new one.
+pub(super) fn cached_or_new<'t>(
+    cached: Option<&'t KernelTable>,
+    range: &RangeModel,
+    grid: &Grid,
+    bins: usize,
+) -> Result<Cow<'t, KernelTable>> {
+    let resolution = grid.resolution_m();
+    match cached {
+        Some(table) if table.serves(range, resolution, bins) => Ok(Cow::Borrowed(table)),
+        _ => KernelTable::new(range, resolution, bins).map(Cow::Owned),
     }
 }
 

@@ -1,9 +1,13 @@
 //! Bayes' rule for a scan: each beam's kernels multiplied into the cells of
 //! its footprint.
 
+use std::borrow::Cow;
+
 use super::CoverageMap;
+use super::storage::cached_or_new;
 use crate::error::Result;
 use crate::footprint::{CellVisitor, visit};
+use crate::grid::Grid;
 use crate::histogram::{self, with_bins};
 use crate::pose::{Pose, validate_scan};
 use crate::sensor::{KernelTable, ReadingLookup, SensorModel};
@@ -24,69 +28,69 @@ impl CoverageMap {
         model: &M,
     ) -> Result<usize> {
         validate_scan(&self.grid, pose, ranges, bearings, model)?;
-        let range = model.range_model();
-        let resolution = self.grid.resolution_m();
-        if !self
-            .table
-            .as_ref()
-            .is_some_and(|t| t.serves(range, resolution, self.bins))
-        {
-            self.table = Some(Box::new(KernelTable::new(range, resolution, self.bins)?));
-        }
+        let table = cached_or_new(
+            self.table.as_deref(),
+            model.range_model(),
+            &self.grid,
+            self.bins,
+        )?;
         // Pick the update once per scan, so the per-cell loop is straight code.
-        let updates = with_bins!(self.bins, |N| self
-            .apply::<N, M>(pose, ranges, bearings, model));
-        if self.history.is_some() {
-            self.record_history(pose, ranges, bearings, model);
+        let updates = with_bins!(self.bins, |N| apply::<N, M>(
+            &self.grid,
+            &mut self.data,
+            &table,
+            pose,
+            ranges,
+            bearings,
+            model
+        ));
+        if let Cow::Owned(table) = table {
+            // The table of the model the next scans most likely come from.
+            self.table = Some(Box::new(table));
         }
+        self.record_history(pose, ranges, bearings, model);
         Ok(updates)
     }
+}
 
-    /// Multiply the kernels of a validated scan into the map, `N` bins per
-    /// cell (`N = 0`: any number).
-    fn apply<const N: usize, M: SensorModel + ?Sized>(
-        &mut self,
-        pose: &Pose,
-        ranges: &[f64],
-        bearings: &[f64],
-        model: &M,
-    ) -> usize {
-        let Self {
-            grid,
-            bins,
-            floor,
+/// Multiply the kernels of a validated scan into `data`, the histograms of
+/// `grid`'s cells, `N` bins each (`N = 0`: any number), as many as `table`
+/// serves.
+fn apply<const N: usize, M: SensorModel + ?Sized>(
+    grid: &Grid,
+    data: &mut [f32],
+    table: &KernelTable,
+    pose: &Pose,
+    ranges: &[f64],
+    bearings: &[f64],
+    model: &M,
+) -> usize {
+    let bins = table.bins();
+    debug_assert_eq!(data.len(), grid.len() * bins);
+    let range = model.range_model();
+    let footprint = model.footprint();
+    let mut updates = 0;
+    for (&r, &bearing) in ranges.iter().zip(bearings) {
+        let (reach, echo) = range.reach(r);
+        let mut beam = BeamUpdate::<N> {
             data,
             table,
-            ..
-        } = self;
-        let Some(table) = table.as_deref() else {
-            return 0;
+            bins,
+            floor: histogram::BIN_FLOOR,
+            lookup: table.reading(r.min(range.max_range_m), echo),
+            updates: 0,
         };
-        let range = model.range_model();
-        let footprint = model.footprint();
-        let mut updates = 0;
-        for (&r, &bearing) in ranges.iter().zip(bearings) {
-            let (reach, echo) = range.reach(r);
-            let mut beam = BeamUpdate::<N> {
-                data,
-                table,
-                bins: *bins,
-                floor: *floor,
-                lookup: table.reading(r.min(range.max_range_m), echo),
-                updates: 0,
-            };
-            visit(
-                grid,
-                [pose.x_m, pose.y_m],
-                pose.theta_rad + bearing,
-                reach,
-                footprint,
-                &mut beam,
-            );
-            updates += beam.updates;
-        }
-        updates
+        visit(
+            grid,
+            [pose.x_m, pose.y_m],
+            pose.theta_rad + bearing,
+            reach,
+            footprint,
+            &mut beam,
+        );
+        updates += beam.updates;
     }
+    updates
 }
 
 /// The per-cell work of one beam: look the kernel up, multiply it in.
@@ -113,7 +117,6 @@ impl<const N: usize> CellVisitor for BeamUpdate<'_, N> {
 mod tests {
     use super::*;
     use crate::error::CovmapError;
-    use crate::grid::Grid;
     use crate::sensor::{LaserModel, SonarModel};
 
     fn grid() -> Grid {

@@ -104,16 +104,20 @@ impl<'a> GainEvaluator<'a> {
         method: GainMethod,
     ) -> Result<Vec<f64>> {
         self.validate(poses, bearings)?;
-        if method == GainMethod::Fast {
-            self.cache
-                .get_or_init(|| LogCache::new(self.map, &self.table));
-        }
+        let evaluator = match method {
+            GainMethod::Exact => Evaluator::Exact,
+            // What the fast evaluator knows of every cell, computed once.
+            GainMethod::Fast => Evaluator::Fast(
+                self.cache
+                    .get_or_init(|| LogCache::new(self.map, &self.table)),
+            ),
+        };
         let beam = |pose: &Pose, b: f64, queue: &mut Queue| -> f64 {
             let origin = [pose.x_m, pose.y_m];
             let angle = pose.theta_rad + b;
-            match method {
-                GainMethod::Exact => self.exact_beam(origin, angle),
-                GainMethod::Fast => self.fast_beam(origin, angle, queue),
+            match evaluator {
+                Evaluator::Exact => self.exact_beam(origin, angle),
+                Evaluator::Fast(cache) => self.fast_beam(cache, origin, angle, queue),
             }
         };
         Ok(in_groups(self.map.grid(), poses, bearings, beam))
@@ -172,6 +176,15 @@ impl<'a> GainEvaluator<'a> {
             .0
             .max(last + self.range.band_m)
     }
+}
+
+/// The evaluator a beam's gain is computed by, with what it needs.
+#[derive(Clone, Copy)]
+enum Evaluator<'c> {
+    /// [`GainMethod::Exact`].
+    Exact,
+    /// [`GainMethod::Fast`], with its per-cell cache.
+    Fast(&'c LogCache),
 }
 
 #[cfg(test)]

@@ -12,15 +12,16 @@ use crate::histogram::with_bins;
 use crate::sensor::{KernelTable, ReadingLookup};
 
 impl GainEvaluator<'_> {
+    /// The expected gain of one beam from `origin` along `angle`, with the
+    /// cells' cache of this evaluator's map and `queue`, which it leaves
+    /// empty.
     pub(in crate::gain) fn fast_beam(
         &self,
+        cache: &LogCache,
         origin: [f64; 2],
         angle: f64,
         queue: &mut Queue,
     ) -> f64 {
-        let Some(cache) = self.cache.get() else {
-            return f64::NAN;
-        };
         let dist = self.distribution(origin, angle);
         let (none_reach, _) = self.range.reach(self.range.max_range_m);
         let n = dist.probabilities.len();
