@@ -33,10 +33,24 @@ pub(crate) trait CellVisitor {
         _bounds: [f64; 2],
         reach_m: f64,
     ) {
-        for (k, &d) in d[..n].iter().enumerate() {
-            if d <= reach_m {
-                self.cell(first + k, d, d);
-            }
+        cells_of_block(self, first, d, n, reach_m);
+    }
+}
+
+/// Visit the cells of a row block ([`CellVisitor::row_block`]) one by one,
+/// those within `reach_m`: what a visitor does that does not take the block
+/// at once.
+#[inline(always)]
+pub(crate) fn cells_of_block<V: CellVisitor + ?Sized>(
+    visitor: &mut V,
+    first: usize,
+    d: &[f64; ROW_BLOCK],
+    n: usize,
+    reach_m: f64,
+) {
+    for (k, &d) in d[..n].iter().enumerate() {
+        if d <= reach_m {
+            visitor.cell(first + k, d, d);
         }
     }
 }

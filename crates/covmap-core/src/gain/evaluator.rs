@@ -4,7 +4,7 @@
 use std::borrow::Cow;
 use std::sync::OnceLock;
 
-use super::fast::{Arith, LogCache, Queue};
+use super::fast::{Arith, CellTerms, Queue};
 use super::schedule::in_groups;
 use super::{GainMethod, GainOptions};
 use crate::coverage_map::CoverageMap;
@@ -42,7 +42,8 @@ pub struct GainEvaluator<'a> {
     pub(super) footprint: Footprint,
     pub(super) stop: Vec<f32>,
     pub(super) step_m: f64,
-    pub(super) cache: OnceLock<LogCache>,
+    /// What the fast evaluator knows of every cell, built on its first use.
+    pub(super) cell_terms: OnceLock<CellTerms>,
     /// The widest arithmetic the processor offers (detected at run time).
     pub(super) arith: Arith,
 }
@@ -77,7 +78,7 @@ impl<'a> GainEvaluator<'a> {
             footprint: model.footprint(),
             stop,
             step_m,
-            cache: OnceLock::new(),
+            cell_terms: OnceLock::new(),
             arith: Arith::detect(),
         })
     }
@@ -108,16 +109,16 @@ impl<'a> GainEvaluator<'a> {
             GainMethod::Exact => Evaluator::Exact,
             // What the fast evaluator knows of every cell, computed once.
             GainMethod::Fast => Evaluator::Fast(
-                self.cache
-                    .get_or_init(|| LogCache::new(self.map, &self.table)),
+                self.cell_terms
+                    .get_or_init(|| CellTerms::new(self.map, &self.table)),
             ),
         };
-        let beam = |pose: &Pose, b: f64, queue: &mut Queue| -> f64 {
+        let beam = |pose: &Pose, bearing: f64, queue: &mut Queue| -> f64 {
             let origin = [pose.x_m, pose.y_m];
-            let angle = pose.theta_rad + b;
+            let angle = pose.theta_rad + bearing;
             match evaluator {
                 Evaluator::Exact => self.exact_beam(origin, angle),
-                Evaluator::Fast(cache) => self.fast_beam(cache, origin, angle, queue),
+                Evaluator::Fast(terms) => self.fast_beam(terms, origin, angle, queue),
             }
         };
         Ok(in_groups(self.map.grid(), poses, bearings, beam))
@@ -129,22 +130,24 @@ impl<'a> GainEvaluator<'a> {
     pub fn pairs(&self, poses: &[Pose], bearings: &[f64]) -> Result<u64> {
         self.validate(poses, bearings)?;
         let reach = self.widest_reach();
-        let mut n = 0u64;
+        let mut pairs = 0u64;
         for pose in poses {
-            for &b in bearings {
+            for &bearing in bearings {
                 visit(
                     self.map.grid(),
                     [pose.x_m, pose.y_m],
-                    pose.theta_rad + b,
+                    pose.theta_rad + bearing,
                     reach,
                     self.footprint,
-                    &mut |_, _| n += 1,
+                    &mut |_, _| pairs += 1,
                 );
             }
         }
-        Ok(n)
+        Ok(pairs)
     }
 
+    /// Errors unless every pose is finite and inside the map, and every
+    /// bearing gives a finite direction from each.
     fn validate(&self, poses: &[Pose], bearings: &[f64]) -> Result<()> {
         if poses.is_empty() {
             // No direction to form: the bearings themselves.
@@ -157,6 +160,7 @@ impl<'a> GainEvaluator<'a> {
         Ok(())
     }
 
+    /// The predicted readings of the beam from `origin` along `angle`.
     pub(super) fn distribution(&self, origin: [f64; 2], angle: f64) -> ReadingDistribution {
         trace_readings(
             self.map.grid(),
@@ -183,8 +187,8 @@ impl<'a> GainEvaluator<'a> {
 enum Evaluator<'c> {
     /// [`GainMethod::Exact`].
     Exact,
-    /// [`GainMethod::Fast`], with its per-cell cache.
-    Fast(&'c LogCache),
+    /// [`GainMethod::Fast`], with the terms of every cell.
+    Fast(&'c CellTerms),
 }
 
 #[cfg(test)]

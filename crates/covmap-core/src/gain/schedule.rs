@@ -40,37 +40,38 @@ pub(super) fn in_groups<S: Default>(
     let mut order: Vec<(u64, usize)> = poses
         .iter()
         .enumerate()
-        .map(|(k, p)| {
-            let [gx, gy] = grid.world_to_grid(p.x_m, p.y_m);
-            (z_order(gx as u32, gy as u32), k)
+        .map(|(index, pose)| {
+            let [gx, gy] = grid.world_to_grid(pose.x_m, pose.y_m);
+            (z_order(gx as u32, gy as u32), index)
         })
         .collect();
     order.sort_unstable();
     let group = |members: &[(u64, usize)]| -> Vec<(usize, f64)> {
         let mut beams: Vec<(f64, usize, f64)> = Vec::with_capacity(members.len() * bearings.len());
-        for (slot, &(_, k)) in members.iter().enumerate() {
-            for &b in bearings {
+        for (slot, &(_, index)) in members.iter().enumerate() {
+            for &bearing in bearings {
                 beams.push((
-                    (poses[k].theta_rad + b).rem_euclid(std::f64::consts::TAU),
+                    (poses[index].theta_rad + bearing).rem_euclid(std::f64::consts::TAU),
                     slot,
-                    b,
+                    bearing,
                 ));
             }
         }
         beams.sort_by(|x, y| x.0.total_cmp(&y.0).then(x.1.cmp(&y.1)));
-        let mut totals: Vec<(usize, f64)> = members.iter().map(|&(_, k)| (k, 0.0)).collect();
+        let mut totals: Vec<(usize, f64)> =
+            members.iter().map(|&(_, index)| (index, 0.0)).collect();
         // One scratch for the group's beams (for the fast evaluator, a queue
         // of gains, which each beam leaves empty).
         let mut scratch = S::default();
-        for (_, slot, b) in beams {
-            totals[slot].1 += beam(&poses[totals[slot].0], b, &mut scratch);
+        for (_, slot, bearing) in beams {
+            totals[slot].1 += beam(&poses[totals[slot].0], bearing, &mut scratch);
         }
         totals
     };
     let groups: Vec<&[(u64, usize)]> = order.chunks(GROUP).collect();
     let mut gains = vec![0.0; poses.len()];
-    for (k, g) in parallel::map(groups, group).into_iter().flatten() {
-        gains[k] = g;
+    for (index, gain) in parallel::map(groups, group).into_iter().flatten() {
+        gains[index] = gain;
     }
     gains
 }

@@ -13,18 +13,19 @@ pub(super) fn weighted_gains_avx512<const N: usize>(rows: &Rows<'_, N>, jobs: &Q
 /// the sums to the weighted total (`N` a multiple of 8): each job's products
 /// fill eight lanes ([`row_sums_zmm`]), the eight jobs' lanes are summed
 /// together by a transposing tree ([`sum_pairs`], [`sum_quads`]), and the
-/// logarithm ([`ln_normal_zmm`], the same operations as [`ln_normal`]), the
+/// logarithm ([`ln_normal_zmm`], the same operations as
+/// [`ln_normal`](crate::numeric::ln_normal)), the
 /// two divisions and the weighting take the same instructions for all eight
 /// as for one. The weighted gains go into eight running sums, added pairwise
 /// at the end. Each job's gain is formed in the same order whatever its
 /// neighbours, and each beam's total in an order fixed by its own queue.
 #[target_feature(enable = "avx512f,avx512dq,avx512vl,avx2,fma")]
-fn weighted_gains_zmm<const N: usize>(rows: &Rows<'_, N>, q: &Queue) -> f64 {
+fn weighted_gains_zmm<const N: usize>(rows: &Rows<'_, N>, queue: &Queue) -> f64 {
     use std::arch::x86_64::*;
     // The bin counts with a path of their own (8, 16, 32) fill whole registers.
     const { assert!(N.is_multiple_of(8)) };
     const GROUPS: usize = SLOTS.div_ceil(8);
-    let n = q.len.min(SLOTS);
+    let n = queue.len.min(SLOTS);
     let groups = n.div_ceil(8);
     // Three passes over the groups of eight: the sums, the logarithms, the
     // weighted total.
@@ -40,18 +41,18 @@ fn weighted_gains_zmm<const N: usize>(rows: &Rows<'_, N>, q: &Queue) -> f64 {
         for (l, j) in j.iter_mut().enumerate() {
             *j = 8 * g + l.min(lanes - 1);
         }
-        let (za, aa) = row_sums_zmm::<N>(rows, q.cell[j[0]], q.offset[j[0]] / N);
-        let (zb, ab) = row_sums_zmm::<N>(rows, q.cell[j[1]], q.offset[j[1]] / N);
+        let (za, aa) = row_sums_zmm::<N>(rows, queue.cell[j[0]], queue.offset[j[0]] / N);
+        let (zb, ab) = row_sums_zmm::<N>(rows, queue.cell[j[1]], queue.offset[j[1]] / N);
         let (z01, a01) = (sum_pairs(za, zb), sum_pairs(aa, ab));
-        let (za, aa) = row_sums_zmm::<N>(rows, q.cell[j[2]], q.offset[j[2]] / N);
-        let (zb, ab) = row_sums_zmm::<N>(rows, q.cell[j[3]], q.offset[j[3]] / N);
+        let (za, aa) = row_sums_zmm::<N>(rows, queue.cell[j[2]], queue.offset[j[2]] / N);
+        let (zb, ab) = row_sums_zmm::<N>(rows, queue.cell[j[3]], queue.offset[j[3]] / N);
         let (z23, a23) = (sum_pairs(za, zb), sum_pairs(aa, ab));
         let (z0, a0) = (sum_quads(z01, z23), sum_quads(a01, a23));
-        let (za, aa) = row_sums_zmm::<N>(rows, q.cell[j[4]], q.offset[j[4]] / N);
-        let (zb, ab) = row_sums_zmm::<N>(rows, q.cell[j[5]], q.offset[j[5]] / N);
+        let (za, aa) = row_sums_zmm::<N>(rows, queue.cell[j[4]], queue.offset[j[4]] / N);
+        let (zb, ab) = row_sums_zmm::<N>(rows, queue.cell[j[5]], queue.offset[j[5]] / N);
         let (z45, a45) = (sum_pairs(za, zb), sum_pairs(aa, ab));
-        let (za, aa) = row_sums_zmm::<N>(rows, q.cell[j[6]], q.offset[j[6]] / N);
-        let (zb, ab) = row_sums_zmm::<N>(rows, q.cell[j[7]], q.offset[j[7]] / N);
+        let (za, aa) = row_sums_zmm::<N>(rows, queue.cell[j[6]], queue.offset[j[6]] / N);
+        let (zb, ab) = row_sums_zmm::<N>(rows, queue.cell[j[7]], queue.offset[j[7]] / N);
         let (z67, a67) = (sum_pairs(za, zb), sum_pairs(aa, ab));
         let (z1, a1) = (sum_quads(z45, z67), sum_quads(a45, a67));
         (z[g], a[g]) = (sum_quads(z0, z1), sum_quads(a0, a1));
@@ -89,14 +90,14 @@ fn weighted_gains_zmm<const N: usize>(rows: &Rows<'_, N>, q: &Queue) -> f64 {
         let used: __mmask8 = if lanes == 8 { 0xff } else { (1u8 << lanes) - 1 };
         // SAFETY: `8 g + 8 <= SLOTS` (`SLOTS` is a multiple of 8), so eight
         // weights and entropies lie in the queue.
-        let (w, entropy) = unsafe {
+        let (weight, entropy) = unsafe {
             (
-                _mm512_maskz_loadu_pd(used, q.weight.as_ptr().add(8 * g)),
-                _mm512_maskz_loadu_pd(used, q.entropy.as_ptr().add(8 * g)),
+                _mm512_maskz_loadu_pd(used, queue.weight.as_ptr().add(8 * g)),
+                _mm512_maskz_loadu_pd(used, queue.entropy.as_ptr().add(8 * g)),
             )
         };
         // Unused lanes keep `acc` as it is (whatever their posterior).
-        acc = _mm512_mask3_fmadd_pd(w, _mm512_sub_pd(entropy, posterior), acc, used);
+        acc = _mm512_mask3_fmadd_pd(weight, _mm512_sub_pd(entropy, posterior), acc, used);
     }
     let mut lanes = [0.0f64; 8];
     // SAFETY: `lanes` holds eight values.
@@ -104,28 +105,28 @@ fn weighted_gains_zmm<const N: usize>(rows: &Rows<'_, N>, q: &Queue) -> f64 {
     pairwise_sum(&lanes)
 }
 
-/// `Z` and `A` of cell `i` under kernel `e`, each as eight lane sums (`N` a
+/// `Z` and `A` of `cell` under `kernel`, each as eight lane sums (`N` a
 /// multiple of 8).
 #[target_feature(enable = "avx512f")]
 #[inline]
 fn row_sums_zmm<const N: usize>(
     rows: &Rows<'_, N>,
-    i: usize,
-    e: usize,
+    cell: usize,
+    kernel: usize,
 ) -> (std::arch::x86_64::__m512d, std::arch::x86_64::__m512d) {
     use std::arch::x86_64::*;
     assert!(
-        i < rows.h.len() && e < rows.k.len(),
+        cell < rows.h.len() && kernel < rows.k.len(),
         "cell or kernel out of range"
     );
     // SAFETY: `Rows::new` made `h_ln_h` as long as `h` and `k_ln_k` as long
     // as `k`, and the two indices were checked against those.
-    let (h, u, k, m) = unsafe {
+    let (h, h_ln_h, k, k_ln_k) = unsafe {
         (
-            rows.h.get_unchecked(i),
-            rows.h_ln_h.get_unchecked(i),
-            rows.k.get_unchecked(e),
-            rows.k_ln_k.get_unchecked(e),
+            rows.h.get_unchecked(cell),
+            rows.h_ln_h.get_unchecked(cell),
+            rows.k.get_unchecked(kernel),
+            rows.k_ln_k.get_unchecked(kernel),
         )
     };
     // Each chunk of eight bins on its own, then the chunks added pairwise.
@@ -133,17 +134,17 @@ fn row_sums_zmm<const N: usize>(
     let mut a = [_mm512_setzero_pd(); 4];
     for c in 0..N / 8 {
         // SAFETY: `8 c + 7 < N`, the length of every row.
-        let (hv, uv, kv, mv) = unsafe {
+        let (h_v, h_ln_h_v, k_v, k_ln_k_v) = unsafe {
             (
                 _mm512_cvtps_pd(_mm256_loadu_ps(h.as_ptr().add(8 * c))),
-                _mm512_loadu_pd(u.as_ptr().add(8 * c)),
+                _mm512_loadu_pd(h_ln_h.as_ptr().add(8 * c)),
                 _mm512_loadu_pd(k.as_ptr().add(8 * c)),
-                _mm512_loadu_pd(m.as_ptr().add(8 * c)),
+                _mm512_loadu_pd(k_ln_k.as_ptr().add(8 * c)),
             )
         };
         let (zc, ac) = (
-            _mm512_mul_pd(hv, kv),
-            _mm512_fmadd_pd(uv, kv, _mm512_mul_pd(hv, mv)),
+            _mm512_mul_pd(h_v, k_v),
+            _mm512_fmadd_pd(h_ln_h_v, k_v, _mm512_mul_pd(h_v, k_ln_k_v)),
         );
         if c < 4 {
             (z[c], a[c]) = (zc, ac);

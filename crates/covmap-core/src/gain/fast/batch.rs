@@ -117,23 +117,24 @@ const _: () = assert!(SLOTS.is_multiple_of(8));
 pub(super) fn weighted_gains_with<const N: usize, const A: u8>(
     has: Has<A>,
     rows: &Rows<'_, N>,
-    q: &Queue,
+    queue: &Queue,
 ) -> f64 {
     let _ = has;
-    let n = q.len.min(SLOTS);
+    let n = queue.len.min(SLOTS);
     // Unused slots hold Z = 1, A = 0.
     let mut z = [1.0f64; SLOTS];
     let mut a = [0.0f64; SLOTS];
     for j in 0..n {
-        let (i, e) = (q.cell[j], q.offset[j] / N);
+        let (cell, kernel) = (queue.cell[j], queue.offset[j] / N);
+        let (h, h_ln_h) = (&rows.h[cell], &rows.h_ln_h[cell]);
+        let (k, k_ln_k) = (&rows.k[kernel], &rows.k_ln_k[kernel]);
         #[cfg(target_arch = "x86_64")]
         if A >= AVX2 {
             // SAFETY: `has` shows that the processor has AVX2 and FMA.
-            (z[j], a[j]) =
-                unsafe { sums_avx2::<N>(&rows.h[i], &rows.h_ln_h[i], &rows.k[e], &rows.k_ln_k[e]) };
+            (z[j], a[j]) = unsafe { sums_avx2::<N>(h, h_ln_h, k, k_ln_k) };
             continue;
         }
-        (z[j], a[j]) = sums::<N>(&rows.h[i], &rows.h_ln_h[i], &rows.k[e], &rows.k_ln_k[e]);
+        (z[j], a[j]) = sums::<N>(h, h_ln_h, k, k_ln_k);
     }
     // `ln Z - A / Z` for the whole batch.
     let mut posterior = [0.0f64; SLOTS];
@@ -148,7 +149,7 @@ pub(super) fn weighted_gains_with<const N: usize, const A: u8>(
         } else {
             z[j].ln() - a[j] / z[j]
         };
-        total += q.weight[j] * (q.entropy[j] - h_post);
+        total += queue.weight[j] * (queue.entropy[j] - h_post);
     }
     total
 }
@@ -156,58 +157,70 @@ pub(super) fn weighted_gains_with<const N: usize, const A: u8>(
 /// `Z = sum h k` and `A = sum k (h ln h) + h (k ln k)` for `N` bins (a
 /// multiple of 4), in four lanes added in a fixed order.
 #[inline(always)]
-fn sums<const N: usize>(h: &[f32; N], u: &[f64; N], k: &[f64; N], m: &[f64; N]) -> (f64, f64) {
+fn sums<const N: usize>(
+    h: &[f32; N],
+    h_ln_h: &[f64; N],
+    k: &[f64; N],
+    k_ln_k: &[f64; N],
+) -> (f64, f64) {
     let mut z = [0.0f64; 4];
     let mut a = [0.0f64; 4];
-    for c in 0..N / 4 {
-        for l in 0..4 {
-            let b = 4 * c + l;
+    for chunk in 0..N / 4 {
+        for lane in 0..4 {
+            let b = 4 * chunk + lane;
             let hb = f64::from(h[b]);
-            z[l] += hb * k[b];
-            a[l] += u[b] * k[b] + hb * m[b];
+            z[lane] += hb * k[b];
+            a[lane] += h_ln_h[b] * k[b] + hb * k_ln_k[b];
         }
     }
     ((z[0] + z[2]) + (z[1] + z[3]), (a[0] + a[2]) + (a[1] + a[3]))
 }
 
 /// [`weighted_gains`] for any bin count, plainly.
-pub(super) fn weighted_gains_any(beam: &Beam<'_>, q: &Queue) -> f64 {
+pub(super) fn weighted_gains_any(beam: &Beam<'_>, queue: &Queue) -> f64 {
     let bins = beam.map.bins();
-    let (k, m) = (beam.table.values_f64(), beam.table.k_ln_k());
+    let (kernels, k_ln_k) = (beam.table.values_f64(), beam.table.k_ln_k());
     let mut total = 0.0;
-    for (((&i, &offset), &w), &entropy) in q
+    for (((&cell, &offset), &weight), &entropy) in queue
         .cell
         .iter()
-        .zip(&q.offset)
-        .zip(&q.weight)
-        .zip(&q.entropy)
-        .take(q.len)
+        .zip(&queue.offset)
+        .zip(&queue.weight)
+        .zip(&queue.entropy)
+        .take(queue.len)
     {
-        let cell = i * bins..(i + 1) * bins;
-        let (h, u) = (
-            &beam.map.histograms()[cell.clone()],
-            &beam.cache.h_ln_h[cell],
+        let histogram = cell * bins..(cell + 1) * bins;
+        let (h, h_ln_h) = (
+            &beam.map.histograms()[histogram.clone()],
+            &beam.terms.h_ln_h[histogram],
         );
         let kernel = offset..offset + bins;
-        let h_u = h.iter().map(|&v| f64::from(v)).zip(u.iter().copied());
-        total += w * plain_gain(h_u, entropy, &k[kernel.clone()], &m[kernel]);
+        let h_and_h_ln_h = h.iter().map(|&v| f64::from(v)).zip(h_ln_h.iter().copied());
+        total += weight
+            * plain_gain(
+                h_and_h_ln_h,
+                entropy,
+                &kernels[kernel.clone()],
+                &k_ln_k[kernel],
+            );
     }
     total
 }
 
 /// `H(h) - H(h k / Z) = H(h) - ln Z + A / Z` (see [`weighted_gains_with`]),
-/// plainly, for any bin count: `h_u` gives each bin's `(h, h ln h)`,
-/// `entropy` is `H(h)`, `k` the kernel and `m` its `k ln k`.
+/// plainly, for any bin count: `h_and_h_ln_h` gives each bin's
+/// `(h, h ln h)`, `entropy` is `H(h)`, `k` the kernel and `k_ln_k` its
+/// `k ln k`.
 pub(super) fn plain_gain(
-    h_u: impl Iterator<Item = (f64, f64)>,
+    h_and_h_ln_h: impl Iterator<Item = (f64, f64)>,
     entropy: f64,
     k: &[f64],
-    m: &[f64],
+    k_ln_k: &[f64],
 ) -> f64 {
     let (mut z, mut a) = (0.0, 0.0);
-    for ((h, u), (&k, &m)) in h_u.zip(k.iter().zip(m)) {
+    for ((h, h_ln_h), (&k, &k_ln_k)) in h_and_h_ln_h.zip(k.iter().zip(k_ln_k)) {
         z += h * k;
-        a += u * k + h * m;
+        a += h_ln_h * k + h * k_ln_k;
     }
     entropy - (z.ln() - a / z)
 }

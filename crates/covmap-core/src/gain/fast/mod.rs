@@ -31,9 +31,9 @@
 //!   by cell.
 //!
 //! The parts: [`walk`] follows a beam's footprint and sends each cell's gains
-//! to the queue of [`batch`] (or adds them at once from [`cache`] for cells
-//! at the prior); [`arith`] picks the widest arithmetic the processor has and
-//! compiles the walk and the batches for it ([`avx2`], [`avx512`]).
+//! to the queue of [`batch`] (or adds them at once from [`cell_terms`] for
+//! cells at the prior); [`arith`] picks the widest arithmetic the processor
+//! has and compiles the walk and the batches for it ([`avx2`], [`avx512`]).
 
 mod arith;
 #[cfg(target_arch = "x86_64")]
@@ -41,11 +41,11 @@ mod avx2;
 #[cfg(target_arch = "x86_64")]
 mod avx512;
 mod batch;
-mod cache;
+mod cell_terms;
 #[cfg(test)]
 mod tests;
 mod walk;
 
 pub(super) use arith::Arith;
 pub(super) use batch::Queue;
-pub(super) use cache::LogCache;
+pub(super) use cell_terms::CellTerms;

@@ -4,20 +4,20 @@
 use super::arith::Has;
 use super::arith::weighted_gains;
 use super::batch::{BATCH, Queue, Rows, pairwise_sum, weighted_gains_any};
-use super::cache::LogCache;
+use super::cell_terms::CellTerms;
 use crate::coverage_map::CoverageMap;
-use crate::footprint::{CellVisitor, ROW_BLOCK, visit};
+use crate::footprint::{CellVisitor, ROW_BLOCK, cells_of_block, visit};
 use crate::gain::GainEvaluator;
 use crate::histogram::with_bins;
 use crate::sensor::{KernelTable, ReadingLookup};
 
 impl GainEvaluator<'_> {
-    /// The expected gain of one beam from `origin` along `angle`, with the
-    /// cells' cache of this evaluator's map and `queue`, which it leaves
+    /// The expected gain of one beam from `origin` along `angle`, from the
+    /// `terms` of this evaluator's map's cells, with `queue`, which it leaves
     /// empty.
     pub(in crate::gain) fn fast_beam(
         &self,
-        cache: &LogCache,
+        terms: &CellTerms,
         origin: [f64; 2],
         angle: f64,
         queue: &mut Queue,
@@ -41,7 +41,7 @@ impl GainEvaluator<'_> {
         // The footprint of the farthest reading that can occur: no cell
         // beyond it is updated by any (behind a wall the ML map marks as
         // covered, none), and footprints of growing reaches are nested.
-        let echo_reach = possible.last().map_or(0.0, |h| h.reach);
+        let echo_reach = possible.last().map_or(0.0, |echo| echo.reach);
         let reach = if dist.no_echo > 0.0 {
             echo_reach.max(none_reach)
         } else {
@@ -62,7 +62,7 @@ impl GainEvaluator<'_> {
             angle,
             reach,
             map: self.map,
-            cache,
+            terms,
             table: &self.table,
             possible: &possible,
             suffix: &suffix,
@@ -89,8 +89,8 @@ impl GainEvaluator<'_> {
     ) -> f64 {
         let rows = Rows::new(
             self.map.histograms(),
-            &beam.cache.h_ln_h,
-            &beam.cache.entropy,
+            &beam.terms.h_ln_h,
+            &beam.terms.entropy,
             self.table.values_f64(),
             self.table.k_ln_k(),
         );
@@ -168,7 +168,8 @@ pub(super) struct Beam<'a> {
     /// How far its footprint is walked, metres.
     reach: f64,
     pub(super) map: &'a CoverageMap,
-    pub(super) cache: &'a LogCache,
+    /// What every cell of the map gains from.
+    pub(super) terms: &'a CellTerms,
     pub(super) table: &'a KernelTable,
     /// The echoes of non-zero probability, nearest first.
     possible: &'a [Hypothesis],
@@ -217,11 +218,11 @@ impl<const N: usize, const A: u8> FastBeam<'_, N, A> {
         if self.queue.len == 0 {
             return;
         }
-        let q = &self.queue;
+        let queue = &self.queue;
         self.total += if N == 0 {
-            weighted_gains_any(self.beam, q)
+            weighted_gains_any(self.beam, queue)
         } else {
-            weighted_gains::<N, A>(self.has, &self.rows, q)
+            weighted_gains::<N, A>(self.has, &self.rows, queue)
         };
         self.queue.len = 0;
     }
@@ -237,14 +238,14 @@ impl<const N: usize, const A: u8> FastBeam<'_, N, A> {
             use std::arch::x86_64::{_MM_HINT_T0, _mm_prefetch};
             // Addresses only (`wrapping_add` never reads), so no bounds
             // check: a prefetch of any address is harmless.
-            let h = self.rows.h.as_ptr().wrapping_add(i).cast::<i8>();
-            let u = self.rows.h_ln_h.as_ptr().wrapping_add(i).cast::<i8>();
+            let histogram = self.rows.h.as_ptr().wrapping_add(i).cast::<i8>();
+            let h_ln_h = self.rows.h_ln_h.as_ptr().wrapping_add(i).cast::<i8>();
             // SAFETY: SSE is part of every x86-64 processor, and a prefetch
             // only hints at an address: it never reads or faults.
             unsafe {
-                _mm_prefetch::<_MM_HINT_T0>(h);
-                _mm_prefetch::<_MM_HINT_T0>(u);
-                _mm_prefetch::<_MM_HINT_T0>(u.wrapping_add(64));
+                _mm_prefetch::<_MM_HINT_T0>(histogram);
+                _mm_prefetch::<_MM_HINT_T0>(h_ln_h);
+                _mm_prefetch::<_MM_HINT_T0>(h_ln_h.wrapping_add(64));
             }
         }
         #[cfg(not(target_arch = "x86_64"))]
@@ -271,7 +272,11 @@ impl<const N: usize, const A: u8> FastBeam<'_, N, A> {
         while j < beam.possible.len() && beam.possible[j].reach < near {
             j += 1;
         }
-        if beam.possible.get(j).is_some_and(|h| !h.lookup.is_free(far)) {
+        if beam
+            .possible
+            .get(j)
+            .is_some_and(|echo| !echo.lookup.is_free(far))
+        {
             return None;
         }
         if far <= beam.none_reach {
@@ -290,24 +295,29 @@ impl<const N: usize, const A: u8> FastBeam<'_, N, A> {
         offset / bins
     }
 
-    /// Cell `i`'s gain under the kernel at `offset`, weighted by `w`: added at
+    /// Cell `i`'s gain under the kernel at `offset`, times `weight`: added at
     /// once from the prior's gains if the cell is at the prior, else queued.
     #[inline(always)]
-    fn gain(&mut self, i: usize, offset: usize, w: f64, prior: bool) {
+    fn gain(&mut self, i: usize, offset: usize, weight: f64, prior: bool) {
         if prior {
-            self.total += w * self.beam.cache.prior_gain[self.kernel_index(offset)];
+            self.total += weight * self.beam.terms.prior_gain[self.kernel_index(offset)];
         } else {
-            self.push(i, offset, w);
+            self.push(i, offset, weight);
         }
     }
 
     /// Queue one gain; compute the batch when it is full.
     #[inline(always)]
-    fn push(&mut self, i: usize, offset: usize, w: f64) {
+    fn push(&mut self, i: usize, offset: usize, weight: f64) {
         debug_assert!(self.queue.len < BATCH);
         let j = self.queue.len.min(BATCH);
-        let q = &mut self.queue;
-        (q.cell[j], q.offset[j], q.weight[j], q.entropy[j]) = (i, offset, w, self.rows.entropy[i]);
+        let queue = &mut self.queue;
+        (
+            queue.cell[j],
+            queue.offset[j],
+            queue.weight[j],
+            queue.entropy[j],
+        ) = (i, offset, weight, self.rows.entropy[i]);
         self.queue.len = j + 1;
         if self.queue.len >= BATCH {
             self.flush();
@@ -319,7 +329,7 @@ impl<const N: usize, const A: u8> CellVisitor for FastBeam<'_, N, A> {
     #[inline(always)]
     fn cell(&mut self, i: usize, d_l: f64, enter: f64) {
         let beam = self.beam;
-        let prior = beam.cache.prior[i] != 0;
+        let prior = beam.terms.prior[i] != 0;
         if !prior {
             self.prefetch(i);
         }
@@ -335,12 +345,12 @@ impl<const N: usize, const A: u8> CellVisitor for FastBeam<'_, N, A> {
         // distance min(d_l, d) = d_l.
         let mut j = lo;
         while j < hi {
-            let h = &beam.possible[j];
-            if enter <= h.reach {
-                if h.lookup.is_free(d_l) {
+            let echo = &beam.possible[j];
+            if enter <= echo.reach {
+                if echo.lookup.is_free(d_l) {
                     break;
                 }
-                self.gain(i, h.lookup.offset(d_l), h.p, prior);
+                self.gain(i, echo.lookup.offset(d_l), echo.p, prior);
             }
             j += 1;
         }
@@ -362,14 +372,14 @@ impl<const N: usize, const A: u8> CellVisitor for FastBeam<'_, N, A> {
         bounds: [f64; 2],
         reach_m: f64,
     ) {
-        if let Some(w) = self.block_weight(bounds, reach_m) {
-            // Every cell of the block gets the free kernel with weight `w`:
+        if let Some(weight) = self.block_weight(bounds, reach_m) {
+            // Every cell of the block gets the free kernel with `weight`:
             // what `cell` would do for each, done for the block at once.
-            if w <= 0.0 {
+            if weight <= 0.0 {
                 return;
             }
             let free = self.beam.none_lookup;
-            let prior = &self.beam.cache.prior[first..first + n];
+            let prior = &self.beam.terms.prior[first..first + n];
             let flags = match prior.first_chunk::<ROW_BLOCK>() {
                 Some(all) => u64::from_ne_bytes(*all),
                 None => u64::from(prior.iter().any(|&p| p != 0)),
@@ -378,44 +388,45 @@ impl<const N: usize, const A: u8> CellVisitor for FastBeam<'_, N, A> {
                 // The whole block is at the prior (common in unexplored
                 // space): free-space kernels are the table's first, so the
                 // distance step is the kernel's index.
-                let gains = &self.beam.cache.prior_gain;
-                let g: [f64; ROW_BLOCK] = std::array::from_fn(|k| gains[free.free_step(d[k])]);
-                self.total += w * pairwise_sum(&g);
+                let gains = &self.beam.terms.prior_gain;
+                let block: [f64; ROW_BLOCK] = std::array::from_fn(|k| gains[free.free_step(d[k])]);
+                self.total += weight * pairwise_sum(&block);
                 return;
             }
             if flags != 0 {
                 // Cells at the prior take their gains from the table, summed
                 // pairwise over the block; the others are queued.
-                let mut g = [0.0f64; ROW_BLOCK];
+                let mut gains = [0.0f64; ROW_BLOCK];
                 for k in 0..n {
                     if prior[k] != 0 {
-                        g[k] = self.beam.cache.prior_gain[free.free_step(d[k])];
+                        gains[k] = self.beam.terms.prior_gain[free.free_step(d[k])];
                     } else {
                         self.prefetch(first + k);
-                        self.push(first + k, free.free_offset(d[k]), w);
+                        self.push(first + k, free.free_offset(d[k]), weight);
                     }
                 }
-                self.total += w * pairwise_sum(&g);
+                self.total += weight * pairwise_sum(&gains);
                 return;
             }
             // Fewer than `BATCH` wait, so the block fits; the `min` only
             // tells the compiler so.
-            let q = &mut self.queue;
-            let at = q.len.min(BATCH);
+            let queue = &mut self.queue;
+            let at = queue.len.min(BATCH);
             let slots = at..at + ROW_BLOCK;
-            for (k, ((cell, offset), weight)) in q.cell[slots.clone()]
+            for (k, ((cell, offset), job_weight)) in queue.cell[slots.clone()]
                 .iter_mut()
-                .zip(&mut q.offset[slots.clone()])
-                .zip(&mut q.weight[slots])
+                .zip(&mut queue.offset[slots.clone()])
+                .zip(&mut queue.weight[slots])
                 .enumerate()
             {
-                (*cell, *offset, *weight) = (first + k, free.free_offset(d[k]), w);
+                (*cell, *offset, *job_weight) = (first + k, free.free_offset(d[k]), weight);
             }
-            match self.rows.entropy.get(first..first + ROW_BLOCK) {
-                Some(e) => q.entropy[at..at + ROW_BLOCK].copy_from_slice(e),
-                None => q.entropy[at..at + n].copy_from_slice(&self.rows.entropy[first..first + n]),
+            let entropies = &self.rows.entropy;
+            match entropies.get(first..first + ROW_BLOCK) {
+                Some(block) => queue.entropy[at..at + ROW_BLOCK].copy_from_slice(block),
+                None => queue.entropy[at..at + n].copy_from_slice(&entropies[first..first + n]),
             }
-            q.len = at + n;
+            queue.len = at + n;
             for k in 0..n {
                 self.prefetch(first + k);
             }
@@ -424,10 +435,6 @@ impl<const N: usize, const A: u8> CellVisitor for FastBeam<'_, N, A> {
             }
             return;
         }
-        for (k, &d) in d[..n].iter().enumerate() {
-            if d <= reach_m {
-                self.cell(first + k, d, d);
-            }
-        }
+        cells_of_block(self, first, d, n, reach_m);
     }
 }

@@ -1,6 +1,6 @@
 //! What the fast evaluator knows of every cell before any beam is walked:
 //! its `h ln h`, its entropy, whether it is at the prior, and what the prior
-//! gains under each kernel.
+//! gains under each kernel (the per-cell terms of every gain).
 
 use super::batch::plain_gain;
 use crate::aligned::Aligned;
@@ -20,9 +20,11 @@ use crate::sensor::KernelTable;
 /// gain the same under a kernel, so their gains are computed once per kernel
 /// of the table and looked up: in unexplored space a pair then costs a table
 /// read, not three dot products and a logarithm.
-pub(in crate::gain) struct LogCache {
-    /// Laid out as the histograms, from the start of a cache line.
+pub(in crate::gain) struct CellTerms {
+    /// `h ln h` of every bin, laid out as the histograms, from the start of a
+    /// cache line.
     pub(super) h_ln_h: Aligned<f64>,
+    /// Each cell's entropy.
     pub(super) entropy: Vec<f64>,
     /// 1 for a cell at the uniform prior, else 0 (bytes, so that a row block
     /// reads its eight flags as one word).
@@ -32,33 +34,49 @@ pub(in crate::gain) struct LogCache {
     pub(super) prior_gain: Vec<f64>,
 }
 
-impl LogCache {
+impl CellTerms {
+    /// The terms of every cell of `map`, and the prior's gains under the
+    /// kernels of `table`.
     pub(in crate::gain) fn new(map: &CoverageMap, table: &KernelTable) -> Self {
         let bins = map.bins();
-        let h = map.histograms();
-        let mut h_ln_h = Aligned::zeroed(h.len());
-        let mut entropy = vec![0.0; h.len() / bins];
-        let mut prior = vec![0u8; h.len() / bins];
+        let histograms = map.histograms();
+        let mut h_ln_h = Aligned::zeroed(histograms.len());
+        let mut entropy = vec![0.0; histograms.len() / bins];
+        let mut prior = vec![0u8; histograms.len() / bins];
         let prior_bits = (1.0 / bins as f32).to_bits();
         // One pass per piece of the map: its `h ln h`, then its entropies and
         // which of its cells are at the prior.
         const CELLS: usize = 4096;
-        let fill = |(((u, e), p), h): Piece<'_>| {
-            u.iter_mut()
-                .zip(h)
-                .for_each(|(u, &v)| *u = x_ln_x_of_f32(v));
-            e.iter_mut()
-                .zip(u.chunks_exact(bins))
-                .for_each(|(e, u)| *e = -u.iter().sum::<f64>());
-            p.iter_mut()
-                .zip(h.chunks_exact(bins))
-                .for_each(|(p, h)| *p = u8::from(h.iter().all(|v| v.to_bits() == prior_bits)));
+        let fill = |piece: Piece<'_>| {
+            piece
+                .h_ln_h
+                .iter_mut()
+                .zip(piece.histograms)
+                .for_each(|(h_ln_h, &h)| *h_ln_h = x_ln_x_of_f32(h));
+            piece
+                .entropy
+                .iter_mut()
+                .zip(piece.h_ln_h.chunks_exact(bins))
+                .for_each(|(entropy, h_ln_h)| *entropy = -h_ln_h.iter().sum::<f64>());
+            piece
+                .prior
+                .iter_mut()
+                .zip(piece.histograms.chunks_exact(bins))
+                .for_each(|(prior, histogram)| {
+                    *prior = u8::from(histogram.iter().all(|h| h.to_bits() == prior_bits))
+                });
         };
         let pieces: Vec<Piece<'_>> = h_ln_h
             .chunks_mut(CELLS * bins)
             .zip(entropy.chunks_mut(CELLS))
             .zip(prior.chunks_mut(CELLS))
-            .zip(h.chunks(CELLS * bins))
+            .zip(histograms.chunks(CELLS * bins))
+            .map(|(((h_ln_h, entropy), prior), histograms)| Piece {
+                h_ln_h,
+                entropy,
+                prior,
+                histograms,
+            })
             .collect();
         parallel::map(pieces, fill);
         let prior_gain = if prior.contains(&1) {
@@ -75,21 +93,29 @@ impl LogCache {
     }
 }
 
-/// A piece of the map as [`LogCache::new`] fills it: its `h ln h`, its
-/// entropies and prior flags (to be written), and its histograms.
-type Piece<'p> = (((&'p mut [f64], &'p mut [f64]), &'p mut [u8]), &'p [f32]);
+/// A piece of the map as [`CellTerms::new`] fills it.
+struct Piece<'p> {
+    /// Its `h ln h`, to be written.
+    h_ln_h: &'p mut [f64],
+    /// Its cells' entropies, to be written.
+    entropy: &'p mut [f64],
+    /// Its cells' prior flags, to be written.
+    prior: &'p mut [u8],
+    /// Its histograms.
+    histograms: &'p [f32],
+}
 
 /// The gain `H(h) - H(h k / Z)` of the uniform prior `h` under every kernel
 /// `k` of `table`, with the prior's `h ln h` and entropy computed as
-/// [`LogCache`] computes every cell's.
+/// [`CellTerms`] computes every cell's.
 fn prior_gains(bins: usize, table: &KernelTable) -> Vec<f64> {
     let p = 1.0 / bins as f32;
-    let (h, u) = (f64::from(p), x_ln_x_of_f32(p));
-    let entropy = -(0..bins).map(|_| u).sum::<f64>();
+    let (h, h_ln_h) = (f64::from(p), x_ln_x_of_f32(p));
+    let entropy = -(0..bins).map(|_| h_ln_h).sum::<f64>();
     table
         .values_f64()
         .chunks_exact(bins)
         .zip(table.k_ln_k().chunks_exact(bins))
-        .map(|(k, m)| plain_gain(std::iter::repeat_n((h, u), bins), entropy, k, m))
+        .map(|(k, k_ln_k)| plain_gain(std::iter::repeat_n((h, h_ln_h), bins), entropy, k, k_ln_k))
         .collect()
 }
