@@ -276,6 +276,7 @@ fn visit_ray(grid: &Grid, [sx, sy]: [f64; 2], angle: f64, reach: f64, f: &mut im
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::test_rng::uniform;
     use std::collections::BTreeMap;
 
     fn collect(
@@ -313,13 +314,7 @@ mod tests {
     #[test]
     fn cone_matches_brute_force() {
         let grid = Grid::new([-3.0, -2.0], 0.1, 47, 61).unwrap();
-        let mut seed = 0x9e37_79b9_7f4a_7c15u64;
-        let mut next = || {
-            seed ^= seed << 13;
-            seed ^= seed >> 7;
-            seed ^= seed << 17;
-            (seed >> 11) as f64 / (1u64 << 53) as f64
-        };
+        let mut next = uniform(0x9e37_79b9_7f4a_7c15);
         for _ in 0..300 {
             let o = [-3.0 + 6.1 * next(), -2.0 + 4.7 * next()];
             let axis = std::f64::consts::TAU * (next() - 0.5) * 2.0;

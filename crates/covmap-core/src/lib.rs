@@ -38,6 +38,8 @@ mod parallel;
 pub mod planner;
 mod pose;
 pub mod sensor;
+#[cfg(test)]
+mod test_rng;
 
 // The old name of `pose`, for the planner until it imports `crate::pose`.
 use pose as scan;

@@ -196,6 +196,7 @@ mod tests {
     use super::*;
     use crate::error::CovmapError;
     use crate::gain::reading_distribution;
+    use crate::gain::test_maps::scanned;
     use crate::grid::Grid;
     use crate::sensor::{LaserModel, SonarModel};
 
@@ -254,19 +255,16 @@ mod tests {
     #[test]
     fn a_range_far_beyond_the_map_is_traced_to_the_map_edge() {
         let grid = Grid::new([0.0, 0.0], 0.1, 30, 40).unwrap();
-        let mut map = CoverageMap::new(grid);
         let mut laser = LaserModel::default();
         laser.range.max_range_m = 1e12;
         laser.range.sigma_per_m = 0.0;
         laser.range.xi_per_m = 0.0;
         let bearings: Vec<f64> = (0..8).map(|k| f64::from(k) * 0.8).collect();
-        map.integrate(
-            &Pose::new(2.0, 1.5, 0.1),
+        let scan: (Pose, &[f64]) = (
+            Pose::new(2.0, 1.5, 0.1),
             &[1.0, 0.7, 3.0, 0.4, 2.0, 0.9, 1e13, 1.2],
-            &bearings,
-            &laser,
-        )
-        .unwrap();
+        );
+        let map = scanned(grid, &[scan], &bearings, &laser);
         let d = reading_distribution(map.grid(), &map.ml(), [2.0, 1.5], 0.3, &laser.range, 0.1)
             .unwrap();
         assert!(

@@ -41,6 +41,8 @@ mod exact;
 mod fast;
 mod options;
 mod schedule;
+#[cfg(test)]
+mod test_maps;
 
 pub use evaluator::GainEvaluator;
 pub use exact::information_gain;

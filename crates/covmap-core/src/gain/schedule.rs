@@ -78,7 +78,7 @@ pub(super) fn in_groups<S: Default>(
 
 #[cfg(test)]
 mod tests {
-    use crate::coverage_map::CoverageMap;
+    use crate::gain::test_maps::{ring_of_eight, scanned};
     use crate::gain::{GainEvaluator, GainMethod, GainOptions};
     use crate::grid::Grid;
     use crate::pose::Pose;
@@ -86,16 +86,14 @@ mod tests {
 
     #[test]
     fn a_candidate_gains_the_same_alone_and_in_company() {
-        let mut map = CoverageMap::new(Grid::new([0.0, 0.0], 0.1, 40, 50).unwrap());
+        let grid = Grid::new([0.0, 0.0], 0.1, 40, 50).unwrap();
         let sonar = SonarModel::default();
-        let bearings: Vec<f64> = (0..8).map(|i| i as f64 * 0.785).collect();
-        map.integrate(
-            &Pose::new(2.0, 2.0, 0.3),
+        let bearings = ring_of_eight();
+        let scan: (Pose, &[f64]) = (
+            Pose::new(2.0, 2.0, 0.3),
             &[1.2, 2.0, 6.0, 0.7, 1.5, 2.2, 3.0, 0.4],
-            &bearings,
-            &sonar,
-        )
-        .unwrap();
+        );
+        let map = scanned(grid, &[scan], &bearings, &sonar);
         let eval = GainEvaluator::new(&map, &sonar, GainOptions::default()).unwrap();
         let poses: Vec<Pose> = (0..40)
             .map(|k| Pose::new(0.3 + 0.12 * k as f64, 0.4 + 0.09 * k as f64, 0.7 * k as f64))

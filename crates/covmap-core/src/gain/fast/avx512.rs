@@ -206,6 +206,7 @@ mod tests {
     use super::*;
     use crate::aligned::Aligned;
     use crate::numeric::x_ln_x;
+    use crate::test_rng::uniform;
 
     /// The AVX-512 batch gives the plain batch's sum, for every bin count it
     /// serves and every queue length, with cells whose normaliser `Z` is
@@ -216,13 +217,7 @@ mod tests {
             return;
         }
         fn check<const N: usize>() {
-            let mut state = 0x9e37_79b9_7f4a_7c15u64;
-            let mut next = move || {
-                state ^= state << 13;
-                state ^= state >> 7;
-                state ^= state << 17;
-                (state >> 11) as f64 / (1u64 << 53) as f64
-            };
+            let mut next = uniform(0x9e37_79b9_7f4a_7c15);
             // 40 cells; the last one's mass lies in the last bin.
             let cells = 40;
             let mut h = vec![0.0f32; cells * N];

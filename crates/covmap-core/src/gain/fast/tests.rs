@@ -3,31 +3,29 @@
 
 use super::Arith;
 use crate::coverage_map::CoverageMap;
+use crate::gain::test_maps::{ring_of_eight, scanned};
 use crate::gain::{GainEvaluator, GainMethod, GainOptions, StopCoverage};
 use crate::grid::Grid;
 use crate::pose::Pose;
 use crate::sensor::{LaserModel, SensorModel, SonarModel};
+use crate::test_rng::uniform;
 
 #[test]
 fn fast_equals_exact_on_a_partly_known_map() {
     let grid = Grid::new([0.0, 0.0], 0.1, 50, 70).unwrap();
-    let mut map = CoverageMap::new(grid);
     let sonar = SonarModel::default();
-    let bearings: Vec<f64> = (0..8).map(|i| i as f64 * 0.785).collect();
-    map.integrate(
-        &Pose::new(3.0, 2.5, 0.1),
-        &[1.2, 2.0, 6.0, 0.7, 1.5, 2.2, 3.0, 0.4],
-        &bearings,
-        &sonar,
-    )
-    .unwrap();
-    map.integrate(
-        &Pose::new(5.0, 2.0, -0.3),
-        &[2.5, 1.0, 1.7, 0.9, 5.5, 2.2, 1.0, 0.8],
-        &bearings,
-        &sonar,
-    )
-    .unwrap();
+    let bearings = ring_of_eight();
+    let scans: [(Pose, &[f64]); 2] = [
+        (
+            Pose::new(3.0, 2.5, 0.1),
+            &[1.2, 2.0, 6.0, 0.7, 1.5, 2.2, 3.0, 0.4],
+        ),
+        (
+            Pose::new(5.0, 2.0, -0.3),
+            &[2.5, 1.0, 1.7, 0.9, 5.5, 2.2, 1.0, 0.8],
+        ),
+    ];
+    let map = scanned(grid, &scans, &bearings, &sonar);
     // No band behind the end point: an echo's reach then ends where its
     // free space does, give or take the end band.
     let mut laser_no_band = LaserModel::default();
@@ -74,13 +72,7 @@ fn fast_equals_exact_on_a_partly_known_map() {
 /// the map raises to its floor, 1e-30).
 #[test]
 fn every_arithmetic_equals_exact_on_random_maps() {
-    let mut state = 0x243f_6a88_85a3_08d3u64;
-    let mut next = move || {
-        state ^= state << 13;
-        state ^= state >> 7;
-        state ^= state << 17;
-        (state >> 11) as f64 / (1u64 << 53) as f64
-    };
+    let mut next = uniform(0x243f_6a88_85a3_08d3);
     let grid = Grid::new([0.0, 0.0], 0.1, 24, 28).unwrap();
     for case in 0..24 {
         let bins = [8, 16, 32, 12][case % 4];
