@@ -2,7 +2,7 @@
 
 use serde::{Deserialize, Serialize};
 
-use crate::error::{CovmapError, Result};
+use crate::error::{CovmapError, Result, check_parameter};
 use crate::footprint::visit;
 use crate::grid::Grid;
 use crate::pose::{Pose, validate_scan};
@@ -63,15 +63,12 @@ impl TryFrom<ScanCountsData> for ScanCounts {
 
 /// Errors unless `discount_beyond_m` is a positive, finite distance.
 fn check_discount(discount_beyond_m: f64) -> Result<()> {
-    if discount_beyond_m.is_finite() && discount_beyond_m > 0.0 {
-        Ok(())
-    } else {
-        Err(CovmapError::InvalidParameter {
-            name: "discount_beyond_m",
-            value: discount_beyond_m,
-            expected: "a positive, finite distance",
-        })
-    }
+    check_parameter(
+        discount_beyond_m.is_finite() && discount_beyond_m > 0.0,
+        "discount_beyond_m",
+        discount_beyond_m,
+        "a positive, finite distance",
+    )
 }
 
 impl ScanCounts {

@@ -109,3 +109,22 @@ pub enum CovmapError {
 
 /// Shorthand for results of this crate.
 pub type Result<T, E = CovmapError> = std::result::Result<T, E>;
+
+/// `Ok` if `ok`, else [`CovmapError::InvalidParameter`]: parameter `name`
+/// has `value`, and `expected` says what it must satisfy.
+pub(crate) fn check_parameter(
+    ok: bool,
+    name: &'static str,
+    value: f64,
+    expected: &'static str,
+) -> Result<()> {
+    if ok {
+        Ok(())
+    } else {
+        Err(CovmapError::InvalidParameter {
+            name,
+            value,
+            expected,
+        })
+    }
+}

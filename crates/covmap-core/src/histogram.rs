@@ -5,7 +5,7 @@
 //! covered" (1), both exactly representable, which matters because most cells are
 //! one or the other.
 
-use crate::error::{CovmapError, Result};
+use crate::error::{Result, check_parameter};
 use crate::numeric::x_ln_x;
 
 /// The fewest bins a histogram may have.
@@ -68,15 +68,12 @@ pub(crate) use with_bins;
 
 /// Errors unless `bins` lies in `[MIN_BINS, MAX_BINS]`.
 pub fn check_bins(bins: usize) -> Result<()> {
-    if (MIN_BINS..=MAX_BINS).contains(&bins) {
-        Ok(())
-    } else {
-        Err(CovmapError::InvalidParameter {
-            name: "bins",
-            value: bins as f64,
-            expected: "a bin count from 2 to 256",
-        })
-    }
+    check_parameter(
+        (MIN_BINS..=MAX_BINS).contains(&bins),
+        "bins",
+        bins as f64,
+        "a bin count from 2 to 256",
+    )
 }
 
 /// The coverage value of bin `b` of `bins`.

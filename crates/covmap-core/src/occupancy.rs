@@ -3,7 +3,7 @@
 use serde::{Deserialize, Serialize};
 
 use crate::counting::ScanCounts;
-use crate::error::{CovmapError, Result};
+use crate::error::{CovmapError, Result, check_parameter};
 use crate::footprint::visit;
 use crate::grid::Grid;
 use crate::pose::{Pose, validate_scan};
@@ -41,27 +41,24 @@ impl Default for OccupancyModel {
 impl OccupancyModel {
     /// Errors unless `0.5 < p_occupied < 1`, `0 < p_free < 0.5`, limit > 0.
     pub fn validate(&self) -> Result<()> {
-        let bad = |name, value, expected| {
-            Err(CovmapError::InvalidParameter {
-                name,
-                value,
-                expected,
-            })
-        };
-        if !(self.p_occupied > 0.5 && self.p_occupied < 1.0) {
-            return bad("p_occupied", self.p_occupied, "a probability in (0.5, 1)");
-        }
-        if !(self.p_free > 0.0 && self.p_free < 0.5) {
-            return bad("p_free", self.p_free, "a probability in (0, 0.5)");
-        }
-        if !(self.log_odds_limit.is_finite() && self.log_odds_limit > 0.0) {
-            return bad(
-                "log_odds_limit",
-                self.log_odds_limit,
-                "a positive, finite bound",
-            );
-        }
-        Ok(())
+        check_parameter(
+            self.p_occupied > 0.5 && self.p_occupied < 1.0,
+            "p_occupied",
+            self.p_occupied,
+            "a probability in (0.5, 1)",
+        )?;
+        check_parameter(
+            self.p_free > 0.0 && self.p_free < 0.5,
+            "p_free",
+            self.p_free,
+            "a probability in (0, 0.5)",
+        )?;
+        check_parameter(
+            self.log_odds_limit.is_finite() && self.log_odds_limit > 0.0,
+            "log_odds_limit",
+            self.log_odds_limit,
+            "a positive, finite bound",
+        )
     }
 }
 

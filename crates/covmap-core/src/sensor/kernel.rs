@@ -2,7 +2,7 @@
 
 use super::{RangeModel, kernel_values};
 use crate::aligned::Aligned;
-use crate::error::{CovmapError, Result};
+use crate::error::{Result, check_parameter};
 use crate::grid::MIN_RESOLUTION_M;
 use crate::histogram::MAX_BINS;
 use crate::numeric::x_ln_x;
@@ -15,15 +15,12 @@ pub const DISTANCE_STEPS: usize = 256;
 /// Errors unless `resolution_m` is a finite cell size a grid may have (at
 /// least [`MIN_RESOLUTION_M`]).
 pub(crate) fn check_resolution(resolution_m: f64) -> Result<()> {
-    if resolution_m.is_finite() && resolution_m >= MIN_RESOLUTION_M {
-        Ok(())
-    } else {
-        Err(CovmapError::InvalidParameter {
-            name: "resolution_m",
-            value: resolution_m,
-            expected: "a finite cell size of at least 1e-6 m",
-        })
-    }
+    check_parameter(
+        resolution_m.is_finite() && resolution_m >= MIN_RESOLUTION_M,
+        "resolution_m",
+        resolution_m,
+        "a finite cell size of at least 1e-6 m",
+    )
 }
 
 /// Kernels of one [`RangeModel`] for one grid resolution and bin count,

@@ -4,7 +4,7 @@ use serde::{Deserialize, Serialize};
 
 use super::KernelTable;
 use super::kernel;
-use crate::error::{CovmapError, Result};
+use crate::error::{Result, check_parameter};
 
 /// The parameters shared by every range sensor: the inverse model along one
 /// direction (see the [module documentation](super)).
@@ -44,15 +44,7 @@ impl RangeModel {
     /// out to the maximum range.
     pub fn validate(&self) -> Result<()> {
         fn check(name: &'static str, value: f64, ok: bool, expected: &'static str) -> Result<()> {
-            if ok && value.is_finite() {
-                Ok(())
-            } else {
-                Err(CovmapError::InvalidParameter {
-                    name,
-                    value,
-                    expected,
-                })
-            }
+            check_parameter(ok && value.is_finite(), name, value, expected)
         }
         check(
             "max_range_m",
@@ -201,13 +193,12 @@ fn check_distances(cell_distance_m: f64, measured_distance_m: f64) -> Result<()>
         ("cell_distance_m", cell_distance_m),
         ("measured_distance_m", measured_distance_m),
     ] {
-        if !(value.is_finite() && value >= 0.0) {
-            return Err(CovmapError::InvalidParameter {
-                name,
-                value,
-                expected: "a finite, non-negative distance",
-            });
-        }
+        check_parameter(
+            value.is_finite() && value >= 0.0,
+            name,
+            value,
+            "a finite, non-negative distance",
+        )?;
     }
     Ok(())
 }

@@ -3,7 +3,7 @@
 
 use serde::{Deserialize, Serialize};
 
-use crate::error::{CovmapError, Result};
+use crate::error::{CovmapError, Result, check_parameter};
 use crate::footprint::visit;
 use crate::grid::Grid;
 use crate::pose::{Pose, check_pose};
@@ -71,15 +71,12 @@ pub const MIN_STEP_FRACTION: f64 = 1.0 / 1024.0;
 /// Errors unless `step_m` lies between [`MIN_STEP_FRACTION`] of
 /// `resolution_m` and `resolution_m`.
 pub(crate) fn check_step(step_m: f64, resolution_m: f64) -> Result<()> {
-    if step_m >= MIN_STEP_FRACTION * resolution_m && step_m <= resolution_m {
-        Ok(())
-    } else {
-        Err(CovmapError::InvalidParameter {
-            name: "range_step_m",
-            value: step_m,
-            expected: "a step between 1/1024 of the grid resolution and the resolution",
-        })
-    }
+    check_parameter(
+        step_m >= MIN_STEP_FRACTION * resolution_m && step_m <= resolution_m,
+        "range_step_m",
+        step_m,
+        "a step between 1/1024 of the grid resolution and the resolution",
+    )
 }
 
 /// [`reading_distribution`] of valid inputs.

@@ -3,7 +3,7 @@
 use serde::{Deserialize, Serialize};
 
 use super::{Footprint, RangeModel, SensorModel};
-use crate::error::{CovmapError, Result};
+use crate::error::{Result, check_parameter};
 
 /// The sonar inverse model: a [`RangeModel`] spread over a cone.
 ///
@@ -69,20 +69,19 @@ impl SensorModel for SonarModel {
     fn validate(&self) -> Result<()> {
         self.range.validate()?;
         let a = self.opening_angle_rad;
-        if !(a.is_finite() && a > 0.0 && a < std::f64::consts::PI) {
-            return Err(CovmapError::InvalidParameter {
-                name: "opening_angle_rad",
-                value: a,
-                expected: "an angle in (0, pi) radians",
-            });
-        }
-        Ok(())
+        check_parameter(
+            a.is_finite() && a > 0.0 && a < std::f64::consts::PI,
+            "opening_angle_rad",
+            a,
+            "an angle in (0, pi) radians",
+        )
     }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::error::CovmapError;
 
     #[test]
     fn default_is_valid_and_serde_round_trips() {
