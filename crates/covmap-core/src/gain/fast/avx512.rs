@@ -9,14 +9,14 @@ pub(super) fn weighted_gains_avx512<const N: usize>(rows: &Rows<'_, N>, jobs: &Q
     weighted_gains_zmm::<N>(rows, jobs)
 }
 
-/// [`weighted_gains_with`] in AVX-512 registers, eight gains at a time from
-/// the sums to the weighted total (`N` a multiple of 8): each job's products
-/// fill eight lanes ([`row_sums_zmm`]), the eight jobs' lanes are summed
-/// together by a transposing tree ([`sum_pairs`], [`sum_quads`]), and the
-/// logarithm ([`ln_normal_zmm`], the same operations as
-/// [`ln_normal`](crate::numeric::ln_normal)), the
-/// two divisions and the weighting take the same instructions for all eight
-/// as for one. The weighted gains go into eight running sums, added pairwise
+/// [`weighted_gains_with`](super::batch::weighted_gains_with) in AVX-512
+/// registers, eight gains at a time from the sums to the weighted total (`N`
+/// a multiple of 8): each job's products fill eight lanes
+/// ([`row_sums_zmm`]), the eight jobs' lanes are summed together by a
+/// transposing tree ([`sum_pairs`], [`sum_quads`]), and the logarithm
+/// ([`ln_normal_zmm`], the same operations as
+/// [`ln_normal`](crate::numeric::ln_normal)), the two divisions and the
+/// weighting take the same instructions for all eight as for one. The weighted gains go into eight running sums, added pairwise
 /// at the end. Each job's gain is formed in the same order whatever its
 /// neighbours, and each beam's total in an order fixed by its own queue.
 #[target_feature(enable = "avx512f,avx512dq,avx512vl,avx2,fma")]

@@ -63,7 +63,7 @@ impl<'a, const N: usize> Rows<'a, N> {
     ///
     /// # Panics
     /// If `h_ln_h` is not as long as `h` or `k_ln_k` not as long as `k` (the
-    /// unchecked reads of [`row_sums_zmm`] rely on both), or `entropy` does
+    /// unchecked reads of the AVX-512 row sums rely on both), or `entropy` does
     /// not hold one value per histogram.
     pub(super) fn new(
         h: &'a [f32],
@@ -176,7 +176,8 @@ fn sums<const N: usize>(
     ((z[0] + z[2]) + (z[1] + z[3]), (a[0] + a[2]) + (a[1] + a[3]))
 }
 
-/// [`weighted_gains`] for any bin count, plainly.
+/// [`weighted_gains`](super::arith::weighted_gains) for any bin count,
+/// plainly.
 pub(super) fn weighted_gains_any(beam: &Beam<'_>, queue: &Queue) -> f64 {
     let bins = beam.map.bins();
     let (kernels, k_ln_k) = (beam.table.values_f64(), beam.table.k_ln_k());
