@@ -1,4 +1,7 @@
 //! `covmap.SonarRing` and `covmap.Laser`: simulated range sensors.
+//!
+//! Both are a `RangeSensor` of the simulator: [`range_sensor_class!`] writes
+//! what they share (bearings, maximum range, simulating scans) once.
 
 use covmap::sim::{Laser, RangeSensor, SonarRing, World, sim_rng, simulate};
 use numpy::ndarray::Array2;
@@ -52,6 +55,12 @@ fn scan_many<'py, S: RangeSensor + Sync>(
     Ok(ranges.into_pyarray(py))
 }
 
+/// `sensor` if its parameters are valid, else the error as a Python exception.
+fn checked<S: RangeSensor>(py: Python<'_>, sensor: S) -> PyResult<S> {
+    sensor.validate().or_raise(py)?;
+    Ok(sensor)
+}
+
 /// A count from a Python int: negative is an invalid parameter.
 fn count(py: Python<'_>, name: &'static str, value: i64) -> PyResult<usize> {
     usize::try_from(value).map_err(|_| {
@@ -60,6 +69,54 @@ fn count(py: Python<'_>, name: &'static str, value: i64) -> PyResult<usize> {
             format!("invalid parameter `{name}` = {value}: expected a positive count"),
         )
     })
+}
+
+/// The `#[pymethods]` block of `$class`, a simulated range sensor: its own
+/// methods as given, then what every range sensor has (`bearings_rad` and its
+/// alias `bearings`, `max_range_m`, `simulate` and `simulate_path`).
+macro_rules! range_sensor_class {
+    (impl $class:ident { $($methods:tt)* }) => {
+        #[pymethods]
+        impl $class {
+            $($methods)*
+
+            /// Bearing of each beam relative to the heading, radians: float64
+            /// ``(n,)`` (a ring's sensors are mounted at these bearings).
+            #[getter]
+            fn bearings_rad<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
+                PyArray1::from_slice(py, self.0.bearings_rad())
+            }
+            /// The same as ``bearings_rad``, under the name ``CoverageMap.integrate`` uses.
+            #[getter]
+            fn bearings<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
+                self.bearings_rad(py)
+            }
+            /// Readings at or beyond this are "no echo", metres.
+            #[getter]
+            fn max_range_m(&self) -> f64 {
+                self.0.max_range_m()
+            }
+
+            /// One scan of ``world`` from ``pose = (x, y, theta)``, every random draw
+            /// from a generator seeded with ``seed``: ``(ranges, bearings)``, float64
+            /// ``(n,)`` each, ready for ``CoverageMap.integrate(pose, ranges,
+            /// bearings, model)`` with the sensor's model (``SonarModel()`` for a
+            /// ``SonarRing``, ``LaserModel()`` for a ``Laser``). The same seed gives
+            /// the same readings.
+            #[pyo3(signature = (world, pose, *, seed=Seed(0)), text_signature = "($self, world, pose, *, seed=0)")]
+            fn simulate<'py>(&self, py: Python<'py>, world: &Bound<'py, PyWorld>, pose: &Bound<'py, PyAny>, seed: Seed) -> PyResult<Readings<'py>> {
+                scan_one(py, &self.0, world, pose, seed.0)
+            }
+            /// One scan from each pose of ``poses`` (float64 ``(N, 3)``): the ranges
+            /// as float64 ``(N, n)``. Scan ``i`` draws from its own stream ``i`` of
+            /// ``seed`` (scan 0 equals ``simulate(world, poses[0], seed=seed)``), so
+            /// the result depends on the seed alone; scans run in parallel.
+            #[pyo3(signature = (world, poses, *, seed=Seed(0)), text_signature = "($self, world, poses, *, seed=0)")]
+            fn simulate_path<'py>(&self, py: Python<'py>, world: &Bound<'py, PyWorld>, poses: &Bound<'py, PyAny>, seed: Seed) -> PyResult<Bound<'py, PyArray2<f64>>> {
+                scan_many(py, &self.0, world, poses, seed.0)
+            }
+        }
+    };
 }
 
 /// A ring of simulated ultrasound sensors, all at the robot's centre.
@@ -83,180 +140,127 @@ fn count(py: Python<'_>, name: &'static str, value: i64) -> PyResult<usize> {
 #[derive(Clone, PartialEq)]
 pub(crate) struct PySonarRing(SonarRing);
 
-impl PySonarRing {
-    fn checked(py: Python<'_>, ring: SonarRing) -> PyResult<Self> {
-        ring.validate().or_raise(py)?;
-        Ok(Self(ring))
-    }
-}
+range_sensor_class! {
+    impl PySonarRing {
+        #[new]
+        #[pyo3(signature = (
+            *, bearings_rad=None, opening_angle_rad=None, max_range_m=None, min_range_m=None,
+            rays_per_cone=None, noise_std_m=None, noise_std_per_m=None, outlier_probability=None,
+            multipath_probability=None, critical_angle_wall_rad=None, critical_angle_glass_rad=None
+        ))]
+        #[allow(clippy::too_many_arguments, reason = "one keyword per sensor parameter")]
+        fn new(
+            py: Python<'_>,
+            bearings_rad: Option<&Bound<'_, PyAny>>,
+            opening_angle_rad: Option<f64>,
+            max_range_m: Option<f64>,
+            min_range_m: Option<f64>,
+            rays_per_cone: Option<i64>,
+            noise_std_m: Option<f64>,
+            noise_std_per_m: Option<f64>,
+            outlier_probability: Option<f64>,
+            multipath_probability: Option<f64>,
+            critical_angle_wall_rad: Option<f64>,
+            critical_angle_glass_rad: Option<f64>,
+        ) -> PyResult<Self> {
+            let d = SonarRing::default();
+            let ring = SonarRing {
+                bearings_rad: match bearings_rad {
+                    Some(b) => convert::readings(b, "bearings_rad")?,
+                    None => d.bearings_rad,
+                },
+                opening_angle_rad: opening_angle_rad.unwrap_or(d.opening_angle_rad),
+                max_range_m: max_range_m.unwrap_or(d.max_range_m),
+                min_range_m: min_range_m.unwrap_or(d.min_range_m),
+                rays_per_cone: match rays_per_cone {
+                    Some(n) => count(py, "rays_per_cone", n)?,
+                    None => d.rays_per_cone,
+                },
+                noise_std_m: noise_std_m.unwrap_or(d.noise_std_m),
+                noise_std_per_m: noise_std_per_m.unwrap_or(d.noise_std_per_m),
+                outlier_probability: outlier_probability.unwrap_or(d.outlier_probability),
+                multipath_probability: multipath_probability.unwrap_or(d.multipath_probability),
+                critical_angle_wall_rad: critical_angle_wall_rad
+                    .unwrap_or(d.critical_angle_wall_rad),
+                critical_angle_glass_rad: critical_angle_glass_rad
+                    .unwrap_or(d.critical_angle_glass_rad),
+            };
+            checked(py, ring).map(Self)
+        }
 
-#[pymethods]
-impl PySonarRing {
-    #[new]
-    #[pyo3(signature = (
-        *, bearings_rad=None, opening_angle_rad=None, max_range_m=None, min_range_m=None,
-        rays_per_cone=None, noise_std_m=None, noise_std_per_m=None, outlier_probability=None,
-        multipath_probability=None, critical_angle_wall_rad=None, critical_angle_glass_rad=None
-    ))]
-    #[allow(
-        clippy::too_many_arguments,
-        reason = "one keyword per sensor parameter"
-    )]
-    fn new(
-        py: Python<'_>,
-        bearings_rad: Option<&Bound<'_, PyAny>>,
-        opening_angle_rad: Option<f64>,
-        max_range_m: Option<f64>,
-        min_range_m: Option<f64>,
-        rays_per_cone: Option<i64>,
-        noise_std_m: Option<f64>,
-        noise_std_per_m: Option<f64>,
-        outlier_probability: Option<f64>,
-        multipath_probability: Option<f64>,
-        critical_angle_wall_rad: Option<f64>,
-        critical_angle_glass_rad: Option<f64>,
-    ) -> PyResult<Self> {
-        let d = SonarRing::default();
-        let ring = SonarRing {
-            bearings_rad: match bearings_rad {
-                Some(b) => convert::readings(b, "bearings_rad")?,
-                None => d.bearings_rad,
-            },
-            opening_angle_rad: opening_angle_rad.unwrap_or(d.opening_angle_rad),
-            max_range_m: max_range_m.unwrap_or(d.max_range_m),
-            min_range_m: min_range_m.unwrap_or(d.min_range_m),
-            rays_per_cone: match rays_per_cone {
-                Some(n) => count(py, "rays_per_cone", n)?,
-                None => d.rays_per_cone,
-            },
-            noise_std_m: noise_std_m.unwrap_or(d.noise_std_m),
-            noise_std_per_m: noise_std_per_m.unwrap_or(d.noise_std_per_m),
-            outlier_probability: outlier_probability.unwrap_or(d.outlier_probability),
-            multipath_probability: multipath_probability.unwrap_or(d.multipath_probability),
-            critical_angle_wall_rad: critical_angle_wall_rad.unwrap_or(d.critical_angle_wall_rad),
-            critical_angle_glass_rad: critical_angle_glass_rad
-                .unwrap_or(d.critical_angle_glass_rad),
-        };
-        Self::checked(py, ring)
-    }
+        /// ``count`` sensors evenly spaced around the robot, the first straight
+        /// ahead, with the default error model.
+        #[staticmethod]
+        fn ring(py: Python<'_>, count: i64) -> PyResult<Self> {
+            let n = self::count(py, "count", count)?;
+            checked(py, SonarRing::ring(n)).map(Self)
+        }
+        /// The eight-sonar front array of the ``sonar-8ring`` data set: -90,
+        /// -37.5, -22.5, -7.5, 7.5, 22.5, 37.5 and 90 degrees.
+        #[staticmethod]
+        fn front_eight() -> Self {
+            Self(SonarRing::front_eight())
+        }
+        /// The same ring with the opening angle and maximum range of ``model``, so
+        /// that the simulated cone is the one the map assumes.
+        fn with_model(&self, model: &Bound<'_, PySonarModel>) -> Self {
+            Self(self.0.clone().with_model(&model.get().0))
+        }
 
-    /// ``count`` sensors evenly spaced around the robot, the first straight
-    /// ahead, with the default error model.
-    #[staticmethod]
-    fn ring(py: Python<'_>, count: i64) -> PyResult<Self> {
-        let n = self::count(py, "count", count)?;
-        Self::checked(py, SonarRing::ring(n))
-    }
-    /// The eight-sonar front array of the ``sonar-8ring`` data set: -90,
-    /// -37.5, -22.5, -7.5, 7.5, 22.5, 37.5 and 90 degrees.
-    #[staticmethod]
-    fn front_eight() -> Self {
-        Self(SonarRing::front_eight())
-    }
-    /// The same ring with the opening angle and maximum range of ``model``, so
-    /// that the simulated cone is the one the map assumes.
-    fn with_model(&self, model: &Bound<'_, PySonarModel>) -> Self {
-        Self(self.0.clone().with_model(&model.get().0))
-    }
+        /// Full opening angle of each cone, radians.
+        #[getter]
+        fn opening_angle_rad(&self) -> f64 {
+            self.0.opening_angle_rad
+        }
+        /// The shortest reading the sensor produces, metres.
+        #[getter]
+        fn min_range_m(&self) -> f64 {
+            self.0.min_range_m
+        }
+        /// Rays cast across each cone.
+        #[getter]
+        fn rays_per_cone(&self) -> usize {
+            self.0.rays_per_cone
+        }
+        /// Standard deviation of the range noise at zero range, metres.
+        #[getter]
+        fn noise_std_m(&self) -> f64 {
+            self.0.noise_std_m
+        }
+        /// Growth of that standard deviation per metre of range.
+        #[getter]
+        fn noise_std_per_m(&self) -> f64 {
+            self.0.noise_std_per_m
+        }
+        /// Probability that a reading is replaced by a short outlier.
+        #[getter]
+        fn outlier_probability(&self) -> f64 {
+            self.0.outlier_probability
+        }
+        /// Probability that a specular miss returns a longer multipath reading.
+        #[getter]
+        fn multipath_probability(&self) -> f64 {
+            self.0.multipath_probability
+        }
+        /// Largest angle of incidence at which a wall still echoes, radians.
+        #[getter]
+        fn critical_angle_wall_rad(&self) -> f64 {
+            self.0.critical_angle_wall_rad
+        }
+        /// Largest angle of incidence at which glass still echoes, radians.
+        #[getter]
+        fn critical_angle_glass_rad(&self) -> f64 {
+            self.0.critical_angle_glass_rad
+        }
 
-    /// Mounting bearing of each sensor relative to the heading, radians:
-    /// float64 ``(n,)``.
-    #[getter]
-    fn bearings_rad<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
-        PyArray1::from_slice(py, &self.0.bearings_rad)
-    }
-    /// The same as ``bearings_rad``, under the name ``CoverageMap.integrate`` uses.
-    #[getter]
-    fn bearings<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
-        self.bearings_rad(py)
-    }
-    /// Full opening angle of each cone, radians.
-    #[getter]
-    fn opening_angle_rad(&self) -> f64 {
-        self.0.opening_angle_rad
-    }
-    /// Readings at or beyond this are "no echo", metres.
-    #[getter]
-    fn max_range_m(&self) -> f64 {
-        self.0.max_range_m
-    }
-    /// The shortest reading the sensor produces, metres.
-    #[getter]
-    fn min_range_m(&self) -> f64 {
-        self.0.min_range_m
-    }
-    /// Rays cast across each cone.
-    #[getter]
-    fn rays_per_cone(&self) -> usize {
-        self.0.rays_per_cone
-    }
-    /// Standard deviation of the range noise at zero range, metres.
-    #[getter]
-    fn noise_std_m(&self) -> f64 {
-        self.0.noise_std_m
-    }
-    /// Growth of that standard deviation per metre of range.
-    #[getter]
-    fn noise_std_per_m(&self) -> f64 {
-        self.0.noise_std_per_m
-    }
-    /// Probability that a reading is replaced by a short outlier.
-    #[getter]
-    fn outlier_probability(&self) -> f64 {
-        self.0.outlier_probability
-    }
-    /// Probability that a specular miss returns a longer multipath reading.
-    #[getter]
-    fn multipath_probability(&self) -> f64 {
-        self.0.multipath_probability
-    }
-    /// Largest angle of incidence at which a wall still echoes, radians.
-    #[getter]
-    fn critical_angle_wall_rad(&self) -> f64 {
-        self.0.critical_angle_wall_rad
-    }
-    /// Largest angle of incidence at which glass still echoes, radians.
-    #[getter]
-    fn critical_angle_glass_rad(&self) -> f64 {
-        self.0.critical_angle_glass_rad
-    }
-
-    /// One scan of ``world`` from ``pose = (x, y, theta)``, every random draw
-    /// from a generator seeded with ``seed``: ``(ranges, bearings)``, float64
-    /// ``(n,)`` each, ready for ``CoverageMap.integrate(pose, ranges,
-    /// bearings, SonarModel())``. The same seed gives the same readings.
-    #[pyo3(signature = (world, pose, *, seed=Seed(0)), text_signature = "($self, world, pose, *, seed=0)")]
-    fn simulate<'py>(
-        &self,
-        py: Python<'py>,
-        world: &Bound<'py, PyWorld>,
-        pose: &Bound<'py, PyAny>,
-        seed: Seed,
-    ) -> PyResult<Readings<'py>> {
-        scan_one(py, &self.0, world, pose, seed.0)
-    }
-    /// One scan from each pose of ``poses`` (float64 ``(N, 3)``): the ranges
-    /// as float64 ``(N, n)``. Scan ``i`` draws from its own stream ``i`` of
-    /// ``seed`` (scan 0 equals ``simulate(world, poses[0], seed=seed)``), so
-    /// the result depends on the seed alone; scans run in parallel.
-    #[pyo3(signature = (world, poses, *, seed=Seed(0)), text_signature = "($self, world, poses, *, seed=0)")]
-    fn simulate_path<'py>(
-        &self,
-        py: Python<'py>,
-        world: &Bound<'py, PyWorld>,
-        poses: &Bound<'py, PyAny>,
-        seed: Seed,
-    ) -> PyResult<Bound<'py, PyArray2<f64>>> {
-        scan_many(py, &self.0, world, poses, seed.0)
-    }
-
-    fn __repr__(&self) -> String {
-        format!(
-            "SonarRing({} sensors, opening_angle_rad={:?}, max_range_m={:?})",
-            self.0.bearings_rad.len(),
-            self.0.opening_angle_rad,
-            self.0.max_range_m
-        )
+        fn __repr__(&self) -> String {
+            format!(
+                "SonarRing({} sensors, opening_angle_rad={:?}, max_range_m={:?})",
+                self.0.bearings_rad.len(),
+                self.0.opening_angle_rad,
+                self.0.max_range_m
+            )
+        }
     }
 }
 
@@ -272,110 +276,61 @@ impl PySonarRing {
 #[derive(Clone, PartialEq)]
 pub(crate) struct PyLaser(Laser);
 
-impl PyLaser {
-    fn checked(py: Python<'_>, laser: Laser) -> PyResult<Self> {
-        laser.validate().or_raise(py)?;
-        Ok(Self(laser))
-    }
-}
+range_sensor_class! {
+    impl PyLaser {
+        #[new]
+        #[pyo3(signature = (beams=None, fov_rad=None, *, bearings_rad=None, max_range_m=None, noise_std_m=None))]
+        fn new(
+            py: Python<'_>,
+            beams: Option<i64>,
+            fov_rad: Option<f64>,
+            bearings_rad: Option<&Bound<'_, PyAny>>,
+            max_range_m: Option<f64>,
+            noise_std_m: Option<f64>,
+        ) -> PyResult<Self> {
+            let mut laser = match bearings_rad {
+                Some(_) if beams.is_some() || fov_rad.is_some() => {
+                    return Err(Exception::InvalidType.err(
+                        py,
+                        "give either beams and fov_rad or bearings_rad, not both",
+                    ));
+                }
+                Some(b) => Laser::with_bearings(convert::readings(b, "bearings_rad")?),
+                None => {
+                    let beams = count(py, "beams", beams.unwrap_or(361))?;
+                    Laser::new(beams, fov_rad.unwrap_or(std::f64::consts::PI)).or_raise(py)?
+                }
+            };
+            laser.max_range_m = max_range_m.unwrap_or(laser.max_range_m);
+            laser.noise_std_m = noise_std_m.unwrap_or(laser.noise_std_m);
+            checked(py, laser).map(Self)
+        }
 
-#[pymethods]
-impl PyLaser {
-    #[new]
-    #[pyo3(signature = (beams=None, fov_rad=None, *, bearings_rad=None, max_range_m=None, noise_std_m=None))]
-    fn new(
-        py: Python<'_>,
-        beams: Option<i64>,
-        fov_rad: Option<f64>,
-        bearings_rad: Option<&Bound<'_, PyAny>>,
-        max_range_m: Option<f64>,
-        noise_std_m: Option<f64>,
-    ) -> PyResult<Self> {
-        let mut laser = match bearings_rad {
-            Some(_) if beams.is_some() || fov_rad.is_some() => {
-                return Err(Exception::InvalidType.err(
-                    py,
-                    "give either beams and fov_rad or bearings_rad, not both",
-                ));
-            }
-            Some(b) => Laser::with_bearings(convert::readings(b, "bearings_rad")?),
-            None => {
-                let beams = count(py, "beams", beams.unwrap_or(361))?;
-                Laser::new(beams, fov_rad.unwrap_or(std::f64::consts::PI)).or_raise(py)?
-            }
-        };
-        laser.max_range_m = max_range_m.unwrap_or(laser.max_range_m);
-        laser.noise_std_m = noise_std_m.unwrap_or(laser.noise_std_m);
-        Self::checked(py, laser)
-    }
+        /// 180 beams one degree apart from -90 degrees (to +89), the layout of
+        /// the 180-beam CARMEN logs.
+        #[staticmethod]
+        fn sick_180() -> Self {
+            Self(Laser::sick_180())
+        }
+        /// 361 beams half a degree apart from -90 to +90 degrees.
+        #[staticmethod]
+        fn sick_361() -> Self {
+            Self(Laser::sick_361())
+        }
 
-    /// 180 beams one degree apart from -90 degrees (to +89), the layout of
-    /// the 180-beam CARMEN logs.
-    #[staticmethod]
-    fn sick_180() -> Self {
-        Self(Laser::sick_180())
-    }
-    /// 361 beams half a degree apart from -90 to +90 degrees.
-    #[staticmethod]
-    fn sick_361() -> Self {
-        Self(Laser::sick_361())
-    }
-
-    /// Bearing of each beam relative to the heading, radians: float64 ``(n,)``.
-    #[getter]
-    fn bearings_rad<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
-        PyArray1::from_slice(py, &self.0.bearings_rad)
-    }
-    /// The same as ``bearings_rad``, under the name ``CoverageMap.integrate`` uses.
-    #[getter]
-    fn bearings<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
-        self.bearings_rad(py)
-    }
-    /// Readings at or beyond this are "no echo", metres.
-    #[getter]
-    fn max_range_m(&self) -> f64 {
-        self.0.max_range_m
-    }
-    /// Standard deviation of the range noise, metres.
-    #[getter]
-    fn noise_std_m(&self) -> f64 {
-        self.0.noise_std_m
-    }
-
-    /// One scan of ``world`` from ``pose = (x, y, theta)``, every random draw
-    /// from a generator seeded with ``seed``: ``(ranges, bearings)``, float64
-    /// ``(n,)`` each, ready for ``CoverageMap.integrate(pose, ranges,
-    /// bearings, LaserModel())``. The same seed gives the same readings.
-    #[pyo3(signature = (world, pose, *, seed=Seed(0)), text_signature = "($self, world, pose, *, seed=0)")]
-    fn simulate<'py>(
-        &self,
-        py: Python<'py>,
-        world: &Bound<'py, PyWorld>,
-        pose: &Bound<'py, PyAny>,
-        seed: Seed,
-    ) -> PyResult<Readings<'py>> {
-        scan_one(py, &self.0, world, pose, seed.0)
-    }
-    /// One scan from each pose of ``poses`` (float64 ``(N, 3)``): the ranges
-    /// as float64 ``(N, n)``; scan ``i`` draws from stream ``i`` of ``seed``
-    /// (see ``SonarRing.simulate_path``).
-    #[pyo3(signature = (world, poses, *, seed=Seed(0)), text_signature = "($self, world, poses, *, seed=0)")]
-    fn simulate_path<'py>(
-        &self,
-        py: Python<'py>,
-        world: &Bound<'py, PyWorld>,
-        poses: &Bound<'py, PyAny>,
-        seed: Seed,
-    ) -> PyResult<Bound<'py, PyArray2<f64>>> {
-        scan_many(py, &self.0, world, poses, seed.0)
-    }
-
-    fn __repr__(&self) -> String {
-        format!(
-            "Laser({} beams, max_range_m={:?}, noise_std_m={:?})",
-            self.0.bearings_rad.len(),
-            self.0.max_range_m,
+        /// Standard deviation of the range noise, metres.
+        #[getter]
+        fn noise_std_m(&self) -> f64 {
             self.0.noise_std_m
-        )
+        }
+
+        fn __repr__(&self) -> String {
+            format!(
+                "Laser({} beams, max_range_m={:?}, noise_std_m={:?})",
+                self.0.bearings_rad.len(),
+                self.0.max_range_m,
+                self.0.noise_std_m
+            )
+        }
     }
 }
