@@ -282,10 +282,8 @@ pub(crate) fn poses(obj: &Bound<'_, PyAny>, name: &str) -> PyResult<Vec<Pose>> {
         .collect())
 }
 
-/// A point: any sequence of two numbers `(x, y)`, metres; with `heading_ok`,
-/// also a pose `(x, y, theta)` whose heading is ignored.
-/// Raises `InvalidValueError` for the first point with a coordinate that is
-/// not finite; `name` names the argument.
+/// Raises `InvalidValueError` for the first of `points` with a coordinate
+/// that is not finite; `name` names the argument.
 pub(crate) fn finite_points(py: Python<'_>, points: &[[f64; 2]], name: &str) -> PyResult<()> {
     match points
         .iter()
@@ -300,6 +298,9 @@ pub(crate) fn finite_points(py: Python<'_>, points: &[[f64; 2]], name: &str) -> 
     }
 }
 
+/// A point: any sequence of two numbers `(x, y)`, metres; with `heading_ok`,
+/// also a pose `(x, y, theta)` whose heading is ignored. `name` names the
+/// argument in messages.
 pub(crate) fn point(obj: &Bound<'_, PyAny>, name: &str, heading_ok: bool) -> PyResult<[f64; 2]> {
     let py = obj.py();
     let fail = |e: PyErr| {
@@ -347,6 +348,14 @@ pub(crate) fn cell_stack_array<'py, T: Element>(
     let array = Array3::from_shape_vec((rows, cols, depth), values)
         .map_err(|e| PyRuntimeError::new_err(e.to_string()))?;
     Ok(array.into_pyarray(py))
+}
+
+/// `(x_min, y_min, x_max, y_max)`, metres, as Python sees a rectangle: a tuple.
+pub(crate) type Rectangle = (f64, f64, f64, f64);
+
+/// A rectangle `[x_min, y_min, x_max, y_max]` as a [`Rectangle`].
+pub(crate) fn rectangle([x_min, y_min, x_max, y_max]: [f64; 4]) -> Rectangle {
+    (x_min, y_min, x_max, y_max)
 }
 
 /// Rows of `K` numbers as an `(N, K)` float64 numpy array.

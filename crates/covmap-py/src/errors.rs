@@ -42,8 +42,6 @@ pub(crate) enum Exception {
     InvalidType,
 }
 
-const CLASSES: usize = 19;
-
 impl Exception {
     fn class_name(self) -> &'static str {
         match self {
@@ -87,16 +85,22 @@ impl Exception {
         }
     }
 
-    /// The Python class.
-    fn class<'py>(self, py: Python<'py>) -> PyResult<&'py Bound<'py, PyType>> {
-        static TYPES: [PyOnceLock<Py<PyType>>; CLASSES] = [const { PyOnceLock::new() }; CLASSES];
-        TYPES[self as usize].import(py, "covmap._errors", self.class_name())
+    /// The Python class, looked up by its name in `covmap._errors` (imported
+    /// once; an error is the rare path, a lookup costs nothing beside it).
+    fn class<'py>(self, py: Python<'py>) -> PyResult<Bound<'py, PyType>> {
+        static MODULE: PyOnceLock<Py<PyModule>> = PyOnceLock::new();
+        let module =
+            MODULE.get_or_try_init(py, || py.import("covmap._errors").map(Bound::unbind))?;
+        Ok(module
+            .bind(py)
+            .getattr(self.class_name())?
+            .cast_into::<PyType>()?)
     }
 
     /// An exception of this class carrying `message`.
     pub(crate) fn err(self, py: Python<'_>, message: impl Into<String>) -> PyErr {
         match self.class(py) {
-            Ok(ty) => PyErr::from_type(ty.clone(), message.into()),
+            Ok(ty) => PyErr::from_type(ty, message.into()),
             Err(import_failed) => import_failed,
         }
     }

@@ -95,9 +95,8 @@ impl PyGrid {
     }
     /// ``(x_min, y_min, x_max, y_max)`` of the covered rectangle, metres.
     #[getter]
-    fn bounds(&self) -> (f64, f64, f64, f64) {
-        let [a, b, c, d] = self.0.bounds_m();
-        (a, b, c, d)
+    fn bounds(&self) -> convert::Rectangle {
+        convert::rectangle(self.0.bounds_m())
     }
 
     /// Whether the world point lies in a cell of the grid: the rectangle with

@@ -17,6 +17,15 @@ use crate::world::PyWorld;
 #[derive(Clone, Copy, PartialEq)]
 pub(crate) struct PyRobot(Robot);
 
+/// The ends of a straight move, `(start, goal)`: points, or poses whose
+/// headings are ignored.
+fn ends(start: &Bound<'_, PyAny>, goal: &Bound<'_, PyAny>) -> PyResult<([f64; 2], [f64; 2])> {
+    Ok((
+        convert::point(start, "start", true)?,
+        convert::point(goal, "goal", true)?,
+    ))
+}
+
 #[pymethods]
 impl PyRobot {
     #[new]
@@ -48,10 +57,7 @@ impl PyRobot {
         start: &Bound<'_, PyAny>,
         goal: &Bound<'_, PyAny>,
     ) -> PyResult<bool> {
-        let (a, b) = (
-            convert::point(start, "start", true)?,
-            convert::point(goal, "goal", true)?,
-        );
+        let (a, b) = ends(start, goal)?;
         Ok(self.0.move_collides(&world.get().0, a, b))
     }
 
@@ -65,10 +71,7 @@ impl PyRobot {
         start: &Bound<'_, PyAny>,
         goal: &Bound<'_, PyAny>,
     ) -> PyResult<f64> {
-        let (a, b) = (
-            convert::point(start, "start", true)?,
-            convert::point(goal, "goal", true)?,
-        );
+        let (a, b) = ends(start, goal)?;
         convert::finite_points(world.py(), &[a], "start")?;
         convert::finite_points(world.py(), &[b], "goal")?;
         Ok(self.0.free_travel_m(&world.get().0, a, b))

@@ -199,9 +199,8 @@ impl PyWorld {
     /// ``(x_min, y_min, x_max, y_max)`` of all obstacles, metres (all zero when
     /// there are none).
     #[getter]
-    fn bounds(&self) -> (f64, f64, f64, f64) {
-        let [a, b, c, d] = self.0.bounds_m();
-        (a, b, c, d)
+    fn bounds(&self) -> convert::Rectangle {
+        convert::rectangle(self.0.bounds_m())
     }
     /// The exterior ring of each polygon: a list of float64 ``(N, 2)`` arrays.
     #[getter]
