@@ -19,16 +19,18 @@ and returns the axes; coordinates are world metres, x to the right and y up.
 
 from __future__ import annotations
 
-import os
-import secrets
+import io
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
 from covmap._errors import ArrayShapeError
+from covmap._native import write_atomic
 
 if TYPE_CHECKING:
+    import os
+
     import numpy.typing as npt
     from matplotlib.axes import Axes
     from matplotlib.figure import Figure
@@ -162,23 +164,15 @@ def plot_trajectory(
 
 
 def save_figure(fig: Figure, path: str | os.PathLike[str], *, dpi: int = 100) -> Path:
-    """Write ``fig`` to ``path`` as PNG atomically (a temporary file in the
-    same directory, then a rename, so a reader never sees a partial file),
-    creating the directory; the PNG carries no software or date stamp, so the
-    same figure gives the same bytes. Returns the path."""
+    """Write ``fig`` to ``path`` as PNG atomically (rendered in memory, then
+    written to a temporary file in the same directory and renamed, so a
+    reader never sees a partial file), creating the directory; the PNG
+    carries no software or date stamp, so the same figure gives the same
+    bytes. Returns the path."""
     path = Path(path)
     path.parent.mkdir(parents=True, exist_ok=True)
-    # A short name of its own, not one built from path.name: a valid long name
-    # plus a prefix and suffix would exceed the file system's limit (NAME_MAX).
-    tmp = path.with_name(f".covmap-{secrets.token_hex(8)}.tmp")
-    # os.open rather than mkstemp: the file gets the umask's permissions (mkstemp's
-    # are 0600); O_EXCL, so an existing file is never overwritten.
-    fd = os.open(tmp, os.O_WRONLY | os.O_CREAT | os.O_EXCL, 0o666)
-    try:
-        with os.fdopen(fd, "wb") as f:
-            fig.savefig(f, format="png", dpi=dpi, metadata={"Software": None})
-        os.replace(tmp, path)
-    except BaseException:
-        tmp.unlink(missing_ok=True)
-        raise
+    png = io.BytesIO()
+    fig.savefig(png, format="png", dpi=dpi, metadata={"Software": None})
+    # The simulator's writer, the one its GeoJSON files and pictures go through.
+    write_atomic(path, png.getvalue())
     return path

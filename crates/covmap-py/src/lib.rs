@@ -8,6 +8,7 @@ mod convert;
 mod coverage_map;
 mod errors;
 mod experiments;
+mod files;
 mod gain;
 mod grid;
 mod keywords;
@@ -47,5 +48,7 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<sim_sensor::PyLaser>()?;
     m.add_class::<robot::PyRobot>()?;
     m.add_function(wrap_pyfunction!(experiments::run_fig3, m)?)?;
+    // Not in `__all__`: a helper of the package (covmap.plot), not its API.
+    m.setattr("write_atomic", wrap_pyfunction!(files::write_atomic, m)?)?;
     Ok(())
 }
