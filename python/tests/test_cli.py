@@ -10,7 +10,7 @@ import numpy as np
 import pytest
 
 import covmap
-from covmap import fig1
+from covmap.experiments import fig1
 from covmap.cli import parser
 from cli_helpers import PNG_SIGNATURE, run_cli
 

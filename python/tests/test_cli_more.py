@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 
 import covmap
-from covmap import explore
+from covmap.experiments import planning_step
 from cli_helpers import PNG_SIGNATURE, run_cli
 
 
@@ -71,7 +71,7 @@ def test_gain_end_to_end(tmp_path: Path) -> None:
     result = run_cli("gain", "--out", str(tmp_path), "--seed", "2")
     assert result.returncode == 0, result.stderr
     assert_pngs(tmp_path, ["gain.png"])
-    step = explore.run(covmap.World.builtin("corridor"), scans=3, seed=2, alpha=0.5)
+    step = planning_step.run(covmap.World.builtin("corridor"), scans=3, seed=2, alpha=0.5)
     assert step.plan.pose is not None and step.plan.gain is not None and step.plan.cost is not None
     chosen = numbers(line_starting(result.stdout, "chosen viewpoint:"))
     np.testing.assert_allclose(chosen[:3], step.plan.pose, atol=5e-4)
@@ -131,7 +131,7 @@ def test_run_fig3_result() -> None:
 @pytest.mark.parametrize("name", ["corridor", "office"])
 def test_start_pose_is_free_near_the_west_end_of_the_passage(name: str) -> None:
     world = covmap.World.builtin(name)
-    x, y, theta = explore.start_pose(world)
+    x, y, theta = planning_step.start_pose(world)
     assert not covmap.Robot().collides(world, (x, y))
     assert theta == 0.0
     x0, _, x1, _ = world.bounds

@@ -1,43 +1,22 @@
-"""Drawing worlds, maps and trajectories with matplotlib.
+"""Worlds, maps and trajectories drawn into matplotlib axes.
 
-matplotlib is imported inside the functions, so ``import covmap`` does not pay
-for it. Every function draws into ``ax`` (a new figure's axes when ``None``)
-and returns the axes; coordinates are world metres, x to the right and y up.
-
->>> import matplotlib
->>> matplotlib.use("Agg")
->>> import matplotlib.pyplot as plt
->>> import covmap
->>> world = covmap.World.builtin("partial")
->>> grid = covmap.Grid(origin=(1.5, -1.5), resolution=0.05, shape=(60, 30))
->>> ax = covmap.plot.plot_map(world.coverage(grid), grid, title="ground truth")
->>> ax = covmap.plot.plot_world(world, ax=ax)
->>> [float(x) for x in ax.get_xlim()]  # the map's extent: the grid's bounds
-[1.5, 3.0]
->>> plt.close(ax.figure)
+Every function draws into ``ax`` (a new figure's axes when ``None``) and
+returns the axes; coordinates are world metres, x to the right and y up.
 """
 
 from __future__ import annotations
 
-import io
-from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
 from covmap._errors import ArrayShapeError
-from covmap._native import write_atomic
 
 if TYPE_CHECKING:
-    import os
-
     import numpy.typing as npt
     from matplotlib.axes import Axes
-    from matplotlib.figure import Figure
 
     from covmap._native import Grid, World
-
-__all__ = ["plot_map", "plot_trajectory", "plot_world", "save_figure"]
 
 MATERIAL_COLORS = {"wall": "dimgray", "glass": "lightskyblue"}
 """Fill colour of each material in :func:`plot_world`."""
@@ -161,18 +140,3 @@ def plot_trajectory(
         theta = points[:, 2]
         ax.quiver(x, y, np.cos(theta), np.sin(theta), color=color, angles="xy", width=0.003)
     return ax
-
-
-def save_figure(fig: Figure, path: str | os.PathLike[str], *, dpi: int = 100) -> Path:
-    """Write ``fig`` to ``path`` as PNG atomically (rendered in memory, then
-    written to a temporary file in the same directory and renamed, so a
-    reader never sees a partial file), creating the directory; the PNG
-    carries no software or date stamp, so the same figure gives the same
-    bytes. Returns the path."""
-    path = Path(path)
-    path.parent.mkdir(parents=True, exist_ok=True)
-    png = io.BytesIO()
-    fig.savefig(png, format="png", dpi=dpi, metadata={"Software": None})
-    # The simulator's writer, the one its GeoJSON files and pictures go through.
-    write_atomic(path, png.getvalue())
-    return path

@@ -4,22 +4,19 @@ A sonar ring scans the world a few times from a start pose near one end of
 its longest free passage; the scans are integrated into a coverage map, and
 the :class:`covmap.Planner` weighs the expected information gain of every
 reachable candidate viewpoint against the path to it (paper eq. 14).
+:func:`covmap.plot.plot_planning_step` draws the step.
 """
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
 import numpy as np
 
 from covmap._native import CoverageMap, Grid, Plan, Planner, Robot, SonarModel, SonarRing, World
-from covmap.plot import plot_map, plot_trajectory, plot_world, save_figure
 
 if TYPE_CHECKING:
-    from pathlib import Path
-
     import numpy.typing as npt
 
 SEARCH_RESOLUTION_M = 0.1
@@ -130,71 +127,3 @@ def report(step: Step) -> str:
             f"cost {plan.cost:.3f} m, path of {len(plan.path)} cells"
         )
     return "\n".join(lines)
-
-
-def plot(step: Step, path: Path) -> Path:
-    """Write the step as a PNG of two panels, atomically: the ML map (cells no
-    reading changed in light blue), and the expected gain of every candidate
-    over the entropy map, with the start, the chosen viewpoint and the path.
-    Both panels show the observed part of the map."""
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
-    cmap, grid, plan = step.coverage_map, step.grid, step.plan
-    entropy = cmap.entropy()
-    observed = entropy < math.log(cmap.bins) - 1e-4
-    rows_seen, cols_seen = np.nonzero(observed)
-    gx0, gy0 = grid.origin
-    r = grid.resolution
-    if len(rows_seen):
-        view = (
-            gx0 + cols_seen.min() * r - 1.0,
-            gx0 + (cols_seen.max() + 1) * r + 1.0,
-            gy0 + rows_seen.min() * r - 1.0,
-            gy0 + (rows_seen.max() + 1) * r + 1.0,
-        )
-    else:
-        x0, y0, x1, y1 = grid.bounds
-        view = (x0, x1, y0, y1)
-    wide = (view[1] - view[0]) > 1.5 * (view[3] - view[2])
-    fig, axes = plt.subplots(
-        2 if wide else 1, 1 if wide else 2, figsize=(10, 8) if wide else (13, 5.5), layout="constrained"
-    )
-    try:
-        ml_ax, gain_ax = axes
-        greys = matplotlib.colormaps["Greys"].with_extremes(bad="lightsteelblue")
-        plot_map(np.ma.masked_where(~observed, cmap.ml()), grid, ml_ax, cmap=greys, colorbar=True)
-        ml_ax.set_title(f"ML coverage after {step.scans} sonar scans (unobserved: blue)", fontsize=10)
-        plot_map(entropy, grid, gain_ax, cmap="Greys_r", vmin=0.0, vmax=math.log(cmap.bins))
-        candidates = plan.candidates
-        poses = candidates.poses
-        dots = gain_ax.scatter(poses[:, 0], poses[:, 1], c=candidates.gains, cmap="viridis", s=28, zorder=3)
-        fig.colorbar(dots, ax=gain_ax, fraction=0.046, pad=0.04, label="expected gain [nats]")
-        gain_ax.set_title(
-            f"expected gain of {len(poses)} candidates over the entropy (alpha {step.planner.alpha:g})",
-            fontsize=10,
-        )
-        for ax in (ml_ax, gain_ax):
-            plot_world(step.world, ax, colors={"wall": "none", "glass": "none"}, edgecolor="tab:orange", alpha=0.7)
-            ax.plot(step.start[0], step.start[1], marker="o", color="tab:blue", linestyle="none", label="start")
-            ax.set_xlim(view[0], view[1])
-            ax.set_ylim(view[2], view[3])
-        if plan.pose is not None:
-            plot_trajectory(plan.path, gain_ax, color="tab:red", label="path")
-            gain_ax.plot(
-                plan.pose[0],
-                plan.pose[1],
-                marker="*",
-                markersize=16,
-                color="tab:red",
-                markeredgecolor="white",
-                linestyle="none",
-                label="chosen viewpoint",
-                zorder=4,
-            )
-        gain_ax.legend(loc="upper right", fontsize=8)
-        return save_figure(fig, path)
-    finally:
-        plt.close(fig)

@@ -5,20 +5,18 @@ so that the wall covers the far ``fraction`` of the target cell (row 20, col
 30: x in [1.50, 1.55), y in [1.00, 1.05)). Laser beams from varied positions
 and angles hit the face inside the target cell's row. The occupancy grid calls
 the cell occupied whatever the fraction; the coverage map recovers the
-fraction.
+fraction. :func:`covmap.plot.plot_fig1` draws the runs.
 """
 
 from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from pathlib import Path
 from typing import TYPE_CHECKING
 
 import numpy as np
 
 from covmap._native import CoverageMap, Grid, LaserModel, OccupancyGrid
-from covmap.plot import save_figure
 
 if TYPE_CHECKING:
     from collections.abc import Sequence
@@ -123,68 +121,3 @@ def table(runs: Sequence[Run]) -> str:
             f"{'yes' if r.ml_ok else 'NO':>15}  {'yes' if r.occupancy_ok else 'NO':>12}"
         )
     return "\n".join(lines)
-
-
-def plot(runs: Sequence[Run], path: Path) -> None:
-    """Write the figure to ``path`` (PNG) atomically: a temporary file in the
-    same directory, then a rename, so a reader never sees a partial file."""
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-    from matplotlib.patches import Rectangle
-
-    g = grid()
-    row, col = TARGET
-    r = RESOLUTION_M
-    window = 5  # cells on each side of the target
-    rows = slice(row - window, row + window + 1)
-    cols = slice(col - window, col + window + 1)
-    x0, y0 = g.origin
-    extent = (
-        x0 + (col - window) * r,
-        x0 + (col + window + 1) * r,
-        y0 + (row - window) * r,
-        y0 + (row + window + 1) * r,
-    )
-    fig, axes = plt.subplots(len(runs), 3, figsize=(11, 3.4 * len(runs)), squeeze=False)
-    for ax_row, run_ in zip(axes, runs):
-        occ_ax, ml_ax, hist_ax = ax_row
-        # The ML value of an unobserved cell (uniform prior) is 0 like an empty
-        # cell's: show those cells apart.
-        ml_shown = np.ma.masked_where(~run_.observed, run_.ml_map)
-        for ax, data, title in (
-            (occ_ax, run_.occupancy_map, "occupancy probability"),
-            (ml_ax, ml_shown, "ML coverage (unobserved: blue)"),
-        ):
-            greys = matplotlib.colormaps["Greys"].with_extremes(bad="lightsteelblue")
-            image = ax.imshow(
-                data[rows, cols], origin="lower", extent=extent, vmin=0.0, vmax=1.0, cmap=greys
-            )
-            ax.add_patch(
-                Rectangle(
-                    (x0 + col * r, y0 + row * r), r, r, fill=False, edgecolor="tab:red", lw=1.5
-                )
-            )
-            ax.axvline(run_.x_face_m, color="tab:blue", lw=1.0, ls="--")
-            ax.set_title(f"f = {run_.fraction:.1f}: {title}", fontsize=9)
-            ax.set_xlabel("x [m]")
-            ax.set_ylabel("y [m]")
-            fig.colorbar(image, ax=ax, fraction=0.046, pad=0.04)
-        width = 0.8 / (len(run_.bin_values) - 1)
-        hist_ax.bar(run_.bin_values, run_.histogram, width=width, color="tab:gray")
-        hist_ax.axvline(run_.fraction, color="tab:blue", ls="--", label="true coverage")
-        hist_ax.set_xlim(-0.05, 1.05)
-        hist_ax.set_xlabel("coverage")
-        hist_ax.set_ylabel("probability")
-        hist_ax.set_title(
-            f"target cell: ML {run_.ml:.3f}, mean {run_.mean:.3f}, p(occ) {run_.occupancy:.3f}",
-            fontsize=9,
-        )
-        hist_ax.legend(fontsize=8)
-    fig.suptitle("Fig. 1: a cell partly covered by an obstacle (laser)")
-    fig.tight_layout()
-    try:
-        save_figure(fig, path)
-    finally:
-        plt.close(fig)

@@ -1,0 +1,48 @@
+"""The ``covmap`` command line (also ``python -m covmap``).
+
+One module a command (``fig1``, ``world``, ``fig3``, ``gain``), each with its
+``NAME``, ``HELP`` and ``DESCRIPTION``, ``add_arguments(parser)`` and
+``run(args) -> exit status``; :func:`parser` gives each its subcommand.
+"""
+
+from __future__ import annotations
+
+import argparse
+import sys
+from typing import TYPE_CHECKING
+
+from covmap._errors import CovmapError
+from covmap._native import __version__
+from covmap.cli import fig1, fig3, gain, world
+
+if TYPE_CHECKING:
+    from collections.abc import Sequence
+
+COMMANDS = (fig1, world, fig3, gain)
+"""The command modules, in the order ``covmap --help`` lists them."""
+
+
+def parser() -> argparse.ArgumentParser:
+    """The argument parser, one subcommand per experiment."""
+    p = argparse.ArgumentParser(
+        prog="covmap", description="Coverage maps (Stachniss and Burgard, 2003)."
+    )
+    p.add_argument("--version", action="version", version=f"covmap {__version__}")
+    commands = p.add_subparsers(dest="command", required=True, metavar="COMMAND")
+    for module in COMMANDS:
+        command = commands.add_parser(module.NAME, help=module.HELP, description=module.DESCRIPTION)
+        module.add_arguments(command)
+        command.set_defaults(func=module.run)
+    return p
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    """Run the command line; returns the exit status."""
+    args = parser().parse_args(argv)
+    try:
+        status: int = args.func(args)
+    except (CovmapError, OSError) as e:
+        # Bad names, bad files: say what is wrong, without a traceback.
+        print(f"covmap {args.command}: error: {e}", file=sys.stderr)
+        return 2 if isinstance(e, ValueError) else 1
+    return status

@@ -1,0 +1,94 @@
+"""What the commands' options accept: argument types that check their range,
+and the options several commands share."""
+
+from __future__ import annotations
+
+import argparse
+from pathlib import Path
+from typing import Callable, TypeVar
+
+T = TypeVar("T", int, float)
+
+MAX_SEED = 2**64 - 1
+"""The largest seed: seeds are unsigned 64-bit integers."""
+
+MAX_COUNT = 1_000_000
+"""The most readings or scans a command takes (more would run for hours)."""
+
+MIN_LENGTH_M = 1e-6
+"""The smallest cell or pixel size, metres: the finest grid covmap builds."""
+
+MAX_LENGTH_M = 1000.0
+"""The largest cell or pixel size, metres: a kilometre is beyond any robot's
+world, and larger values overflow the areas computed from them or exhaust the
+memory building the world."""
+
+MAX_WALL_THICKNESS_M = 100.0
+"""The thickest wall an ARIA map's segments may be drawn as, metres (the
+library's limit)."""
+
+
+def _integer(text: str) -> int:
+    try:
+        return int(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"expected an integer, got {text}") from None
+
+
+def _number(text: str) -> float:
+    try:
+        return float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"expected a number, got {text}") from None
+
+
+def _within(parse: Callable[[str], T], valid: Callable[[T], bool], expected: str) -> Callable[[str], T]:
+    """An argument type: the text read by ``parse``, refused unless ``valid``
+    (a NaN fails every comparison, so a range check refuses it)."""
+
+    def check(text: str) -> T:
+        value = parse(text)
+        if not valid(value):
+            raise argparse.ArgumentTypeError(f"expected {expected}, got {text}")
+        return value
+
+    return check
+
+
+positive_int = _within(_integer, lambda v: 0 < v <= MAX_COUNT, f"an integer from 1 to {MAX_COUNT}")
+"""A count of readings or scans."""
+
+length = _within(
+    _number,
+    lambda v: MIN_LENGTH_M <= v <= MAX_LENGTH_M,
+    f"a length in metres from {MIN_LENGTH_M:g} to {MAX_LENGTH_M:g}",
+)
+"""A cell or pixel size, metres."""
+
+wall_thickness = _within(
+    _number,
+    lambda v: 0.0 < v <= MAX_WALL_THICKNESS_M,
+    f"a thickness in metres, more than 0 and at most {MAX_WALL_THICKNESS_M:g}",
+)
+"""The thickness of an ARIA map's walls, metres."""
+
+weight = _within(_number, lambda v: 0.0 <= v <= 1.0, "a weight in [0, 1]")
+"""A weight in ``[0, 1]``."""
+
+seed = _within(_integer, lambda v: 0 <= v <= MAX_SEED, "a seed from 0 to 2**64 - 1")
+"""A seed of the random generators."""
+
+
+def add_out(command: argparse.ArgumentParser, name: str) -> None:
+    """The ``--out`` option of subcommand ``name``, default ``covmap-out/<name>``."""
+    command.add_argument(
+        "--out",
+        type=Path,
+        default=Path("covmap-out", name),
+        help=f"output directory (default covmap-out/{name})",
+    )
+
+
+def add_seed(command: argparse.ArgumentParser) -> None:
+    """The ``--seed`` option, default 0."""
+    command.add_argument("--seed", type=seed, default=0, help="random seed, 0 to 2**64 - 1 (default 0)")
