@@ -1,11 +1,17 @@
-"""Stubs of the native module ``covmap._native`` (built from crates/covmap-py)."""
+# Stubs of the native module covmap._native (built from crates/covmap-py). The
+# signatures are written by hand; the docstrings are the module's own, written
+# in by python/tools/gen_stubs.py and checked by python/tests/test_stubs.py.
+"""Native core of covmap (coverage maps, Stachniss and Burgard 2003). Import
+from ``covmap`` instead.
+"""
 
 from collections.abc import Sequence
 from os import PathLike
-from typing import Any, Literal, final, overload
+from typing import Any, Literal, final, overload, type_check_only
 
 import numpy as np
 import numpy.typing as npt
+from typing_extensions import Self
 
 from covmap.experiments.fig3 import Fig3Result
 
@@ -51,36 +57,125 @@ _HistoryState = tuple[npt.NDArray[np.float32], npt.NDArray[np.uint32]]
 
 @final
 class Grid:
-    """A regular grid of square cells; rows run along y, columns along x."""
+    """A regular grid of square cells.
+
+    ``origin`` is the world position (metres) of the lower-left corner of cell
+    ``(row 0, col 0)``, ``resolution`` the side of a cell (metres), ``shape`` the
+    number of cells as ``(rows, cols)``. Rows run along y and columns along x:
+    cell ``(row, col)`` covers ``[ox + col*r, ox + (col+1)*r) x [oy + row*r,
+    oy + (row+1)*r)``, and every per-cell array of this package is indexed
+    ``[row, col]``. A resolution below 1e-6 m, more than 2**31 cells, or a
+    corner more than 2**32 cells from zero raises ``InvalidGridError``.
+    """
 
     def __new__(
         cls, *, origin: tuple[float, float], resolution: float, shape: tuple[int, int]
     ) -> Grid: ...
     @staticmethod
-    def covering(bounds: tuple[float, float, float, float], *, resolution: float) -> Grid: ...
+    def covering(bounds: tuple[float, float, float, float], *, resolution: float) -> Grid:
+        """The grid covering ``bounds = (x_min, y_min, x_max, y_max)`` (metres),
+        rounded up to whole cells of side ``resolution``.
+        """
     @property
-    def origin(self) -> tuple[float, float]: ...
+    def origin(self) -> tuple[float, float]:
+        """World position of the lower-left corner, metres."""
     @property
-    def resolution(self) -> float: ...
+    def resolution(self) -> float:
+        """Side of a cell, metres."""
     @property
-    def shape(self) -> tuple[int, int]: ...
+    def shape(self) -> tuple[int, int]:
+        """``(rows, cols)``."""
     @property
-    def rows(self) -> int: ...
+    def rows(self) -> int:
+        """Number of rows (cells along y)."""
     @property
-    def cols(self) -> int: ...
+    def cols(self) -> int:
+        """Number of columns (cells along x)."""
     @property
-    def bounds(self) -> tuple[float, float, float, float]: ...
-    def contains(self, x: float, y: float) -> bool: ...
-    def world_to_cell(self, x: float, y: float) -> tuple[int, int] | None: ...
-    def cell_center(self, row: int, col: int) -> tuple[float, float]: ...
+    def bounds(self) -> tuple[float, float, float, float]:
+        """``(x_min, y_min, x_max, y_max)`` of the covered rectangle, metres."""
+    def contains(self, x: float, y: float) -> bool:
+        """Whether the world point lies in a cell of the grid: the rectangle with
+        its upper edges excluded, up to rounding (a point on an upper edge may
+        round into the last cell).
+        """
+    def world_to_cell(self, x: float, y: float) -> tuple[int, int] | None:
+        """The ``(row, col)`` of the cell containing a world point, or ``None``
+        outside the grid.
+        """
+    def cell_center(self, row: int, col: int) -> tuple[float, float]:
+        """World position ``(x, y)`` of a cell's centre, metres (the cell need not
+        lie inside the grid: a negative index counts on past the first row or
+        column).
+        """
     def __eq__(self, value: object, /) -> bool: ...
     def __ne__(self, value: object, /) -> bool: ...
     def __hash__(self) -> int: ...
-    def __getnewargs_ex__(self) -> tuple[tuple[()], dict[str, Any]]: ...
+    def __getnewargs_ex__(self) -> tuple[tuple[()], dict[str, Any]]:
+        """Pickle and copy support: the keyword arguments that rebuild the grid."""
+
+@type_check_only
+class _RangeModel:
+    """What both sensor models have: the range model's parameters and the
+    methods over them."""
+
+    @property
+    def max_range_m(self) -> float:
+        """Readings at or beyond this distance mean "no echo", metres."""
+    @property
+    def band_m(self) -> float:
+        """How far behind the end point cells are updated (as covered), metres."""
+    @property
+    def sigma_min(self) -> float:
+        """Standard deviation of the coverage mean at zero distance, outside the end band."""
+    @property
+    def sigma_per_m(self) -> float:
+        """Growth of that standard deviation per metre of distance min(d_l, d)."""
+    @property
+    def sigma_end(self) -> float:
+        """The constant standard deviation inside the end band (the largest of all)."""
+    @property
+    def xi_min(self) -> float:
+        """Weight of the uniform component at zero distance."""
+    @property
+    def xi_per_m(self) -> float:
+        """Growth of the uniform weight per metre of distance min(d_l, d)."""
+    def kernel(
+        self,
+        cell_distance: float,
+        measured_distance: float,
+        *,
+        resolution: float = 0.05,
+        bins: int = 16,
+    ) -> npt.NDArray[np.float32] | None:
+        """The kernel a map multiplies into a cell at ``cell_distance`` (metres)
+        for a reading of ``measured_distance`` (metres), on a grid of
+        ``resolution`` (metres) with ``bins`` bins: a float32 array of shape
+        ``(bins,)`` summing to 1, or ``None`` where the cell is not updated.
+        A NaN, infinite or negative distance raises ``InvalidParameterError``.
+        """
+    def to_dict(self) -> dict[str, float]:
+        """The parameters as a dict of keyword arguments."""
+    @classmethod
+    def from_dict(cls, d: dict[str, float]) -> Self:
+        """The model with the parameters of ``d`` (missing ones take the defaults)."""
+    def __eq__(self, value: object, /) -> bool: ...
+    def __ne__(self, value: object, /) -> bool: ...
+    def __hash__(self) -> int: ...
+    def __getnewargs_ex__(self) -> tuple[tuple[()], dict[str, float]]:
+        """Pickle and copy support: the keyword arguments that rebuild the model."""
 
 @final
-class SonarModel:
-    """The sonar inverse model: a range model spread over a cone."""
+class SonarModel(_RangeModel):
+    """The sonar inverse model: a range model spread over a cone.
+
+    Every cell whose centre lies within half the opening angle of the beam axis
+    and no further than the reach of the reading is updated, with its centre's
+    Euclidean distance from the sensor. Distances are in metres, angles in
+    radians. Arguments left out (or ``None``) take the defaults of a
+    Polaroid-class ultrasound sensor (15 degree cone, 5 m); every parameter is
+    validated, and an invalid one raises ``InvalidParameterError``.
+    """
 
     def __new__(
         cls,
@@ -95,40 +190,19 @@ class SonarModel:
         opening_angle_rad: float | None = None,
     ) -> SonarModel: ...
     @property
-    def max_range_m(self) -> float: ...
-    @property
-    def band_m(self) -> float: ...
-    @property
-    def sigma_min(self) -> float: ...
-    @property
-    def sigma_per_m(self) -> float: ...
-    @property
-    def sigma_end(self) -> float: ...
-    @property
-    def xi_min(self) -> float: ...
-    @property
-    def xi_per_m(self) -> float: ...
-    @property
-    def opening_angle_rad(self) -> float: ...
-    def kernel(
-        self,
-        cell_distance: float,
-        measured_distance: float,
-        *,
-        resolution: float = 0.05,
-        bins: int = 16,
-    ) -> npt.NDArray[np.float32] | None: ...
-    def to_dict(self) -> dict[str, float]: ...
-    @classmethod
-    def from_dict(cls, d: dict[str, float]) -> SonarModel: ...
-    def __eq__(self, value: object, /) -> bool: ...
-    def __ne__(self, value: object, /) -> bool: ...
-    def __hash__(self) -> int: ...
-    def __getnewargs_ex__(self) -> tuple[tuple[()], dict[str, float]]: ...
+    def opening_angle_rad(self) -> float:
+        """Full opening angle of the cone, radians."""
 
 @final
-class LaserModel:
-    """The laser inverse model: a range model along a thin beam."""
+class LaserModel(_RangeModel):
+    """The laser inverse model: a range model along a thin beam.
+
+    Every cell the ray crosses up to the reach of the reading is updated once,
+    with the distance of its centre projected on the ray. Distances are in
+    metres. Arguments left out (or ``None``) take the defaults of a SICK-class
+    laser (30 m, sharp readings); an invalid parameter raises
+    ``InvalidParameterError``.
+    """
 
     def __new__(
         cls,
@@ -141,81 +215,124 @@ class LaserModel:
         xi_min: float | None = None,
         xi_per_m: float | None = None,
     ) -> LaserModel: ...
-    @property
-    def max_range_m(self) -> float: ...
-    @property
-    def band_m(self) -> float: ...
-    @property
-    def sigma_min(self) -> float: ...
-    @property
-    def sigma_per_m(self) -> float: ...
-    @property
-    def sigma_end(self) -> float: ...
-    @property
-    def xi_min(self) -> float: ...
-    @property
-    def xi_per_m(self) -> float: ...
-    def kernel(
-        self,
-        cell_distance: float,
-        measured_distance: float,
-        *,
-        resolution: float = 0.05,
-        bins: int = 16,
-    ) -> npt.NDArray[np.float32] | None: ...
-    def to_dict(self) -> dict[str, float]: ...
-    @classmethod
-    def from_dict(cls, d: dict[str, float]) -> LaserModel: ...
-    def __eq__(self, value: object, /) -> bool: ...
-    def __ne__(self, value: object, /) -> bool: ...
-    def __hash__(self) -> int: ...
-    def __getnewargs_ex__(self) -> tuple[tuple[()], dict[str, float]]: ...
 
 @final
 class CoverageMap:
-    """A grid whose every cell holds a histogram over how much of it is covered."""
+    """A grid whose every cell holds a histogram over how much of it is covered by
+    obstacles (0 = empty, 1 = fully covered), starting at the uniform prior.
+
+    ``bins`` (2 to 256) is the number of coverage values; bin ``b`` stands for
+    coverage ``b / (bins - 1)``. Per-cell arrays are indexed ``[row, col]`` as
+    in ``Grid``.
+    """
 
     def __new__(cls, grid: Grid, bins: int = 16) -> CoverageMap: ...
     @classmethod
-    def from_histograms(cls, grid: Grid, histograms: npt.NDArray[np.float32]) -> CoverageMap: ...
+    def from_histograms(cls, grid: Grid, histograms: npt.NDArray[np.float32]) -> CoverageMap:
+        """A map over ``grid`` from stored histograms: a float32 array of shape
+        ``(rows, cols, bins)`` whose every histogram is finite, non-negative and
+        sums to 1 within 1e-3 (``.histograms`` of another map, for instance).
+        """
     @property
-    def grid(self) -> Grid: ...
+    def grid(self) -> Grid:
+        """The grid."""
     @property
-    def bins(self) -> int: ...
+    def bins(self) -> int:
+        """Bins per cell."""
     @property
-    def bin_values(self) -> npt.NDArray[np.float64]: ...
+    def bin_values(self) -> npt.NDArray[np.float64]:
+        """The coverage value of each bin, ``b / (bins - 1)``: float64, ``(bins,)``."""
     @property
-    def histograms(self) -> npt.NDArray[np.float32]: ...
-    def histogram(self, row: int, col: int) -> npt.NDArray[np.float32]: ...
-    def ml(self) -> npt.NDArray[np.float32]: ...
-    def mean(self) -> npt.NDArray[np.float32]: ...
-    def entropy(self) -> npt.NDArray[np.float32]: ...
+    def histograms(self) -> npt.NDArray[np.float32]:
+        """A copy of all histograms: float32, ``(rows, cols, bins)``."""
+    def histogram(self, row: int, col: int) -> npt.NDArray[np.float32]:
+        """One cell's histogram: float32, ``(bins,)``."""
+    def ml(self) -> npt.NDArray[np.float32]:
+        """The maximum-likelihood map: each cell's most probable coverage value,
+        float32, ``(rows, cols)``.
+        """
+    def mean(self) -> npt.NDArray[np.float32]:
+        """The mean map: each cell's expected coverage, float32, ``(rows, cols)``."""
+    def entropy(self) -> npt.NDArray[np.float32]:
+        """The entropy map in nats (``ln(bins)`` at the prior, 0 when certain),
+        float32, ``(rows, cols)``.
+        """
     def integrate(
         self, pose: _Pose, ranges: _Readings, bearings: _Readings, model: _Model
-    ) -> int: ...
-    def track_history(self, on: bool) -> None: ...
+    ) -> int:
+        """Integrate one scan taken from ``pose = (x, y, theta)`` (metres, radians):
+        reading ``ranges[i]`` (metres) along ``theta + bearings[i]`` (radians).
+        ``ranges`` and ``bearings`` are 1-D float64 arrays (or sequences of
+        numbers) of equal length; a reading at or beyond the model's maximum
+        range means "no echo". ``model`` is a ``SonarModel`` or a
+        ``LaserModel``. Returns the number of cell updates.
+
+        Everything is checked before anything changes: after an error the map
+        is exactly as it was. The update runs with the GIL released; touching
+        the same map from another thread meanwhile raises ``RuntimeError``.
+        """
+    def track_history(self, on: bool) -> None:
+        """Keep (``True``) or stop keeping (``False``) each cell's entropy after
+        its last measurements, for ``stagnated()`` and ``Planner.status``. A
+        scan that updates a cell counts as one measurement of it. Off by
+        default; turning it on (again) starts an empty history. Pickling and
+        copying keep the history.
+        """
     @property
-    def tracks_history(self) -> bool: ...
-    def measurements(self) -> npt.NDArray[np.uint32]: ...
-    def stagnated(self) -> npt.NDArray[np.bool_]: ...
+    def tracks_history(self) -> bool:
+        """Whether the entropy history is kept."""
+    def measurements(self) -> npt.NDArray[np.uint32]:
+        """How many scans updated each cell since the history was turned on:
+        uint32, ``(rows, cols)`` (all zero while it is off).
+        """
+    def stagnated(self) -> npt.NDArray[np.bool_]:
+        """Whether each cell's entropy changed by less than 0.001 nats over its
+        last five measurements: bool, ``(rows, cols)`` (all ``False`` while the
+        history is off or shorter).
+        """
     def __reduce__(
         self,
-    ) -> tuple[Any, tuple[Grid, npt.NDArray[np.float32]], _HistoryState | None]: ...
-    def __setstate__(self, state: _HistoryState | None) -> None: ...
+    ) -> tuple[Any, tuple[Grid, npt.NDArray[np.float32]], _HistoryState | None]:
+        """Pickle and copy support: rebuilt from the grid and the histograms, the
+        entropy history (if kept) restored by ``__setstate__``.
+        """
+    def __setstate__(self, state: _HistoryState | None) -> None:
+        """Unpickling support: restore the entropy history saved by
+        ``__reduce__``, ``(entropies, counts)`` (float32
+        ``(rows, cols, STAGNATION_MEASUREMENTS + 1)`` and uint32
+        ``(rows, cols)``), and keep tracking it; ``None`` changes nothing.
+        After an error the map is exactly as it was.
+        """
 
 @final
 class OccupancyGrid:
-    """A standard log-odds occupancy grid, with the scan counts of its beams."""
+    """A standard log-odds occupancy grid (every cell at p = 0.5 to start), fed by
+    the same beams as a ``CoverageMap``, with the scan counts of those beams.
+
+    A cell in front of the reading's end point is observed free (p = 0.35), the
+    end point's cell occupied (p = 0.7), cells behind are not touched; log-odds
+    are clamped to ``[-5, 5]``. Per-cell arrays are indexed ``[row, col]``.
+    """
 
     def __new__(cls, grid: Grid) -> OccupancyGrid: ...
     @property
-    def grid(self) -> Grid: ...
+    def grid(self) -> Grid:
+        """The grid."""
     def integrate(
         self, pose: _Pose, ranges: _Readings, bearings: _Readings, model: _Model
-    ) -> None: ...
-    def probabilities(self) -> npt.NDArray[np.float32]: ...
-    def log_odds(self) -> npt.NDArray[np.float32]: ...
-    def counts(self) -> npt.NDArray[np.float32]: ...
+    ) -> None:
+        """Integrate one scan; arguments and checks as ``CoverageMap.integrate``.
+        After an error the grid is exactly as it was. The update runs with the
+        GIL released.
+        """
+    def probabilities(self) -> npt.NDArray[np.float32]:
+        """Probability of occupancy, float32, ``(rows, cols)``."""
+    def log_odds(self) -> npt.NDArray[np.float32]:
+        """Log-odds of occupancy, float32, ``(rows, cols)``."""
+    def counts(self) -> npt.NDArray[np.float32]:
+        """How many beams intercepted each cell (up to its end point), float32,
+        ``(rows, cols)``.
+        """
 
 def expected_information_gain(
     map: CoverageMap,
@@ -226,11 +343,44 @@ def expected_information_gain(
     *,
     range_step_m: float | None = None,
     stop_coverage: Literal["ml", "maximum_likelihood", "mean"] = "ml",
-) -> npt.NDArray[np.float64]: ...
+) -> npt.NDArray[np.float64]:
+    """The expected information gain (nats) of scanning ``map`` from each of
+    ``poses`` (float64 ``(N, 3)`` of ``(x, y, theta)``) with beams at
+    ``bearings`` (radians, relative to each heading) through ``model``: float64
+    ``(N,)`` (paper eq. 11-13).
+
+    ``method`` is ``"fast"`` (the production evaluator) or ``"exact"`` (the
+    equation as written, equal to rounding). Predicted readings are spaced
+    ``range_step_m`` apart (default: the grid resolution; between 1/1024 of
+    it and it), and
+    a predicted beam is stopped by each cell's ``stop_coverage``: ``"ml"``
+    (most probable coverage, the paper's choice) or ``"mean"``. A pose outside
+    the map or not finite raises; the map is never changed. Runs with the GIL
+    released, candidates in parallel.
+    """
 
 @final
 class Planner:
-    """The decision-theoretic exploration planner (paper eq. 14)."""
+    """The decision-theoretic exploration planner.
+
+    A cell *blocks* when its coverage on the ML map exceeds
+    ``blocked_coverage`` and is *unknown* while its entropy is at least
+    ``unknown_entropy_fraction`` of the prior's; the robot (a disc of
+    ``robot_radius_m``) keeps its disc clear of blocked cells and, unless
+    ``unknown_is_free``, of unknown ones; paths are 8-connected between cell
+    centres (from where the robot stands, it may also cross the unblocked
+    cells its disc overlaps there). Candidates are the reachable free cells on a
+    lattice of ``candidate_stride_m``, at least ``min_travel_m`` away, whose
+    expected gain exceeds ``min_gain_nats``; the chosen one maximises
+    ``alpha * gain / max gain - (1 - alpha) * cost / max cost`` (``alpha = 0``:
+    nearest, ``1``: most informative). Exploration is done when every
+    reachable cell has entropy below ``epsilon`` or has stagnated.
+    ``range_step_m`` and ``stop_coverage`` configure the gain as in
+    ``expected_information_gain``.
+
+    Arguments left out (or ``None``) take the defaults, readable as
+    attributes; an invalid one raises ``InvalidParameterError``.
+    """
 
     def __new__(
         cls,
@@ -248,91 +398,148 @@ class Planner:
         stop_coverage: Literal["ml", "maximum_likelihood", "mean"] | None = None,
     ) -> Planner: ...
     @property
-    def alpha(self) -> float: ...
+    def alpha(self) -> float:
+        """Weight of information against travel, in ``[0, 1]``."""
     @property
-    def robot_radius_m(self) -> float: ...
+    def robot_radius_m(self) -> float:
+        """Radius of the disc robot, metres."""
     @property
-    def candidate_stride_m(self) -> float: ...
+    def candidate_stride_m(self) -> float:
+        """Spacing of the candidate lattice, metres."""
     @property
-    def min_travel_m(self) -> float: ...
+    def min_travel_m(self) -> float:
+        """Candidates closer than this along the path are not goals, metres."""
     @property
-    def min_gain_nats(self) -> float: ...
+    def min_gain_nats(self) -> float:
+        """Candidates whose expected gain is at most this are not goals, nats."""
     @property
-    def blocked_coverage(self) -> float: ...
+    def blocked_coverage(self) -> float:
+        """Coverage on the ML map above which a cell blocks the robot."""
     @property
-    def unknown_entropy_fraction(self) -> float: ...
+    def unknown_entropy_fraction(self) -> float:
+        """A cell is unknown while its entropy is at least this fraction of the prior's."""
     @property
-    def unknown_is_free(self) -> bool: ...
+    def unknown_is_free(self) -> bool:
+        """Whether the robot may plan through unknown cells."""
     @property
-    def epsilon(self) -> float: ...
+    def epsilon(self) -> float:
+        """Entropy below which a cell counts as explored, nats."""
     @property
-    def range_step_m(self) -> float | None: ...
+    def range_step_m(self) -> float | None:
+        """Spacing of the predicted readings, metres (``None``: the grid resolution)."""
     @property
-    def stop_coverage(self) -> Literal["ml", "mean"]: ...
+    def stop_coverage(self) -> Literal["ml", "mean"]:
+        """Which coverage stops a predicted beam: ``"ml"`` or ``"mean"``."""
     def next_viewpoint(
         self, map: CoverageMap, pose: _Pose, bearings: _Readings, model: _Model
-    ) -> Plan: ...
-    def status(self, map: CoverageMap, pose: _Pose) -> ExplorationStatus: ...
-    def free_space(self, map: CoverageMap) -> npt.NDArray[np.bool_]: ...
-    def path_costs(self, map: CoverageMap, pose: _Pose) -> npt.NDArray[np.float64]: ...
+    ) -> Plan:
+        """Choose the next viewpoint for a robot at ``pose = (x, y, theta)`` on
+        ``map``, scanning with beams at ``bearings`` through ``model``. Runs
+        with the GIL released; the map is not changed.
+        """
+    def status(self, map: CoverageMap, pose: _Pose) -> ExplorationStatus:
+        """How far exploration of ``map`` has come for a robot at ``pose``."""
+    def free_space(self, map: CoverageMap) -> npt.NDArray[np.bool_]:
+        """Where the robot's centre may be on ``map``: bool, ``(rows, cols)``."""
+    def path_costs(self, map: CoverageMap, pose: _Pose) -> npt.NDArray[np.float64]:
+        """The length of a shortest path from ``pose`` to every cell over the
+        robot's free space, metres: float64, ``(rows, cols)``, ``inf`` where
+        unreachable.
+        """
 
 @final
 class Plan:
-    """The planner's answer: the chosen viewpoint, its path, every candidate."""
+    """The planner's answer: the chosen viewpoint, the path to it and every
+    candidate considered.
+    """
 
     @property
-    def pose(self) -> npt.NDArray[np.float64] | None: ...
+    def pose(self) -> npt.NDArray[np.float64] | None:
+        """The chosen viewpoint ``(x, y, theta)``, float64 ``(3,)``; ``None`` when
+        no candidate is worth visiting.
+        """
     @property
-    def path(self) -> npt.NDArray[np.float64]: ...
+    def path(self) -> npt.NDArray[np.float64]:
+        """The path to it: cell centres from the robot's cell to the goal's,
+        float64 ``(K, 2)`` (``K = 0`` without a goal).
+        """
     @property
-    def chosen(self) -> int | None: ...
+    def chosen(self) -> int | None:
+        """Index of the chosen candidate in ``candidates``, or ``None``."""
     @property
-    def gain(self) -> float | None: ...
+    def gain(self) -> float | None:
+        """Expected information gain of the chosen viewpoint, nats, or ``None``."""
     @property
-    def cost(self) -> float | None: ...
+    def cost(self) -> float | None:
+        """Path length to the chosen viewpoint, metres, or ``None``."""
     @property
-    def candidates(self) -> Candidates: ...
+    def candidates(self) -> Candidates:
+        """Every candidate considered."""
 
 @final
 class Candidates:
-    """The candidates a plan considered, one entry per candidate."""
+    """The candidates a ``Plan`` considered, one entry per candidate."""
 
     @property
-    def poses(self) -> npt.NDArray[np.float64]: ...
+    def poses(self) -> npt.NDArray[np.float64]:
+        """Candidate poses ``(x, y, theta)``: float64 ``(M, 3)``."""
     @property
-    def gains(self) -> npt.NDArray[np.float64]: ...
+    def gains(self) -> npt.NDArray[np.float64]:
+        """Expected information gain of each, nats: float64 ``(M,)``."""
     @property
-    def costs(self) -> npt.NDArray[np.float64]: ...
+    def costs(self) -> npt.NDArray[np.float64]:
+        """Path length from the robot to each, metres: float64 ``(M,)``."""
     @property
-    def utilities(self) -> npt.NDArray[np.float64]: ...
+    def utilities(self) -> npt.NDArray[np.float64]:
+        """Eq. 14's utility of each (``-inf`` for those that are no goal):
+        float64 ``(M,)``.
+        """
     def __len__(self) -> int: ...
 
 @final
 class ExplorationStatus:
-    """How far exploration has come."""
+    """How far exploration has come (``Planner.status``)."""
 
     @property
-    def reachable_cells(self) -> int: ...
+    def reachable_cells(self) -> int:
+        """Cells connected to the robot through cells not blocked."""
     @property
-    def certain_cells(self) -> int: ...
+    def certain_cells(self) -> int:
+        """Of those, cells with entropy below epsilon."""
     @property
-    def stagnated_cells(self) -> int: ...
+    def stagnated_cells(self) -> int:
+        """Of the rest, cells whose entropy stagnated."""
     @property
-    def done(self) -> bool: ...
+    def done(self) -> bool:
+        """Whether every reachable cell is certain or stagnated."""
     def __eq__(self, value: object, /) -> bool: ...
     def __ne__(self, value: object, /) -> bool: ...
 
 @final
 class World:
-    """Obstacle polygons in the plane (metres); everything else is free."""
+    """A set of obstacle polygons in the plane (metres); everything outside them
+    is free space, and overlapping polygons are their union.
+
+    ``polygons`` is a list of vertex arrays, each of shape ``(N, 2)`` (float64
+    numpy arrays or sequences of ``(x, y)``), in either orientation, closed or
+    not. ``materials`` (optional) gives each polygon's surface, ``"wall"``
+    (the default) or ``"glass"``, which decides how it echoes ultrasound. A
+    polygon that is not simple, has fewer than three distinct vertices or no
+    area raises ``InvalidPolygonError`` naming its index.
+    """
 
     def __new__(
         cls, polygons: Sequence[_Points], materials: Sequence[str] | None = None
     ) -> World: ...
     @staticmethod
-    def builtin(name: str) -> World: ...
+    def builtin(name: str) -> World:
+        """A built-in world by name (see ``World.builtin_names()``): ``"corridor"``
+        (the paper's Fig. 3), ``"office"``, ``"partial"`` (Fig. 1). An unknown
+        name raises ``UnknownWorldError``.
+        """
     @staticmethod
-    def builtin_names() -> list[str]: ...
+    def builtin_names() -> list[str]:
+        """The names of the built-in worlds."""
     @staticmethod
     def from_file(
         path: _Path,
@@ -340,20 +547,53 @@ class World:
         wall_thickness_m: float = 0.1,
         resolution: float | None = None,
         origin: tuple[float, float] | None = None,
-    ) -> World: ...
-    def to_geojson(self) -> str: ...
+    ) -> World:
+        """A world from a file, by its extension:
+
+        - ``.json``, ``.geojson``: GeoJSON polygons in metres (a feature's
+          ``properties.material`` is ``"wall"`` or ``"glass"``);
+        - ``.map``: the ``LINES`` of an ARIA map, each a wall
+          ``wall_thickness_m`` thick;
+        - ``.yaml``, ``.yml``: a ROS map_server YAML file and its image;
+        - ``.pgm``, ``.png``: an occupancy image (dark = occupied) of
+          ``resolution`` metres per pixel, its lower-left corner at ``origin``
+          (default ``(0, 0)``); ``resolution`` is required.
+
+        A malformed file raises ``FileFormatError`` (a ``ValueError``) naming
+        the file and the place; a file that cannot be read raises
+        ``FileIOError`` (an ``OSError``).
+        """
+    def to_geojson(self) -> str:
+        """The world as GeoJSON text (``World.from_file`` reads it back from a
+        ``.geojson`` file).
+        """
     @property
-    def bounds(self) -> tuple[float, float, float, float]: ...
+    def bounds(self) -> tuple[float, float, float, float]:
+        """``(x_min, y_min, x_max, y_max)`` of all obstacles, metres (all zero when
+        there are none).
+        """
     @property
-    def polygons(self) -> list[npt.NDArray[np.float64]]: ...
+    def polygons(self) -> list[npt.NDArray[np.float64]]:
+        """The exterior ring of each polygon: a list of float64 ``(N, 2)`` arrays."""
     @property
-    def holes(self) -> list[list[npt.NDArray[np.float64]]]: ...
+    def holes(self) -> list[list[npt.NDArray[np.float64]]]:
+        """The holes of each polygon: a list (one per polygon) of lists of
+        float64 ``(K, 2)`` arrays.
+        """
     @property
-    def materials(self) -> list[str]: ...
+    def materials(self) -> list[str]:
+        """The material of each polygon, ``"wall"`` or ``"glass"``."""
     @property
-    def polygon_area_m2(self) -> float: ...
+    def polygon_area_m2(self) -> float:
+        """The sum of the polygons' areas, square metres (overlaps counted twice;
+        the union is ``coverage(grid).sum()`` times the cell area).
+        """
     def __len__(self) -> int: ...
-    def coverage(self, grid: Grid) -> npt.NDArray[np.float64]: ...
+    def coverage(self, grid: Grid) -> npt.NDArray[np.float64]:
+        """The exact fraction of every cell of ``grid`` inside the obstacles:
+        float64, ``(rows, cols)``, in ``[0, 1]`` (the ground truth a coverage
+        map estimates). Runs with the GIL released.
+        """
     @overload
     def cast(
         self,
@@ -362,7 +602,17 @@ class World:
         max_range_m: float,
         *,
         return_incidence: Literal[False] = False,
-    ) -> npt.NDArray[np.float64]: ...
+    ) -> npt.NDArray[np.float64]:
+        """Cast rays from ``origins`` along ``angles`` (radians, counter-clockwise
+        from +x) up to ``max_range_m``: the distance to the first surface of
+        each, float64 ``(N,)``, ``max_range_m`` where nothing was hit.
+
+        ``origins`` is a float64 array of shape ``(N, 2)`` (or one point
+        ``(x, y)`` shared by every ray), ``angles`` a float64 array of shape
+        ``(N,)``. With ``return_incidence=True`` the result is a pair
+        ``(distances, incidence)``, ``incidence`` the angle between each ray and
+        the surface normal in ``[0, pi/2]`` (NaN where nothing was hit).
+        """
     @overload
     def cast(
         self,
@@ -372,12 +622,71 @@ class World:
         *,
         return_incidence: Literal[True],
     ) -> tuple[npt.NDArray[np.float64], npt.NDArray[np.float64]]: ...
-    def contains(self, x: float, y: float) -> bool: ...
-    def distance_to_obstacle(self, x: float, y: float) -> float: ...
+    def contains(self, x: float, y: float) -> bool:
+        """Whether the point ``(x, y)`` lies inside an obstacle."""
+    def distance_to_obstacle(self, x: float, y: float) -> float:
+        """Distance from ``(x, y)`` to the nearest obstacle, metres: 0 inside
+        one, infinite in an empty world. A coordinate that is not finite
+        raises ``InvalidValueError``.
+        """
+
+@type_check_only
+class _RangeSensor:
+    """What both simulated sensors have: their bearings, their range and
+    simulated scans."""
+
+    @property
+    def bearings_rad(self) -> npt.NDArray[np.float64]:
+        """Bearing of each beam relative to the heading, radians: float64
+        ``(n,)`` (a ring's sensors are mounted at these bearings).
+        """
+    @property
+    def bearings(self) -> npt.NDArray[np.float64]:
+        """The same as ``bearings_rad``, under the name ``CoverageMap.integrate`` uses."""
+    @property
+    def max_range_m(self) -> float:
+        """Readings at or beyond this are "no echo", metres."""
+    def simulate(
+        self, world: World, pose: _Pose, *, seed: int = 0
+    ) -> tuple[npt.NDArray[np.float64], npt.NDArray[np.float64]]:
+        """One scan of ``world`` from ``pose = (x, y, theta)``, every random draw
+        from a generator seeded with ``seed``: ``(ranges, bearings)``, float64
+        ``(n,)`` each, ready for ``CoverageMap.integrate(pose, ranges,
+        bearings, model)`` with the sensor's model (``SonarModel()`` for a
+        ``SonarRing``, ``LaserModel()`` for a ``Laser``). The same seed gives
+        the same readings.
+        """
+    def simulate_path(
+        self, world: World, poses: _Poses, *, seed: int = 0
+    ) -> npt.NDArray[np.float64]:
+        """One scan from each pose of ``poses`` (float64 ``(N, 3)``): the ranges
+        as float64 ``(N, n)``. Scan ``i`` draws from its own stream ``i`` of
+        ``seed`` (scan 0 equals ``simulate(world, poses[0], seed=seed)``), so
+        the result depends on the seed alone; scans run in parallel.
+        """
+    def __eq__(self, value: object, /) -> bool: ...
+    def __ne__(self, value: object, /) -> bool: ...
 
 @final
-class SonarRing:
-    """A ring of simulated ultrasound sensors."""
+class SonarRing(_RangeSensor):
+    """A ring of simulated ultrasound sensors, all at the robot's centre.
+
+    Sensor ``i`` looks along ``theta + bearings_rad[i]``. A reading casts
+    ``rays_per_cone`` rays across the cone; a ray echoes when it meets a
+    surface at an incidence no larger than the material's critical angle
+    (walls ``critical_angle_wall_rad``, glass ``critical_angle_glass_rad``);
+    the nearest echo is the reading. A cone with only specular misses returns a
+    longer multipath reading with ``multipath_probability``, else no echo.
+    Echoes get Gaussian noise of standard deviation ``noise_std_m +
+    noise_std_per_m * range`` and are at least ``min_range_m``; with
+    ``outlier_probability`` a reading is replaced by a short outlier. No echo
+    reads exactly ``max_range_m``, as ``CoverageMap.integrate`` expects.
+
+    Arguments left out (or ``None``) take the defaults: 24 sensors 15 degrees
+    apart, the first straight ahead, with the cone and range of the default
+    ``SonarModel``. Distances in metres, angles in radians; an invalid value
+    raises ``InvalidParameterError`` (or ``InvalidValueError`` for a bearing).
+    """
 
     def __new__(
         cls,
@@ -395,46 +704,58 @@ class SonarRing:
         critical_angle_glass_rad: float | None = None,
     ) -> SonarRing: ...
     @staticmethod
-    def ring(count: int) -> SonarRing: ...
+    def ring(count: int) -> SonarRing:
+        """``count`` sensors evenly spaced around the robot, the first straight
+        ahead, with the default error model.
+        """
     @staticmethod
-    def front_eight() -> SonarRing: ...
-    def with_model(self, model: SonarModel) -> SonarRing: ...
+    def front_eight() -> SonarRing:
+        """The eight-sonar front array of the ``sonar-8ring`` data set: -90,
+        -37.5, -22.5, -7.5, 7.5, 22.5, 37.5 and 90 degrees.
+        """
+    def with_model(self, model: SonarModel) -> SonarRing:
+        """The same ring with the opening angle and maximum range of ``model``, so
+        that the simulated cone is the one the map assumes.
+        """
     @property
-    def bearings_rad(self) -> npt.NDArray[np.float64]: ...
+    def opening_angle_rad(self) -> float:
+        """Full opening angle of each cone, radians."""
     @property
-    def bearings(self) -> npt.NDArray[np.float64]: ...
+    def min_range_m(self) -> float:
+        """The shortest reading the sensor produces, metres."""
     @property
-    def opening_angle_rad(self) -> float: ...
+    def rays_per_cone(self) -> int:
+        """Rays cast across each cone."""
     @property
-    def max_range_m(self) -> float: ...
+    def noise_std_m(self) -> float:
+        """Standard deviation of the range noise at zero range, metres."""
     @property
-    def min_range_m(self) -> float: ...
+    def noise_std_per_m(self) -> float:
+        """Growth of that standard deviation per metre of range."""
     @property
-    def rays_per_cone(self) -> int: ...
+    def outlier_probability(self) -> float:
+        """Probability that a reading is replaced by a short outlier."""
     @property
-    def noise_std_m(self) -> float: ...
+    def multipath_probability(self) -> float:
+        """Probability that a specular miss returns a longer multipath reading."""
     @property
-    def noise_std_per_m(self) -> float: ...
+    def critical_angle_wall_rad(self) -> float:
+        """Largest angle of incidence at which a wall still echoes, radians."""
     @property
-    def outlier_probability(self) -> float: ...
-    @property
-    def multipath_probability(self) -> float: ...
-    @property
-    def critical_angle_wall_rad(self) -> float: ...
-    @property
-    def critical_angle_glass_rad(self) -> float: ...
-    def simulate(
-        self, world: World, pose: _Pose, *, seed: int = 0
-    ) -> tuple[npt.NDArray[np.float64], npt.NDArray[np.float64]]: ...
-    def simulate_path(
-        self, world: World, poses: _Poses, *, seed: int = 0
-    ) -> npt.NDArray[np.float64]: ...
-    def __eq__(self, value: object, /) -> bool: ...
-    def __ne__(self, value: object, /) -> bool: ...
+    def critical_angle_glass_rad(self) -> float:
+        """Largest angle of incidence at which glass still echoes, radians."""
 
 @final
-class Laser:
-    """A simulated laser scanner."""
+class Laser(_RangeSensor):
+    """A simulated laser scanner: thin beams, small Gaussian noise.
+
+    ``beams`` beams spread evenly over ``fov_rad`` centred on the heading, the
+    first at ``-fov_rad / 2`` and the last at ``+fov_rad / 2`` (default 361
+    beams over pi: half a degree apart), or beams at ``bearings_rad``. A hit at
+    distance ``d`` reads ``d + noise_std_m * z``; a beam that meets nothing
+    before ``max_range_m`` (default 30 m, the default ``LaserModel``'s) reads
+    exactly ``max_range_m``. Every surface, glass included, reflects it.
+    """
 
     def __new__(
         cls,
@@ -446,39 +767,73 @@ class Laser:
         noise_std_m: float | None = None,
     ) -> Laser: ...
     @staticmethod
-    def sick_180() -> Laser: ...
+    def sick_180() -> Laser:
+        """180 beams one degree apart from -90 degrees (to +89), the layout of
+        the 180-beam CARMEN logs.
+        """
     @staticmethod
-    def sick_361() -> Laser: ...
+    def sick_361() -> Laser:
+        """361 beams half a degree apart from -90 to +90 degrees."""
     @property
-    def bearings_rad(self) -> npt.NDArray[np.float64]: ...
-    @property
-    def bearings(self) -> npt.NDArray[np.float64]: ...
-    @property
-    def max_range_m(self) -> float: ...
-    @property
-    def noise_std_m(self) -> float: ...
-    def simulate(
-        self, world: World, pose: _Pose, *, seed: int = 0
-    ) -> tuple[npt.NDArray[np.float64], npt.NDArray[np.float64]]: ...
-    def simulate_path(
-        self, world: World, poses: _Poses, *, seed: int = 0
-    ) -> npt.NDArray[np.float64]: ...
-    def __eq__(self, value: object, /) -> bool: ...
-    def __ne__(self, value: object, /) -> bool: ...
+    def noise_std_m(self) -> float:
+        """Standard deviation of the range noise, metres."""
 
 @final
 class Robot:
-    """A disc-shaped robot."""
+    """A disc-shaped robot of radius ``radius_m`` (metres; the default matches
+    ``Planner``'s).
+
+    Points are ``(x, y)`` in metres; where a pose ``(x, y, theta)`` is given
+    instead, its heading is ignored (a disc looks the same either way).
+    """
 
     def __new__(cls, *, radius_m: float = 0.25) -> Robot: ...
     @property
-    def radius_m(self) -> float: ...
-    def collides(self, world: World, pose: _Point) -> bool: ...
-    def move_collides(self, world: World, start: _Point, goal: _Point) -> bool: ...
-    def free_travel(self, world: World, start: _Point, goal: _Point) -> float: ...
-    def clearance(self, world: World, points: _Points) -> npt.NDArray[np.float64]: ...
+    def radius_m(self) -> float:
+        """The disc's radius, metres."""
+    def collides(self, world: World, pose: _Point) -> bool:
+        """Whether the disc at ``pose`` overlaps or touches an obstacle of
+        ``world``. A pose with a non-finite position collides.
+        """
+    def move_collides(self, world: World, start: _Point, goal: _Point) -> bool:
+        """Whether driving straight from ``start`` to ``goal`` touches an
+        obstacle (either end in contact counts).
+        """
+    def free_travel(self, world: World, start: _Point, goal: _Point) -> float:
+        """How far the disc can drive straight from ``start`` towards ``goal``
+        before it touches an obstacle, metres: the whole length when the way is
+        free, 0 when it starts in contact. A coordinate that is not finite
+        raises ``InvalidValueError``.
+        """
+    def clearance(self, world: World, points: _Points) -> npt.NDArray[np.float64]:
+        """The gap between the disc at each of ``points`` (float64 ``(N, 2)``)
+        and the nearest obstacle, metres: float64 ``(N,)``, negative where they
+        overlap. A point that is not finite raises ``InvalidValueError``. Runs
+        with the GIL released.
+        """
     def __eq__(self, value: object, /) -> bool: ...
     def __ne__(self, value: object, /) -> bool: ...
 
-def run_fig3(seed: int = 0) -> Fig3Result: ...
-def write_atomic(path: _Path, data: bytes) -> None: ...
+def run_fig3(seed: int = 0) -> Fig3Result:
+    """Run the paper's Fig. 3 with ``seed``: 24 simulated sonars driven along a
+    seeded path through the built-in ``corridor``, every scan integrated into
+    a coverage map and an occupancy grid, both measured against the exact
+    ground truth on the cells the readings reached.
+
+    Returns a ``Fig3Result`` (of ``covmap.experiments.fig3``): ``grid``
+    (``Grid``), ``poses`` (float64 ``(N, 3)``), ``readings`` and
+    ``cells_reached`` (int), the per-cell maps ``truth`` (float64), ``ml``,
+    ``mean``, ``entropy``, ``occupancy`` (float32) and ``reached`` (bool), each
+    ``(rows, cols)``; the mean absolute errors ``mae_ml``, ``mae_mean``,
+    ``mae_occupancy`` (``MapErrors`` of ``all`` and ``partial``: over all
+    reached cells and over those a wall face cuts); and ``log_likelihood`` of
+    the truth under the coverage map with ``log_likelihood_prior`` under the
+    uniform prior. Runs with the GIL released.
+    """
+def write_atomic(path: _Path, data: bytes) -> None:
+    """Write ``data`` to ``path`` atomically: a temporary file of a short name of
+    its own in the same directory, flushed to disk, then renamed over
+    ``path``, so a reader never sees a partial file; on failure nothing is
+    left behind. The directory must exist. A file that cannot be written
+    raises ``FileIOError`` (an ``OSError``). Runs with the GIL released.
+    """
