@@ -118,7 +118,9 @@ impl GainEvaluator<'_> {
 }
 
 /// [`weighted_gains_with`] compiled for the arithmetic `A` (`N > 0`), which
-/// `has` shows the processor to have.
+/// `has` shows the processor to have. (`inline`: in the walk's file it was
+/// inlined into the flush of a batch; the hint keeps it so across files.)
+#[inline]
 pub(super) fn weighted_gains<const N: usize, const A: u8>(
     has: Has<A>,
     rows: &Rows<'_, N>,
