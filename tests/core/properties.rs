@@ -25,7 +25,7 @@ fn apply(map: &mut CoverageMap, scans: &[(Pose, Vec<(f64, f64)>)], model: &dyn S
 }
 
 fn check_invariants(map: &CoverageMap) -> Result<(), TestCaseError> {
-    let floor = covmap::histogram::bin_floor(map.bins());
+    let floor = covmap::histogram::BIN_FLOOR;
     for h in map.histograms().chunks_exact(map.bins()) {
         let sum: f32 = h.iter().sum();
         prop_assert!((sum - 1.0).abs() <= 1e-5, "histogram sums to {sum}");

@@ -31,12 +31,6 @@ pub const DEFAULT_BINS: usize = 16;
 /// never computes with subnormal numbers for sane models.
 pub const BIN_FLOOR: f32 = 1e-30;
 
-/// [`BIN_FLOOR`], which does not depend on the bin count: the form callers
-/// written before the constant existed use.
-pub fn bin_floor(_bins: usize) -> f32 {
-    BIN_FLOOR
-}
-
 /// Evaluates `$body` with the constant `$n` set to the bin count `$bins` if
 /// it is one of the counts with a path of their own (8, 16, 32), else to 0
 /// (any count). Fixed at compile time, so that the per-cell loops the body
@@ -192,8 +186,8 @@ mod tests {
             a.iter_mut().for_each(|v| *v /= s);
             let mut b = a.clone();
             let k: Vec<f32> = (0..n).map(|i| 0.5 + ((i * 7) % 5) as f32).collect();
-            update(&mut a, &k, bin_floor(n));
-            update_any(&mut b, &k, bin_floor(n));
+            update(&mut a, &k, BIN_FLOOR);
+            update_any(&mut b, &k, BIN_FLOOR);
             for (x, y) in a.iter().zip(&b) {
                 assert!((x - y).abs() < 1e-6);
             }

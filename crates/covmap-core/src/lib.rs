@@ -32,6 +32,8 @@ mod footprint;
 pub mod gain;
 mod grid;
 pub mod histogram;
+#[doc = include_str!("model.md")]
+pub mod model {}
 mod numeric;
 mod occupancy;
 mod parallel;
@@ -40,9 +42,6 @@ mod pose;
 pub mod sensor;
 #[cfg(test)]
 mod test_rng;
-
-// The old name of `pose`, for the planner until it imports `crate::pose`.
-use pose as scan;
 
 pub use counting::ScanCounts;
 pub use coverage_map::{CoverageMap, HistoryState, STAGNATION_MEASUREMENTS, STAGNATION_NATS};

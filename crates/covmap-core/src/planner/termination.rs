@@ -8,7 +8,7 @@ use crate::coverage_map::CoverageMap;
 use crate::error::Result;
 use crate::planner::path::shortest_paths;
 use crate::planner::viewpoint::Planner;
-use crate::scan::{Pose, check_pose};
+use crate::pose::{Pose, check_pose};
 
 /// How far exploration has come.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]

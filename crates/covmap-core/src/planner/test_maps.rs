@@ -2,7 +2,7 @@
 
 use crate::coverage_map::CoverageMap;
 use crate::grid::Grid;
-use crate::scan::Pose;
+use crate::pose::Pose;
 use crate::sensor::SonarModel;
 
 /// The bearings of a ring of 24 beams, 15° apart.

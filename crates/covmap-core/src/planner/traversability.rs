@@ -7,7 +7,7 @@ use crate::error::Result;
 use crate::grid::Grid;
 use crate::planner::path::{Reachability, shortest_paths};
 use crate::planner::viewpoint::Planner;
-use crate::scan::{Pose, check_pose};
+use crate::pose::{Pose, check_pose};
 
 impl Planner {
     /// Where the robot's centre may be on `map`: see the module documentation.

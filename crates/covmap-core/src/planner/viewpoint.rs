@@ -8,7 +8,7 @@ use crate::coverage_map::CoverageMap;
 use crate::error::{CovmapError, Result};
 use crate::gain::{GainEvaluator, GainMethod};
 use crate::planner::config::PlannerConfig;
-use crate::scan::Pose;
+use crate::pose::Pose;
 use crate::sensor::SensorModel;
 
 /// Every candidate considered, with its figures.
