@@ -36,7 +36,7 @@ pub mod histogram;
 pub mod model {}
 mod numeric;
 mod occupancy;
-mod parallel;
+pub mod parallel;
 pub mod planner;
 mod pose;
 pub mod sensor;

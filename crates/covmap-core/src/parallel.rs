@@ -5,7 +5,7 @@
 /// `parallel` the items are spread over rayon's pool; the order of the
 /// results, and so anything computed from them, does not depend on how they
 /// were scheduled.
-pub(crate) fn map<T: Send, R: Send>(items: Vec<T>, f: impl Fn(T) -> R + Sync + Send) -> Vec<R> {
+pub fn map<T: Send, R: Send>(items: Vec<T>, f: impl Fn(T) -> R + Sync + Send) -> Vec<R> {
     #[cfg(feature = "parallel")]
     {
         use rayon::prelude::*;

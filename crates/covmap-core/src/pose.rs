@@ -28,6 +28,21 @@ impl Pose {
     }
 }
 
+impl Pose {
+    /// Errors ([`CovmapError::InvalidPose`]) unless every component is finite.
+    pub fn check_finite(&self) -> Result<()> {
+        if self.x_m.is_finite() && self.y_m.is_finite() && self.theta_rad.is_finite() {
+            Ok(())
+        } else {
+            Err(CovmapError::InvalidPose {
+                x: self.x_m,
+                y: self.y_m,
+                theta: self.theta_rad,
+            })
+        }
+    }
+}
+
 impl From<[f64; 3]> for Pose {
     fn from([x_m, y_m, theta_rad]: [f64; 3]) -> Self {
         Self {
@@ -72,13 +87,7 @@ pub(crate) fn validate_scan<M: SensorModel + ?Sized>(
 /// ([`CovmapError::InvalidPose`]) or the position lies in no cell
 /// ([`CovmapError::PoseOutsideMap`]).
 pub(crate) fn check_pose(grid: &Grid, pose: &Pose) -> Result<Cell> {
-    if !(pose.x_m.is_finite() && pose.y_m.is_finite() && pose.theta_rad.is_finite()) {
-        return Err(CovmapError::InvalidPose {
-            x: pose.x_m,
-            y: pose.y_m,
-            theta: pose.theta_rad,
-        });
-    }
+    pose.check_finite()?;
     grid.check_inside(pose.x_m, pose.y_m)
 }
 

@@ -1,6 +1,6 @@
 //! Simulating scans along a path.
 
-use covmap_core::{CovmapError, Pose};
+use covmap_core::Pose;
 use rand::Rng;
 
 use crate::error::Result;
@@ -76,29 +76,14 @@ pub fn simulate<S: RangeSensor + Sync>(
     }
     let one =
         |(i, pose): (usize, &Pose)| sensor.scan(world, pose, &mut sim_rng_stream(seed, i as u64));
-    #[cfg(feature = "parallel")]
-    {
-        use rayon::prelude::*;
-        poses.par_iter().enumerate().map(one).collect()
-    }
-    #[cfg(not(feature = "parallel"))]
-    {
-        poses.iter().enumerate().map(one).collect()
-    }
+    covmap_core::parallel::map(poses.iter().enumerate().collect(), one)
+        .into_iter()
+        .collect()
 }
 
 /// Errors unless every component of the pose is finite.
 pub(crate) fn check_pose(pose: &Pose) -> Result<()> {
-    if pose.x_m.is_finite() && pose.y_m.is_finite() && pose.theta_rad.is_finite() {
-        Ok(())
-    } else {
-        Err(CovmapError::InvalidPose {
-            x: pose.x_m,
-            y: pose.y_m,
-            theta: pose.theta_rad,
-        }
-        .into())
-    }
+    Ok(pose.check_finite()?)
 }
 
 #[cfg(test)]

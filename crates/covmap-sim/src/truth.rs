@@ -170,15 +170,7 @@ fn coverage(polygons: &[Polygon], grid: &Grid, parallel: bool) -> Vec<f64> {
 
     let column = |c: usize| column_areas(&edges, &bucket[start[c]..start[c + 1]], grid, c);
     let per_column: Vec<Vec<(u32, f64)>> = if parallel {
-        #[cfg(feature = "parallel")]
-        {
-            use rayon::prelude::*;
-            (0..cols).into_par_iter().map(column).collect()
-        }
-        #[cfg(not(feature = "parallel"))]
-        {
-            (0..cols).map(column).collect()
-        }
+        covmap_core::parallel::map((0..cols).collect(), column)
     } else {
         (0..cols).map(column).collect()
     };
