@@ -50,16 +50,6 @@ impl PyPlanner {
                 None => d.gain.stop_coverage,
             },
         };
-        if let Some(step) = gain.range_step_m
-            && !(step > 0.0 && step.is_finite())
-        {
-            return Err(covmap::CovmapError::InvalidParameter {
-                name: "range_step_m",
-                value: step,
-                expected: "a positive step no larger than the grid resolution",
-            })
-            .or_raise(py);
-        }
         let config = PlannerConfig {
             alpha: keywords.alpha.unwrap_or(d.alpha),
             robot_radius_m: keywords.robot_radius_m.unwrap_or(d.robot_radius_m),

@@ -12,8 +12,8 @@ use crate::error::Result;
 use crate::footprint::visit;
 use crate::pose::{Pose, check_bearings, check_pose};
 use crate::sensor::{
-    Footprint, KernelTable, RangeModel, ReadingDistribution, SensorModel, StopCoverage, check_step,
-    trace_readings,
+    Footprint, KernelTable, RangeModel, ReadingDistribution, SensorModel, StopCoverage,
+    check_range_step, trace_readings,
 };
 
 /// Evaluates the expected information gain of candidate viewpoints on one map
@@ -64,7 +64,7 @@ impl<'a> GainEvaluator<'a> {
         model.validate()?;
         let resolution = map.grid().resolution_m();
         let step_m = options.range_step_m.unwrap_or(resolution);
-        check_step(step_m, resolution)?;
+        check_range_step(step_m, Some(resolution))?;
         let range = *model.range_model();
         let table = map.kernel_table(&range)?;
         let stop = match options.stop_coverage {

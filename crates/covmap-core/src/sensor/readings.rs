@@ -60,7 +60,7 @@ pub fn reading_distribution(
     }
     check_pose(grid, &Pose::new(origin[0], origin[1], angle_rad))?;
     range.validate()?;
-    check_step(step_m, grid.resolution_m())?;
+    check_range_step(step_m, Some(grid.resolution_m()))?;
     Ok(trace_readings(grid, stop, origin, angle_rad, range, step_m))
 }
 
@@ -68,11 +68,18 @@ pub fn reading_distribution(
 /// resolution (the kernels resolve a reading to 1/32 of a cell).
 pub const MIN_STEP_FRACTION: f64 = 1.0 / 1024.0;
 
-/// Errors unless `step_m` lies between [`MIN_STEP_FRACTION`] of
-/// `resolution_m` and `resolution_m`.
-pub(crate) fn check_step(step_m: f64, resolution_m: f64) -> Result<()> {
+/// Errors unless `step_m` is a valid spacing of predicted readings: between
+/// [`MIN_STEP_FRACTION`] of the grid's resolution and the resolution, or,
+/// where no grid is known yet (`resolution_m` is `None`), positive and finite.
+/// The one check of `range_step_m`, for the gain, the planner's settings and
+/// the bindings.
+pub fn check_range_step(step_m: f64, resolution_m: Option<f64>) -> Result<()> {
+    let ok = match resolution_m {
+        Some(resolution_m) => step_m >= MIN_STEP_FRACTION * resolution_m && step_m <= resolution_m,
+        None => step_m > 0.0 && step_m.is_finite(),
+    };
     check_parameter(
-        step_m >= MIN_STEP_FRACTION * resolution_m && step_m <= resolution_m,
+        ok,
         "range_step_m",
         step_m,
         "a step between 1/1024 of the grid resolution and the resolution",
