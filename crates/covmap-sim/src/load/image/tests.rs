@@ -1,0 +1,130 @@
+//! Tests of the image and map_server loaders.
+
+use super::*;
+use covmap_core::Grid;
+
+fn pgm_p5(width: usize, height: usize, pixels: &[u8]) -> Vec<u8> {
+    let mut b = format!("P5\n# a comment\n{width} {height}\n255\n").into_bytes();
+    b.extend_from_slice(pixels);
+    b
+}
+
+#[test]
+fn runs_merge_into_rectangles_with_exact_coverage() {
+    // 0 = dark. An L of pixels: rows 0-1 columns 1-2, row 2 columns 1-3.
+    #[rustfmt::skip]
+    let px = [
+        255, 0, 0, 255,
+        255, 0, 0, 255,
+        255, 0, 0, 0,
+        255, 255, 255, 255,
+    ];
+    let w = World::from_image_bytes(&pgm_p5(4, 4, &px), "l.pgm", &ImageOptions::new(0.1)).unwrap();
+    // Rows 0-1 merge; row 2 differs: two rectangles.
+    assert_eq!(w.len(), 2);
+    // Coverage on the pixel grid reproduces the image (row 0 of the grid is
+    // the image's bottom row).
+    let g = Grid::new([0.0, 0.0], 0.1, 4, 4).unwrap();
+    let cov = w.coverage(&g);
+    for row in 0..4 {
+        for col in 0..4 {
+            let dark = px[(3 - row) * 4 + col] == 0;
+            let expect = if dark { 1.0 } else { 0.0 };
+            assert!(
+                (cov[row * 4 + col] - expect).abs() < 1e-12,
+                "({row}, {col})"
+            );
+        }
+    }
+}
+
+#[test]
+fn thresholds_negate_and_sixteen_bits() {
+    // Values 100/255 -> p = 0.61 (free at 0.65, occupied at 0.5).
+    let px = [100u8, 255];
+    assert!(World::from_image_bytes(&pgm_p5(2, 1, &px), "t.pgm", &ImageOptions::new(1.0)).is_err());
+    let mut o = ImageOptions::new(1.0);
+    o.occupied_thresh = 0.5;
+    assert_eq!(
+        World::from_image_bytes(&pgm_p5(2, 1, &px), "t.pgm", &o)
+            .unwrap()
+            .len(),
+        1
+    );
+    o.negate = true;
+    let w = World::from_image_bytes(&pgm_p5(2, 1, &px), "t.pgm", &o).unwrap();
+    assert_eq!(w.polygons()[0].bounds_m(), [1.0, 0.0, 2.0, 1.0]);
+    // 16-bit: maxval 1000, big-endian samples 0 and 1000.
+    let mut b = b"P5 2 1 1000\n".to_vec();
+    b.extend_from_slice(&[0, 0, 0x03, 0xE8]);
+    let w = World::from_image_bytes(&b, "w.pgm", &ImageOptions::new(1.0)).unwrap();
+    assert_eq!(w.polygons()[0].bounds_m(), [0.0, 0.0, 1.0, 1.0]);
+}
+
+#[test]
+fn malformed_images_name_the_place() {
+    let e =
+        World::from_image_bytes(b"P5\n4 x\n255\n", "h.pgm", &ImageOptions::new(1.0)).unwrap_err();
+    assert!(e.to_string().starts_with("h.pgm, header line 2"), "{e}");
+    let e = World::from_image_bytes(&pgm_p5(4, 4, &[0; 9]), "s.pgm", &ImageOptions::new(1.0))
+        .unwrap_err();
+    assert!(e.to_string().starts_with("s.pgm, pixel (1, 2)"), "{e}");
+    let e =
+        World::from_image_bytes(b"P2 2 1 10 3 11", "v.pgm", &ImageOptions::new(1.0)).unwrap_err();
+    assert!(e.to_string().starts_with("v.pgm, pixel (1, 0)"), "{e}");
+    assert!(World::from_image_bytes(b"GIF89a", "x.gif", &ImageOptions::new(1.0)).is_err());
+    assert!(
+        World::from_image_bytes(&pgm_p5(1, 1, &[0]), "r.pgm", &ImageOptions::new(-1.0)).is_err()
+    );
+    let e = World::from_image_bytes(
+        b"\x89PNG\r\n\x1a\nrubbish",
+        "p.png",
+        &ImageOptions::new(1.0),
+    )
+    .unwrap_err();
+    assert!(e.to_string().starts_with("p.png, PNG"), "{e}");
+}
+
+#[test]
+fn png_rgb_and_yaml() {
+    // Encode a 3 x 2 RGB PNG: one dark pixel at the top left.
+    let mut data = Vec::new();
+    {
+        let mut enc = png::Encoder::new(&mut data, 3, 2);
+        enc.set_color(png::ColorType::Rgb);
+        enc.set_depth(png::BitDepth::Eight);
+        let mut wr = enc.write_header().unwrap();
+        let mut px = vec![255u8; 18];
+        px[..3].copy_from_slice(&[10, 20, 30]);
+        wr.write_image_data(&px).unwrap();
+    }
+    let mut o = ImageOptions::new(0.5);
+    o.origin_m = [10.0, 20.0];
+    let w = World::from_image_bytes(&data, "a.png", &o).unwrap();
+    assert_eq!(w.polygons()[0].bounds_m(), [10.0, 20.5, 10.5, 21.0]);
+    // A half turn of yaw puts it on the other side of the origin.
+    o.yaw_rad = std::f64::consts::PI;
+    let w = World::from_image_bytes(&data, "a.png", &o).unwrap();
+    let b = w.polygons()[0].bounds_m();
+    for (x, e) in b.iter().zip([9.5, 19.0, 10.0, 19.5]) {
+        assert!((x - e).abs() < 1e-12, "{b:?}");
+    }
+
+    let yaml = "image: map.png\nresolution: 0.05 # metres\norigin: [1.0, -2.0, 0.0]\nnegate: 0\noccupied_thresh: 0.65\nfree_thresh: 0.196\n";
+    let (image, opts) = parse_ros_yaml(yaml, Path::new("m.yaml")).unwrap();
+    assert_eq!(image, "map.png");
+    assert_eq!(
+        (opts.resolution_m, opts.origin_m, opts.yaw_rad, opts.negate),
+        (0.05, [1.0, -2.0], 0.0, false)
+    );
+    let e = parse_ros_yaml(
+        "image: m.png\norigin: [1, 2]\nresolution: 1\n",
+        Path::new("m.yaml"),
+    )
+    .unwrap_err();
+    assert!(e.to_string().starts_with("m.yaml, line 2"), "{e}");
+    let e = parse_ros_yaml("image: m.png\norigin: [1, 2, 0]\n", Path::new("m.yaml")).unwrap_err();
+    assert!(e.to_string().contains("missing key `resolution`"), "{e}");
+    let e = parse_ros_yaml("image: m.png\nresolution: abc\n", Path::new("m.yaml")).unwrap_err();
+    assert!(e.to_string().starts_with("m.yaml, line 2"), "{e}");
+}
