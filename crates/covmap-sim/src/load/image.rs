@@ -240,17 +240,59 @@ fn parse_ros_yaml(text: &str, path: &Path) -> Result<(String, ImageOptions)> {
     Ok((image, options))
 }
 
+/// The most pixels an image file may declare (2^30).
+pub const MAX_IMAGE_PIXELS: usize = 1 << 30;
+
+/// The largest factor by which deflate (PNG's compression) expands data.
+const DEFLATE_MAX_RATIO: usize = 1032;
+
+/// The pixel count `width * height`, or an error at `place` if it exceeds
+/// [`MAX_IMAGE_PIXELS`].
+fn check_pixel_count(width: usize, height: usize, path: &Path, place: &str) -> Result<usize> {
+    width
+        .checked_mul(height)
+        .filter(|&n| n <= MAX_IMAGE_PIXELS)
+        .ok_or_else(|| {
+            parse_error(
+                path,
+                place,
+                format!("{width} x {height} pixels is too large (at most 2^30)"),
+            )
+        })
+}
+
 fn decode_png(bytes: &[u8], path: &Path) -> Result<Grey> {
     let err = |e: png::DecodingError| parse_error(path, "PNG stream", e.to_string());
     let mut decoder = png::Decoder::new(Cursor::new(bytes));
     decoder.set_transformations(png::Transformations::normalize_to_color8());
-    let mut reader = decoder.read_info().map_err(err)?;
+    // The header is checked before anything of its size is allocated: at most
+    // MAX_IMAGE_PIXELS pixels, and no more decoded bytes than deflate can
+    // expand the file's bytes into (at most 1032 to 1), so that a short file
+    // that claims a huge image is refused at once.
+    let max_bytes = bytes.len().saturating_mul(DEFLATE_MAX_RATIO);
+    decoder.set_limits(png::Limits { bytes: max_bytes });
+    let too_large = || {
+        parse_error(
+            path,
+            "PNG header",
+            format!(
+                "the declared image has more pixels than a file of {} bytes can hold",
+                bytes.len()
+            ),
+        )
+    };
+    let mut reader = decoder.read_info().map_err(|e| match e {
+        png::DecodingError::LimitsExceeded => too_large(),
+        e => err(e),
+    })?;
+    let (width, height) = (reader.info().width as usize, reader.info().height as usize);
+    check_pixel_count(width, height, path, "PNG header")?;
     let size = reader
         .output_buffer_size()
-        .ok_or_else(|| parse_error(path, "PNG header", "image too large"))?;
+        .filter(|&size| size <= max_bytes)
+        .ok_or_else(too_large)?;
     let mut buf = vec![0u8; size];
     let info = reader.next_frame(&mut buf).map_err(err)?;
-    let (width, height) = (info.width as usize, info.height as usize);
     let channels = match info.color_type {
         png::ColorType::Grayscale => 1,
         png::ColorType::GrayscaleAlpha => 2,
@@ -332,16 +374,7 @@ fn decode_pgm(bytes: &[u8], path: &Path) -> Result<Grey> {
             format!("maxval {maxval} exceeds 65535"),
         ));
     }
-    let count = width
-        .checked_mul(height)
-        .filter(|&n| n <= 1 << 30)
-        .ok_or_else(|| {
-            parse_error(
-                path,
-                format!("header line {line}"),
-                format!("{width} x {height} pixels is too large"),
-            )
-        })?;
+    let count = check_pixel_count(width, height, path, &format!("header line {line}"))?;
     let pixel = |i: usize| format!("pixel ({}, {})", i % width, i / width);
     let scale = 1.0 / maxval as f64;
     // Every pixel takes at least a byte of the file: a header that promises

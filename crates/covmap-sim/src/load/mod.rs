@@ -18,11 +18,46 @@ use std::path::{Path, PathBuf};
 
 use crate::error::{Result, SimError};
 
+/// The largest world file read, bytes (1 GiB).
+pub const MAX_FILE_BYTES: u64 = 1 << 30;
+
+/// The bytes of the regular file at `path`, at most [`MAX_FILE_BYTES`].
+/// Anything else (a directory, a pipe that may never open or never end, a
+/// device) is refused before it is opened, and a file that grows past the
+/// limit while it is read is refused too.
 pub(crate) fn read_bytes(path: &Path) -> Result<Vec<u8>> {
-    std::fs::read(path).map_err(|source| SimError::Io {
+    use std::io::Read;
+    let io = |source| SimError::Io {
         path: path.to_path_buf(),
         source,
-    })
+    };
+    let refuse = |reason: String| {
+        io(std::io::Error::new(
+            std::io::ErrorKind::InvalidInput,
+            reason,
+        ))
+    };
+    let metadata = std::fs::metadata(path).map_err(io)?;
+    if !metadata.is_file() {
+        return Err(refuse("not a regular file".into()));
+    }
+    if metadata.len() > MAX_FILE_BYTES {
+        return Err(refuse(format!(
+            "{} bytes is larger than the limit of {MAX_FILE_BYTES} bytes",
+            metadata.len()
+        )));
+    }
+    let file = std::fs::File::open(path).map_err(io)?;
+    let mut bytes = Vec::new();
+    file.take(MAX_FILE_BYTES + 1)
+        .read_to_end(&mut bytes)
+        .map_err(io)?;
+    if bytes.len() as u64 > MAX_FILE_BYTES {
+        return Err(refuse(format!(
+            "the file grew past the limit of {MAX_FILE_BYTES} bytes while it was read"
+        )));
+    }
+    Ok(bytes)
 }
 
 pub(crate) fn read_text(path: &Path) -> Result<String> {
@@ -115,6 +150,25 @@ fn create_temporary(path: &Path) -> std::io::Result<(std::path::PathBuf, std::fs
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// Only regular files are read: a device that never ends and a directory
+    /// are refused before they are opened, with an error naming the path.
+    #[test]
+    fn files_that_are_not_regular_are_refused_before_they_are_opened() {
+        let dir = std::env::temp_dir();
+        for path in [Path::new("/dev/zero"), dir.as_path()] {
+            if !path.exists() {
+                continue;
+            }
+            let err = read_bytes(path).unwrap_err().to_string();
+            assert!(err.contains("not a regular file"), "{err}");
+            assert!(err.contains(&path.display().to_string()), "{err}");
+        }
+        let file = dir.join(format!("covmap-sim-read-{}.txt", std::process::id()));
+        std::fs::write(&file, b"twelve bytes").unwrap();
+        assert_eq!(read_bytes(&file).unwrap(), b"twelve bytes");
+        std::fs::remove_file(&file).unwrap();
+    }
 
     /// Writers of one path at once each write their own temporary file: every
     /// write succeeds and the file holds one of them whole.

@@ -128,3 +128,55 @@ fn png_rgb_and_yaml() {
     let e = parse_ros_yaml("image: m.png\nresolution: abc\n", Path::new("m.yaml")).unwrap_err();
     assert!(e.to_string().starts_with("m.yaml, line 2"), "{e}");
 }
+
+/// CRC-32 (ISO-HDLC, as PNG chunks use it), bit by bit.
+fn crc32(bytes: &[u8]) -> u32 {
+    let mut crc = !0u32;
+    for &b in bytes {
+        crc ^= b as u32;
+        for _ in 0..8 {
+            crc = if crc & 1 != 0 {
+                (crc >> 1) ^ 0xEDB8_8320
+            } else {
+                crc >> 1
+            };
+        }
+    }
+    !crc
+}
+
+/// A valid one-pixel grey PNG whose header then claims `width` x `height`
+/// (its chunk checksum mended, so only the size is a lie).
+fn png_claiming(width: u32, height: u32) -> Vec<u8> {
+    let mut data = Vec::new();
+    {
+        let mut enc = png::Encoder::new(&mut data, 1, 1);
+        enc.set_color(png::ColorType::Grayscale);
+        enc.set_depth(png::BitDepth::Eight);
+        enc.write_header().unwrap().write_image_data(&[0]).unwrap();
+    }
+    // Signature (8 bytes), IHDR length (4), "IHDR" (4), width, height, ...
+    data[16..20].copy_from_slice(&width.to_be_bytes());
+    data[20..24].copy_from_slice(&height.to_be_bytes());
+    let crc = crc32(&data[12..29]);
+    data[29..33].copy_from_slice(&crc.to_be_bytes());
+    data
+}
+
+/// A short PNG whose header claims 100000 x 100000 pixels is refused from its
+/// header, before anything of that size is allocated (it would need 10 GB).
+#[test]
+fn a_png_header_claiming_a_huge_image_is_refused_before_decoding() {
+    let opts = ImageOptions::new(0.05);
+    let small = World::from_image_bytes(&png_claiming(1, 1), "one.png", &opts);
+    assert!(small.is_ok(), "{small:?}");
+    for (width, height) in [(100_000, 100_000), (1_000_000, 1), (1 << 31, 1 << 31)] {
+        let bytes = png_claiming(width, height);
+        let err = World::from_image_bytes(&bytes, "huge.png", &opts).unwrap_err();
+        let text = err.to_string();
+        assert!(
+            text.contains("huge.png") && text.contains("PNG header") && text.contains("pixels"),
+            "{width} x {height}: {text}"
+        );
+    }
+}
