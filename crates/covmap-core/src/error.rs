@@ -105,6 +105,22 @@ pub enum CovmapError {
         /// The rejected entropy.
         value: f64,
     },
+    /// A start pose the robot cannot take (its disc overlaps an obstacle),
+    /// or no start pose could be found.
+    #[error("invalid start pose ({x}, {y}): {reason}")]
+    InvalidStart {
+        /// x in metres.
+        x: f64,
+        /// y in metres.
+        y: f64,
+        /// Why the robot cannot start there.
+        reason: String,
+    },
+    /// The robot failed: its scan source or its motion could not do what the
+    /// exploration loop asked (a sensor or drive error, of a real robot or a
+    /// simulator).
+    #[error("the robot failed: {0}")]
+    Robot(String),
 }
 
 /// Shorthand for results of this crate.

@@ -28,6 +28,7 @@ mod aligned;
 mod counting;
 mod coverage_map;
 mod error;
+pub mod exploration;
 mod footprint;
 pub mod gain;
 mod grid;
@@ -44,7 +45,9 @@ pub mod sensor;
 mod test_rng;
 
 pub use counting::ScanCounts;
-pub use coverage_map::{CoverageMap, HistoryState, STAGNATION_MEASUREMENTS, STAGNATION_NATS};
+pub use coverage_map::{
+    CONTACT_COVERAGE, CoverageMap, HistoryState, STAGNATION_MEASUREMENTS, STAGNATION_NATS,
+};
 pub use error::{CovmapError, Result};
 pub use grid::{Cell, Grid, MAX_CELLS, MAX_CELLS_FROM_ZERO, MIN_RESOLUTION_M};
 pub use occupancy::{OccupancyGrid, OccupancyModel};

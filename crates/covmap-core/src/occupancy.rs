@@ -159,6 +159,30 @@ impl OccupancyGrid {
         &self.counts
     }
 
+    /// Which cells some evidence has reached, row-major: a beam intercepted
+    /// them (their scan count is above 0) or a contact marked them. The
+    /// others are unknown, whatever their probability reads (0.5).
+    pub fn observed(&self) -> Vec<bool> {
+        self.log_odds
+            .iter()
+            .zip(self.counts.counts())
+            .map(|(&l, &c)| l != 0.0 || c > 0.0)
+            .collect()
+    }
+
+    /// Integrate a contact: the robot touched an obstacle in `cell`, which
+    /// becomes as occupied as the grid allows (its log-odds at the limit). A
+    /// contact is no beam: the counts are unchanged.
+    ///
+    /// # Errors
+    /// [`CovmapError::CellOutOfBounds`] if the cell is not on the grid; the
+    /// grid is unchanged.
+    pub fn integrate_contact(&mut self, cell: crate::grid::Cell) -> Result<()> {
+        let i = self.grid().index(cell)?;
+        self.log_odds[i] = self.model.log_odds_limit as f32;
+        Ok(())
+    }
+
     /// Integrate one scan; validated like [`crate::CoverageMap::integrate`], and
     /// the same beams are counted.
     pub fn integrate<M: SensorModel + ?Sized>(

@@ -29,9 +29,9 @@
 #![warn(missing_docs)]
 
 mod builtin;
-pub mod truth;
 mod error;
 pub mod experiments;
+pub mod exploration;
 mod laser;
 pub mod load;
 mod material;
@@ -44,6 +44,7 @@ mod robot;
 mod scan;
 mod simulate;
 mod sonar;
+pub mod truth;
 mod world;
 
 pub use error::{MAX_BEAMS, Result, SimError};

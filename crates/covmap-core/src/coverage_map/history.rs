@@ -189,6 +189,25 @@ impl CoverageMap {
             < STAGNATION_NATS
     }
 
+    /// Count one measurement of the cell at row-major `index` (below
+    /// `grid.len()`) that is no scan, and keep its entropy, if the history
+    /// is kept.
+    pub(super) fn record_cell_history(&mut self, index: usize) {
+        let Self {
+            bins,
+            data,
+            history,
+            ..
+        } = self;
+        let Some(history) = history.as_deref_mut() else {
+            return;
+        };
+        let measured = history.count[index] as usize;
+        history.entropies[index][measured % (STAGNATION_MEASUREMENTS + 1)] =
+            histogram::entropy(&data[index * *bins..(index + 1) * *bins]);
+        history.count[index] = history.count[index].saturating_add(1);
+    }
+
     /// Count a validated scan as one measurement of every cell it updates,
     /// and keep their entropies, if the history is kept.
     pub(super) fn record_history<M: SensorModel + ?Sized>(

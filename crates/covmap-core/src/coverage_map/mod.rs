@@ -1,8 +1,10 @@
 //! The coverage map: one histogram over coverage values per cell.
 
+mod contact;
 mod history;
 mod storage;
 mod update;
 
+pub use contact::CONTACT_COVERAGE;
 pub use history::{HistoryState, STAGNATION_MEASUREMENTS, STAGNATION_NATS};
 pub use storage::CoverageMap;

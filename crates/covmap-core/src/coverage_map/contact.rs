@@ -1,0 +1,115 @@
+//! Evidence that is no range reading: a bumper's contact, and which cells
+//! any evidence has reached.
+
+use super::CoverageMap;
+use crate::error::Result;
+use crate::grid::Cell;
+use crate::histogram;
+
+/// The least coverage a cell the robot ran into is taken to have: the
+/// planner's default `blocked_coverage`, so that a contact makes its cell
+/// block the robot.
+pub const CONTACT_COVERAGE: f64 = 0.5;
+
+impl CoverageMap {
+    /// Integrate a contact: the robot's disc touched an obstacle in `cell`.
+    ///
+    /// The likelihood of a contact is taken as 1 for a coverage of at least
+    /// [`CONTACT_COVERAGE`] and 0 below it: a bumper is far more reliable
+    /// than a sonar, and a cell that lets the disc pass does not stop it.
+    /// The bins below are left at the floor
+    /// ([`BIN_FLOOR`](crate::histogram::BIN_FLOOR)), so that later readings
+    /// can still revise the cell, but only many of them: a wall no echo
+    /// shows (a specular surface, glass) stays in the way after the robot
+    /// has run into it, instead of being cleared by the next no-echo
+    /// readings and planned through again. It counts as one measurement of
+    /// the cell for the entropy history.
+    ///
+    /// # Errors
+    /// [`CovmapError::CellOutOfBounds`](crate::CovmapError::CellOutOfBounds)
+    /// if the cell is not on the grid; the map is unchanged.
+    ///
+    /// # Example
+    /// ```
+    /// use covmap_core::{Cell, CoverageMap, Grid};
+    /// let mut map = CoverageMap::new(Grid::new([0.0, 0.0], 0.05, 10, 10).unwrap());
+    /// let cell = Cell { row: 4, col: 7 };
+    /// map.integrate_contact(cell).unwrap();
+    /// let i = map.grid().index(cell).unwrap();
+    /// assert!(map.ml()[i] >= 0.5);
+    /// assert!(map.observed()[i] && !map.observed()[0]);
+    /// ```
+    pub fn integrate_contact(&mut self, cell: Cell) -> Result<()> {
+        let i = self.grid.index(cell)?;
+        let bins = self.bins;
+        let likelihood: Vec<f32> = (0..bins)
+            .map(|b| {
+                if histogram::bin_value(b, bins) >= CONTACT_COVERAGE {
+                    1.0
+                } else {
+                    histogram::BIN_FLOOR
+                }
+            })
+            .collect();
+        histogram::update(
+            &mut self.data[i * bins..(i + 1) * bins],
+            &likelihood,
+            histogram::BIN_FLOOR,
+        );
+        self.record_cell_history(i);
+        Ok(())
+    }
+
+    /// Which cells some evidence has reached, row-major: those whose
+    /// histogram is no longer the uniform prior. Unknown is a value of its
+    /// own: an unobserved cell reads 0 on the ML map ([`CoverageMap::ml`]),
+    /// as an empty cell does, and this tells them apart. (A histogram that
+    /// evidence brought back exactly to uniform would read unobserved; no
+    /// kernel of the sensor models does that.)
+    pub fn observed(&self) -> Vec<bool> {
+        self.data
+            .chunks_exact(self.bins)
+            .map(|h| h.iter().any(|&p| p != h[0]))
+            .collect()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::grid::Grid;
+    use crate::pose::Pose;
+    use crate::sensor::SonarModel;
+
+    /// A wall cell that no-echo readings cleared blocks again after a
+    /// contact, and stays blocking through further no-echo readings.
+    #[test]
+    fn a_contact_outweighs_no_echo_readings() {
+        let grid = Grid::new([0.0, 0.0], 0.05, 40, 80).unwrap();
+        let mut map = CoverageMap::new(grid);
+        map.track_history(true);
+        let sonar = SonarModel::default();
+        let pose = Pose::new(0.5, 1.0, 0.0);
+        let cell = grid.world_to_cell(1.5, 1.0).unwrap();
+        let i = grid.index(cell).unwrap();
+        let no_echo = || vec![sonar.range.max_range_m; 1];
+        for _ in 0..5 {
+            map.integrate(&pose, &no_echo(), &[0.0], &sonar).unwrap();
+        }
+        assert_eq!(map.ml()[i], 0.0, "cleared");
+        let before = map.measurements(cell).unwrap();
+        map.integrate_contact(cell).unwrap();
+        assert_eq!(map.measurements(cell).unwrap(), before + 1);
+        for _ in 0..5 {
+            map.integrate(&pose, &no_echo(), &[0.0], &sonar).unwrap();
+        }
+        assert!(
+            f64::from(map.ml()[i]) >= CONTACT_COVERAGE,
+            "{}",
+            map.ml()[i]
+        );
+        let h = map.histogram(cell).unwrap();
+        assert!((h.iter().sum::<f32>() - 1.0).abs() < 1e-5);
+        assert!(map.integrate_contact(Cell { row: 40, col: 0 }).is_err());
+    }
+}

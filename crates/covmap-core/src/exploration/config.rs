@@ -1,0 +1,130 @@
+//! The settings of an exploration run, their defaults and their ranges.
+
+use serde::{Deserialize, Serialize};
+
+use crate::error::{Result, check_parameter};
+
+/// Settings of an exploration run that do not depend on the strategy.
+///
+/// Every setting is checked by [`ExplorationConfig::validate`] before the
+/// run starts ([`Exploration::new`](super::Exploration::new)).
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ExplorationConfig {
+    /// Entropy below which a cell counts as certain, nats (the paper's
+    /// epsilon; its Fig. 7 uses 0.65).
+    pub epsilon: f64,
+    /// Radius of the disc robot, metres (the B21r's is about 0.26 m).
+    pub robot_radius_m: f64,
+    /// Spacing of the lattice of candidate viewpoints, metres.
+    pub candidate_stride_m: f64,
+    /// Distance driven between two scans, metres: the robot scans every
+    /// `scan_spacing_m` of travel, and at every goal.
+    pub scan_spacing_m: f64,
+    /// A goal closer than this along the path is no goal, metres: without it
+    /// the robot's own cell keeps winning (scanning again always teaches a
+    /// little) and the robot never moves.
+    pub min_travel_m: f64,
+    /// The run stops when the robot has driven this far, metres (it stops
+    /// driving there, scans and ends with [`Termination::Limit`](super::Termination::Limit)).
+    pub max_path_m: f64,
+    /// The run stops after this many steps ([`Termination::Limit`](super::Termination::Limit)).
+    pub max_steps: usize,
+}
+
+impl Default for ExplorationConfig {
+    fn default() -> Self {
+        Self {
+            epsilon: 0.65,
+            robot_radius_m: 0.25,
+            candidate_stride_m: 0.5,
+            scan_spacing_m: 0.25,
+            min_travel_m: 0.25,
+            max_path_m: 2000.0,
+            max_steps: 5000,
+        }
+    }
+}
+
+impl ExplorationConfig {
+    /// Errors ([`CovmapError::InvalidParameter`](crate::CovmapError::InvalidParameter),
+    /// naming the setting and its value) unless `epsilon`, `robot_radius_m`,
+    /// `candidate_stride_m`, `scan_spacing_m` and `max_path_m` are positive
+    /// and finite, `min_travel_m` is non-negative and finite, and `max_steps`
+    /// is at least 1.
+    pub fn validate(&self) -> Result<()> {
+        let positive = [
+            ("epsilon", self.epsilon, "a positive, finite entropy (nats)"),
+            (
+                "robot_radius_m",
+                self.robot_radius_m,
+                "a positive, finite radius (metres)",
+            ),
+            (
+                "candidate_stride_m",
+                self.candidate_stride_m,
+                "a positive, finite spacing (metres)",
+            ),
+            (
+                "scan_spacing_m",
+                self.scan_spacing_m,
+                "a positive, finite distance (metres)",
+            ),
+            (
+                "max_path_m",
+                self.max_path_m,
+                "a positive, finite distance (metres)",
+            ),
+        ];
+        for (name, value, expected) in positive {
+            check_parameter(value > 0.0 && value.is_finite(), name, value, expected)?;
+        }
+        check_parameter(
+            self.min_travel_m >= 0.0 && self.min_travel_m.is_finite(),
+            "min_travel_m",
+            self.min_travel_m,
+            "a non-negative, finite distance (metres)",
+        )?;
+        check_parameter(
+            self.max_steps >= 1,
+            "max_steps",
+            self.max_steps as f64,
+            "at least one step",
+        )
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::CovmapError;
+
+    #[test]
+    fn every_bad_setting_is_named() {
+        ExplorationConfig::default().validate().unwrap();
+        type Edit = fn(&mut ExplorationConfig);
+        let cases: [(Edit, &str); 9] = [
+            (|c| c.epsilon = 0.0, "epsilon"),
+            (|c| c.epsilon = f64::NAN, "epsilon"),
+            (|c| c.robot_radius_m = -0.1, "robot_radius_m"),
+            (
+                |c| c.candidate_stride_m = f64::INFINITY,
+                "candidate_stride_m",
+            ),
+            (|c| c.scan_spacing_m = 0.0, "scan_spacing_m"),
+            (|c| c.min_travel_m = -1.0, "min_travel_m"),
+            (|c| c.max_path_m = -5.0, "max_path_m"),
+            (|c| c.max_path_m = f64::NAN, "max_path_m"),
+            (|c| c.max_steps = 0, "max_steps"),
+        ];
+        for (edit, name) in cases {
+            let mut config = ExplorationConfig::default();
+            edit(&mut config);
+            let err = config.validate().unwrap_err();
+            assert!(
+                matches!(err, CovmapError::InvalidParameter { name: n, .. } if n == name),
+                "{err}"
+            );
+        }
+    }
+}

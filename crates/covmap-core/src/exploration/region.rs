@@ -1,0 +1,228 @@
+//! Where the robot can go on a map, and the region of cells it can reach:
+//! the rule behind the coverage strategy's termination and the counting
+//! strategy's "known, reachable region".
+//!
+//! # Planning radius
+//! Every strategy plans for a disc one cell wider than the robot
+//! (`robot_radius_m + resolution`): a cell less than half covered reads free
+//! on the maps, so an obstacle may reach up to a cell past the cells that
+//! block, and the extra cell keeps a path that is right on the map clear in
+//! the world.
+//!
+//! # The region
+//! The cells the robot's centre can reach through space the coverage map
+//! knows to be free (the [`Planner`]'s reachability with unknown cells
+//! blocking), plus every cell whose centre lies within the planning radius
+//! and the sensor model's end band (`band_m`, the distance behind an end
+//! point that a reading still updates) of one of them: the cells the robot's
+//! disc and its readings' end bands touch from where it can go.
+
+use crate::coverage_map::CoverageMap;
+use crate::error::Result;
+use crate::grid::Grid;
+use crate::planner::{Planner, PlannerConfig, Reachability, shortest_paths};
+use crate::pose::{Pose, check_pose};
+
+/// The radius the strategies plan with: the robot's and one cell.
+pub(super) fn planning_radius_m(robot_radius_m: f64, grid: &Grid) -> f64 {
+    robot_radius_m + grid.resolution_m()
+}
+
+/// The planner the strategies navigate the coverage map with (its path
+/// costs, its free space), for a robot of `robot_radius_m`.
+pub(super) fn navigator(robot_radius_m: f64, grid: &Grid, alpha: f64) -> Result<Planner> {
+    Planner::new(PlannerConfig {
+        alpha,
+        robot_radius_m: planning_radius_m(robot_radius_m, grid),
+        ..PlannerConfig::default()
+    })
+}
+
+/// The region of `map` a robot at `pose` can reach (see the module
+/// documentation), one flag a cell, for a planner `navigator` and a sensor
+/// whose end band is `band_m` deep.
+pub(super) fn reachable_region(
+    navigator: &Planner,
+    map: &CoverageMap,
+    pose: &Pose,
+    band_m: f64,
+) -> Result<Vec<bool>> {
+    let reach = navigator.reachability(map, pose)?;
+    let reachable: Vec<bool> = reach.costs().iter().map(|c| c.is_finite()).collect();
+    Ok(dilate(
+        map.grid(),
+        &reachable,
+        navigator.config().robot_radius_m + band_m,
+    ))
+}
+
+/// `mask` (one flag a cell of `grid`, row-major) grown by `radius_m`: every
+/// cell whose centre lies within `radius_m` of the centre of a cell of
+/// `mask`. The region's shell (see the [module documentation](self)), and a
+/// simulation's evaluation cells, are grown so.
+///
+/// # Panics
+/// If `mask` does not hold one flag a cell.
+///
+/// # Example
+/// ```
+/// use covmap_core::Grid;
+/// use covmap_core::exploration::dilate;
+/// let grid = Grid::new([0.0, 0.0], 1.0, 5, 5).unwrap();
+/// let mut mask = vec![false; 25];
+/// mask[12] = true; // the centre
+/// let grown = dilate(&grid, &mask, 1.0);
+/// assert_eq!(grown.iter().filter(|&&g| g).count(), 5); // and its 4 neighbours
+/// ```
+pub fn dilate(grid: &Grid, mask: &[bool], radius_m: f64) -> Vec<bool> {
+    // A radius of whole cells is not lost to the rounding of the division.
+    let radius = radius_m / grid.resolution_m() * (1.0 + 1e-12);
+    let offsets = disc(radius, |dr, dc| {
+        ((dr * dr + dc * dc) as f64).sqrt() <= radius
+    });
+    grow(grid, mask, &offsets)
+}
+
+/// The cells where a disc of `radius_m` may stand clear of every `blocked`
+/// cell: no blocked cell's area lies closer than `radius_m` to the cell's
+/// centre (the obstacles, whole cells, inflated by the radius).
+pub(super) fn clear_of(grid: &Grid, blocked: &[bool], radius_m: f64) -> Vec<bool> {
+    let radius = radius_m / grid.resolution_m();
+    // Distance from a centre `offset` cells away to the nearest point of a cell.
+    let gap = |offset: i64| (offset.abs() as f64 - 0.5).max(0.0);
+    let offsets = disc(radius, |dr, dc| {
+        (dr == 0 && dc == 0) || gap(dr).hypot(gap(dc)) < radius
+    });
+    grow(grid, blocked, &offsets).iter().map(|b| !b).collect()
+}
+
+/// Shortest paths from `pose` for a disc of `radius_m` over a map whose
+/// cells `blocked` holds: through the cells where the disc is clear, and the
+/// unblocked cells its disc at `pose` overlaps (so that a robot standing too
+/// close to an obstacle can leave). Returns the clear cells too.
+pub(super) fn paths_from(
+    grid: &Grid,
+    blocked: &[bool],
+    radius_m: f64,
+    pose: &Pose,
+) -> Result<(Vec<bool>, Reachability)> {
+    let start = check_pose(grid, pose)?;
+    let free = clear_of(grid, blocked, radius_m);
+    let mut passable = free.clone();
+    let start_index = grid.index(start)?;
+    passable[start_index] = true;
+    // The cells the disc at `pose` overlaps: some point of theirs lies
+    // within the radius of the pose.
+    let r = grid.resolution_m();
+    let span = (radius_m / r).ceil() as i64 + 1;
+    let (rows, cols) = (grid.rows() as i64, grid.cols() as i64);
+    for dr in -span..=span {
+        for dc in -span..=span {
+            let (row, col) = (start.row as i64 + dr, start.col as i64 + dc);
+            if row < 0 || col < 0 || row >= rows || col >= cols {
+                continue;
+            }
+            let i = (row * cols + col) as usize;
+            let [x, y] = grid.cell_center(grid.cell(i));
+            let gap = ((pose.x_m - x).abs() - 0.5 * r)
+                .max(0.0)
+                .hypot(((pose.y_m - y).abs() - 0.5 * r).max(0.0));
+            if gap < radius_m {
+                passable[i] |= !blocked[i];
+            }
+        }
+    }
+    let reach = shortest_paths(grid, &passable, start)?;
+    Ok((free, reach))
+}
+
+/// The offsets `(rows, columns)` within `radius` cells for which `keep` holds.
+fn disc(radius: f64, keep: impl Fn(i64, i64) -> bool) -> Vec<(i64, i64)> {
+    let reach = (radius + 1.0).ceil() as i64;
+    let mut offsets = Vec::new();
+    for dr in -reach..=reach {
+        for dc in -reach..=reach {
+            if keep(dr, dc) {
+                offsets.push((dr, dc));
+            }
+        }
+    }
+    offsets
+}
+
+/// `mask` with every cell at `offsets` from an edge cell of it added.
+fn grow(grid: &Grid, mask: &[bool], offsets: &[(i64, i64)]) -> Vec<bool> {
+    assert_eq!(mask.len(), grid.len(), "one flag a cell");
+    // Only the cells on the edge of `mask` are grown: an inner cell's disc
+    // lies inside its neighbours'.
+    let (rows, cols) = (grid.rows() as i64, grid.cols() as i64);
+    let inside = |r: i64, c: i64| r >= 0 && c >= 0 && r < rows && c < cols;
+    let mut grown = mask.to_vec();
+    for (i, _) in mask.iter().enumerate().filter(|(_, m)| **m) {
+        let (row, col) = ((i / grid.cols()) as i64, (i % grid.cols()) as i64);
+        let edge = [(0, 1), (1, 0), (0, -1), (-1, 0)].iter().any(|&(dr, dc)| {
+            !inside(row + dr, col + dc) || !mask[((row + dr) * cols + col + dc) as usize]
+        });
+        if !edge {
+            continue;
+        }
+        for &(dr, dc) in offsets {
+            let (r, c) = (row + dr, col + dc);
+            if inside(r, c) {
+                grown[(r * cols + c) as usize] = true;
+            }
+        }
+    }
+    grown
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Growing only the edge cells gives the same set as growing every cell.
+    #[test]
+    fn dilation_from_the_edge_equals_dilation_from_every_cell() {
+        let grid = Grid::new([0.0, 0.0], 0.05, 30, 40).unwrap();
+        let mask: Vec<bool> = (0..grid.len())
+            .map(|i| {
+                let (r, c) = (i / 40, i % 40);
+                (5..20).contains(&r) && (8..30).contains(&c) && !(r == 12 && c > 20)
+            })
+            .collect();
+        for radius_m in [0.0, 0.05, 0.12, 0.3] {
+            let grown = dilate(&grid, &mask, radius_m);
+            for (i, &g) in grown.iter().enumerate() {
+                let [x, y] = grid.cell_center(grid.cell(i));
+                let near = mask.iter().enumerate().any(|(j, &m)| {
+                    let [u, v] = grid.cell_center(grid.cell(j));
+                    m && (x - u).hypot(y - v) <= radius_m + 1e-9
+                });
+                assert_eq!(g, near, "radius {radius_m}, cell {i}");
+            }
+        }
+    }
+
+    /// A cell is clear exactly when no blocked cell's area lies within the
+    /// radius of its centre.
+    #[test]
+    fn clear_cells_keep_the_radius_from_every_blocked_cell() {
+        let grid = Grid::new([0.0, 0.0], 0.05, 20, 20).unwrap();
+        let mut blocked = vec![false; grid.len()];
+        blocked[10 * 20 + 10] = true;
+        blocked[3 * 20 + 15] = true;
+        let radius_m = 0.17;
+        let free = clear_of(&grid, &blocked, radius_m);
+        for (i, &f) in free.iter().enumerate() {
+            let [x, y] = grid.cell_center(grid.cell(i));
+            let clear = blocked.iter().enumerate().all(|(j, &b)| {
+                let [u, v] = grid.cell_center(grid.cell(j));
+                let gap = ((x - u).abs() - 0.025)
+                    .max(0.0)
+                    .hypot(((y - v).abs() - 0.025).max(0.0));
+                !b || (j != i && gap >= radius_m)
+            });
+            assert_eq!(f, clear, "cell {i}");
+        }
+    }
+}

@@ -1,0 +1,175 @@
+//! The paper's extended scan counting (its Table I baseline) on the
+//! [`ScanCounts`](crate::ScanCounts).
+//!
+//! # Counts
+//! Every beam intercepts the cells of its footprint up to the end point's
+//! cell (`d_l <= d + r/2`; a no-echo reading its whole footprint up to the
+//! maximum range) and adds its weight to each: 1, or with a discount range
+//! `D`, `min(1, D / d)` for a reading of `d` metres, so that long, less
+//! reliable beams count less ([`ScanCounts::weight`](crate::ScanCounts::weight);
+//! the paper: "longer beams were discounted", no value given: see
+//! [`DEFAULT_DISCOUNT_BEYOND_M`](super::DEFAULT_DISCOUNT_BEYOND_M)). A cell
+//! is *explored* once its count reaches `n`; `n = 1` is the classic "visit
+//! until everything was seen once".
+//!
+//! # Choice
+//! Candidates are the cells on the lattice of `candidate_stride_m` where the
+//! robot (at the planning radius) fits and which it can reach through known
+//! free space of the coverage map, at least `min_travel_m` away along the
+//! path. The robot goes to the nearest one (by path length; ties to the
+//! lower cell index) from which its sensor would intercept at least one
+//! unexplored cell of the reachable region. Interceptions are predicted by
+//! tracing every beam in the current ML coverage map (the sensor's forward
+//! model, [`reading_distribution`](crate::sensor::reading_distribution)):
+//! a beam is taken to read its median predicted reading and to intercept
+//! what a reading of that length would.
+//!
+//! A prediction can be wrong (the ML map is not the world). When the robot
+//! has reached a goal and scanned there, the unexplored cells it went for
+//! whose counts did not grow are given up: they are not chosen for again.
+//!
+//! # Termination
+//! [`Termination::NoGoal`]: no candidate would intercept an unexplored cell.
+
+use super::{Decision, Outcome, View};
+use crate::error::Result;
+use crate::exploration::region::{navigator, reachable_region};
+use crate::exploration::result::Termination;
+use crate::footprint::visit;
+use crate::grid::Grid;
+use crate::planner::Planner;
+use crate::pose::Pose;
+use crate::sensor::{SensorModel, trace_readings};
+
+/// The scan-counting strategy's state.
+pub(crate) struct Counting {
+    n: f32,
+    /// Cells given up: no scan counted them when the prediction said one would.
+    given_up: Vec<bool>,
+    /// The cells the last goal was chosen for, and their counts then.
+    targets: Vec<(usize, f32)>,
+    navigator: Option<Planner>,
+}
+
+impl Counting {
+    pub fn new(n: u32, grid: &Grid) -> Self {
+        Self {
+            n: n as f32,
+            given_up: vec![false; grid.len()],
+            targets: Vec::new(),
+            navigator: None,
+        }
+    }
+
+    pub fn decide(&mut self, view: &View) -> Result<Decision> {
+        let navigator = match &self.navigator {
+            Some(planner) => planner,
+            None => self
+                .navigator
+                .insert(navigator(view.config.robot_radius_m, view.grid(), 0.0)?),
+        };
+        let model = view.model.as_dyn();
+        let region = reachable_region(navigator, view.map, &view.pose, model.range_model().band_m)?;
+        let counts = view.occupancy.counts().counts();
+        let unexplored: Vec<bool> = (0..region.len())
+            .map(|i| region[i] && counts[i] < self.n && !self.given_up[i])
+            .collect();
+        if !unexplored.iter().any(|&u| u) {
+            return Ok(Decision::Done(Termination::NoGoal));
+        }
+        let free = navigator.free_space(view.map);
+        let reach = navigator.reachability(view.map, &view.pose)?;
+        let grid = view.grid();
+        let stride =
+            ((view.config.candidate_stride_m / grid.resolution_m()).round() as usize).max(1);
+        let mut candidates = Vec::new();
+        for row in (stride / 2..grid.rows()).step_by(stride) {
+            for col in (stride / 2..grid.cols()).step_by(stride) {
+                let i = row * grid.cols() + col;
+                if free[i] && reach.reachable(i) && reach.cost(i) >= view.config.min_travel_m {
+                    candidates.push(i);
+                }
+            }
+        }
+        candidates.sort_by(|&a, &b| reach.cost(a).total_cmp(&reach.cost(b)).then(a.cmp(&b)));
+        let ml = view.map.ml();
+        for &i in &candidates {
+            let [x, y] = grid.cell_center(grid.cell(i));
+            let pose = Pose::new(x, y, view.pose.theta_rad);
+            let targets = intercepted(grid, &ml, &pose, view.bearings, model, &unexplored);
+            if !targets.is_empty() {
+                self.targets = targets.into_iter().map(|t| (t, counts[t])).collect();
+                return Ok(Decision::Goal {
+                    pose,
+                    path: reach.path_to(i),
+                });
+            }
+        }
+        Ok(Decision::Done(Termination::NoGoal))
+    }
+
+    pub fn learn(&mut self, view: &View, outcome: &Outcome) {
+        if !outcome.reached {
+            return;
+        }
+        let counts = view.occupancy.counts().counts();
+        for &(cell, before) in &self.targets {
+            if counts[cell] <= before {
+                self.given_up[cell] = true;
+            }
+        }
+        self.targets.clear();
+    }
+}
+
+/// The cells flagged in `wanted` that a scan from `pose` would intercept
+/// (in increasing index order, each once), predicting each beam's
+/// reading as its median reading on the ML map `ml`.
+fn intercepted(
+    grid: &Grid,
+    ml: &[f32],
+    pose: &Pose,
+    bearings: &[f64],
+    model: &dyn SensorModel,
+    wanted: &[bool],
+) -> Vec<usize> {
+    let range = model.range_model();
+    let half = 0.5 * grid.resolution_m();
+    let mut found = Vec::new();
+    for &bearing in bearings {
+        let angle = pose.theta_rad + bearing;
+        let predicted = trace_readings(
+            grid,
+            ml,
+            [pose.x_m, pose.y_m],
+            angle,
+            range,
+            grid.resolution_m(),
+        );
+        let mut below = 0.0;
+        let median = predicted.probabilities.iter().position(|&p| {
+            below += p;
+            below >= 0.5
+        });
+        // As the counts have it: up to the end point's cell, or the whole
+        // footprint up to the maximum range for no echo.
+        let reach = median.map_or(range.max_range_m, |j| {
+            (j as f64 * predicted.step_m + half).min(range.max_range_m)
+        });
+        visit(
+            grid,
+            [pose.x_m, pose.y_m],
+            angle,
+            reach,
+            model.footprint(),
+            &mut |i: usize, _| {
+                if wanted[i] {
+                    found.push(i);
+                }
+            },
+        );
+    }
+    found.sort_unstable();
+    found.dedup();
+    found
+}

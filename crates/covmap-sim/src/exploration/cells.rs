@@ -1,0 +1,225 @@
+//! What the true world says about a run before it starts: where a disc
+//! robot fits, where it may start, and which cells it is judged on.
+//!
+//! # Evaluation cells
+//! The cells a robot could observe, from the true world alone and the same
+//! for every strategy: the *reachable free space* (the cells whose centre
+//! lies at least the robot's radius from every obstacle, connected to the
+//! start's cell through such cells, 8-connected without cutting corners, as
+//! the planner's paths are) and every cell whose centre lies within the
+//! robot's radius and the sensor model's end band (`band_m`) of one of them
+//! ([`dilate`]): the cells the robot's disc touches, and the cells behind an
+//! obstacle's face that a reading ending on the face still updates. It is
+//! the rule by which the coverage strategy judges its own map
+//! ([`covmap_core::exploration`]), applied to the truth.
+//!
+//! # The start
+//! Without a given start, the robot starts at the centre of a cell drawn
+//! uniformly from the cells of the largest connected free region whose
+//! centre keeps twice the robot's radius from every obstacle (a clearance
+//! well above the radius: room to turn and scan), facing a heading drawn
+//! uniformly from `[-pi, pi)`; both draws come from stream
+//! [`START_STREAM`] of the run's seed.
+
+use covmap_core::exploration::dilate;
+use covmap_core::planner::shortest_paths;
+use covmap_core::{CovmapError, Grid, Pose};
+use rand::RngExt;
+
+use crate::error::Result;
+use crate::rng::sim_rng_stream;
+use crate::robot::Robot;
+use crate::world::World;
+
+/// The stream of the run's seed the start is drawn from (the scans use
+/// streams 0, 1, 2, ...).
+pub const START_STREAM: u64 = u64::MAX;
+
+/// The gap between the disc at each cell's centre and the nearest obstacle,
+/// metres, row-major ([`Robot::clearance_m`]): at least 0 where the robot
+/// fits.
+pub fn clearances(world: &World, grid: &Grid, robot: &Robot) -> Vec<f64> {
+    let rows = covmap_core::parallel::map((0..grid.rows()).collect(), |row| {
+        (0..grid.cols())
+            .map(|col| robot.clearance_m(world, grid.cell_center(covmap_core::Cell { row, col })))
+            .collect::<Vec<f64>>()
+    });
+    rows.concat()
+}
+
+/// The evaluation cells of a run from `start` (see the module
+/// documentation), given the [`clearances`] of the robot on `grid`.
+///
+/// # Errors
+/// As [`shortest_paths`], for a start off the grid.
+pub fn evaluation_cells(
+    grid: &Grid,
+    clearance_m: &[f64],
+    start: &Pose,
+    robot_radius_m: f64,
+    band_m: f64,
+) -> Result<Vec<bool>> {
+    let start_cell = cell_of(grid, start)?;
+    let mut free: Vec<bool> = clearance_m.iter().map(|&c| c >= 0.0).collect();
+    free[grid.index(start_cell)?] = true;
+    let reach = shortest_paths(grid, &free, start_cell)?;
+    let reachable: Vec<bool> = reach.costs().iter().map(|c| c.is_finite()).collect();
+    Ok(dilate(grid, &reachable, robot_radius_m + band_m))
+}
+
+/// A start for a run seeded `seed` (see the module documentation).
+///
+/// # Errors
+/// [`CovmapError::InvalidStart`] if the robot fits nowhere on the grid.
+pub fn choose_start(
+    grid: &Grid,
+    clearance_m: &[f64],
+    robot_radius_m: f64,
+    seed: u64,
+) -> Result<Pose> {
+    let free: Vec<bool> = clearance_m.iter().map(|&c| c >= 0.0).collect();
+    let largest = largest_region(grid, &free);
+    let mut roomy: Vec<usize> = largest
+        .iter()
+        .copied()
+        .filter(|&i| clearance_m[i] >= robot_radius_m)
+        .collect();
+    if roomy.is_empty() {
+        roomy = largest;
+    }
+    if roomy.is_empty() {
+        let [x, y, ..] = grid.bounds_m();
+        return Err(CovmapError::InvalidStart {
+            x,
+            y,
+            reason: "the robot fits nowhere on the grid".into(),
+        }
+        .into());
+    }
+    let mut rng = sim_rng_stream(seed, START_STREAM);
+    let cell = roomy[rng.random_range(0..roomy.len())];
+    let heading = rng.random_range(-std::f64::consts::PI..std::f64::consts::PI);
+    let [x, y] = grid.cell_center(grid.cell(cell));
+    Ok(Pose::new(x, y, heading))
+}
+
+/// Errors unless the robot can start at `start`: inside the grid, its disc
+/// clear of every obstacle of `world`.
+///
+/// # Errors
+/// [`CovmapError::InvalidPose`] or [`CovmapError::PoseOutsideMap`] off the
+/// grid; [`CovmapError::InvalidStart`] in (or touching) an obstacle.
+pub fn check_start(world: &World, grid: &Grid, robot: &Robot, start: &Pose) -> Result<()> {
+    start.check_finite()?;
+    cell_of(grid, start)?;
+    let clearance = robot.clearance_m(world, [start.x_m, start.y_m]);
+    if clearance <= 0.0 {
+        return Err(CovmapError::InvalidStart {
+            x: start.x_m,
+            y: start.y_m,
+            reason: format!(
+                "the robot's disc of radius {} m overlaps an obstacle (clearance {clearance} m)",
+                robot.radius_m()
+            ),
+        }
+        .into());
+    }
+    Ok(())
+}
+
+/// The cell of `pose` on `grid`, or [`CovmapError::PoseOutsideMap`].
+fn cell_of(grid: &Grid, pose: &Pose) -> Result<covmap_core::Cell> {
+    grid.world_to_cell(pose.x_m, pose.y_m).ok_or_else(|| {
+        let [x_min, y_min, x_max, y_max] = grid.bounds_m();
+        CovmapError::PoseOutsideMap {
+            x: pose.x_m,
+            y: pose.y_m,
+            x_min,
+            x_max,
+            y_min,
+            y_max,
+        }
+        .into()
+    })
+}
+
+/// The cells of the largest 8-connected region of `free` cells (diagonal
+/// steps need both side cells free), in increasing index order; ties to
+/// the region with the lowest first cell.
+fn largest_region(grid: &Grid, free: &[bool]) -> Vec<usize> {
+    let (rows, cols) = (grid.rows() as i64, grid.cols() as i64);
+    let mut seen = vec![false; free.len()];
+    let mut best: Vec<usize> = Vec::new();
+    for first in 0..free.len() {
+        if !free[first] || seen[first] {
+            continue;
+        }
+        seen[first] = true;
+        let mut region = vec![first];
+        let mut next = 0;
+        while next < region.len() {
+            let at = region[next] as i64;
+            next += 1;
+            let (row, col) = (at / cols, at % cols);
+            for (dr, dc) in [
+                (0, 1),
+                (1, 0),
+                (0, -1),
+                (-1, 0),
+                (1, 1),
+                (1, -1),
+                (-1, 1),
+                (-1, -1),
+            ] {
+                let (r, c) = (row + dr, col + dc);
+                if r < 0 || c < 0 || r >= rows || c >= cols {
+                    continue;
+                }
+                let n = (r * cols + c) as usize;
+                let corner_free = dr == 0
+                    || dc == 0
+                    || (free[(row * cols + c) as usize] && free[(r * cols + col) as usize]);
+                if free[n] && !seen[n] && corner_free {
+                    seen[n] = true;
+                    region.push(n);
+                }
+            }
+        }
+        if region.len() > best.len() {
+            best = region;
+        }
+    }
+    best.sort_unstable();
+    best
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_start_lies_in_the_largest_region_with_room() {
+        let world = World::builtin("corridor").unwrap();
+        let [x0, y0, x1, y1] = world.bounds_m();
+        let grid = Grid::covering(x0 - 0.5, y0 - 0.5, x1 + 0.5, y1 + 0.5, 0.05).unwrap();
+        let robot = Robot::new(0.25).unwrap();
+        let clearance = clearances(&world, &grid, &robot);
+        let mut starts = Vec::new();
+        for seed in 0..5 {
+            let start = choose_start(&grid, &clearance, 0.25, seed).unwrap();
+            assert!(robot.clearance_m(&world, [start.x_m, start.y_m]) >= 0.25 - 1e-9);
+            // Inside the building, not in the margin outside it.
+            assert!(start.x_m > 0.0 && start.x_m < 17.0 && start.y_m > 0.0 && start.y_m < 6.2);
+            check_start(&world, &grid, &robot, &start).unwrap();
+            starts.push(start);
+        }
+        assert_eq!(starts[0], choose_start(&grid, &clearance, 0.25, 0).unwrap());
+        assert_ne!(starts[0], starts[1]);
+        let cells = evaluation_cells(&grid, &clearance, &starts[0], 0.25, 0.2).unwrap();
+        let outside = grid.index(grid.world_to_cell(-0.45, 1.3).unwrap()).unwrap();
+        let inside = grid.index(grid.world_to_cell(8.0, 1.3).unwrap()).unwrap();
+        assert!(cells[inside] && !cells[outside]);
+        assert!(check_start(&world, &grid, &robot, &Pose::new(2.0, 0.1, 0.0)).is_err());
+        assert!(check_start(&world, &grid, &robot, &Pose::new(-5.0, 1.3, 0.0)).is_err());
+    }
+}

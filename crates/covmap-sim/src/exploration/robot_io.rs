@@ -1,0 +1,117 @@
+//! The simulated robot the exploration loop drives: its sensor and its
+//! drive in the true world ([`covmap_core::exploration::ScanSource`] and
+//! [`covmap_core::exploration::Motion`]).
+
+use std::sync::Arc;
+
+use covmap_core::exploration::{Motion, ScanSource, Travel};
+use covmap_core::{CovmapError, Pose};
+use parry2d_f64::query::PointQuery;
+
+use super::sensor::SimSensor;
+use crate::rng::sim_rng_stream;
+use crate::robot::Robot;
+use crate::world::{World, vector};
+
+/// How far short of a contact the robot stops, metres: its last free point,
+/// from which it can drive away again (a disc touching an obstacle cannot
+/// move at all in [`Robot::free_travel_m`]).
+pub const STANDOFF_M: f64 = 0.005;
+
+/// The simulated sensor in the true world: scan `k` of a run (counting from
+/// 0) draws its noise from stream `k` of the run's seed
+/// ([`sim_rng_stream`]), so a run depends on its seed alone.
+#[derive(Clone, Debug)]
+pub struct WorldScans {
+    world: Arc<World>,
+    sensor: SimSensor,
+    seed: u64,
+    next: u64,
+}
+
+impl WorldScans {
+    /// The sensor in `world`, its first scan drawing from stream 0 of `seed`.
+    pub fn new(world: Arc<World>, sensor: SimSensor, seed: u64) -> Self {
+        Self {
+            world,
+            sensor,
+            seed,
+            next: 0,
+        }
+    }
+    /// The sensor.
+    pub fn sensor(&self) -> &SimSensor {
+        &self.sensor
+    }
+}
+
+impl ScanSource for WorldScans {
+    fn bearings(&self) -> &[f64] {
+        self.sensor.bearings_rad()
+    }
+
+    fn scan(&mut self, pose: &Pose) -> covmap_core::Result<Vec<f64>> {
+        let mut rng = sim_rng_stream(self.seed, self.next);
+        self.next += 1;
+        self.sensor
+            .ranges(&self.world, pose, &mut rng)
+            .map_err(|e| CovmapError::Robot(e.to_string()))
+    }
+}
+
+/// The disc robot driving in the true world: a straight drive goes as far
+/// as [`Robot::free_travel_m`] lets it, and stops [`STANDOFF_M`] short of a
+/// contact; the contact point is the point of the world's boundary nearest
+/// to the disc's centre where it touched.
+#[derive(Clone, Debug)]
+pub struct WorldMotion {
+    world: Arc<World>,
+    robot: Robot,
+}
+
+impl WorldMotion {
+    /// `robot` in `world`.
+    pub fn new(world: Arc<World>, robot: Robot) -> Self {
+        Self { world, robot }
+    }
+    /// The robot's body.
+    pub fn robot(&self) -> &Robot {
+        &self.robot
+    }
+}
+
+impl Motion for WorldMotion {
+    fn drive(&mut self, from_m: [f64; 2], to_m: [f64; 2]) -> covmap_core::Result<Travel> {
+        let length = (to_m[0] - from_m[0]).hypot(to_m[1] - from_m[1]);
+        let free = self.robot.free_travel_m(&self.world, from_m, to_m);
+        if free >= length {
+            return Ok(Travel {
+                travelled_m: length,
+                contact_m: None,
+            });
+        }
+        let direction = [
+            (to_m[0] - from_m[0]) / length,
+            (to_m[1] - from_m[1]) / length,
+        ];
+        let touching = [
+            from_m[0] + direction[0] * free,
+            from_m[1] + direction[1] * free,
+        ];
+        let contact_m = match self.world.geometry() {
+            Some(g) => {
+                let p = g
+                    .boundary
+                    .project_local_point(vector(touching), false)
+                    .point;
+                [p.x, p.y]
+            }
+            // Nothing to touch: unreachable, as the whole way is free then.
+            None => touching,
+        };
+        Ok(Travel {
+            travelled_m: (free - STANDOFF_M).max(0.0),
+            contact_m: Some(contact_m),
+        })
+    }
+}
