@@ -4,6 +4,7 @@ use serde::{Deserialize, Serialize};
 
 use crate::error::{CovmapError, Result};
 use crate::gain::GainOptions;
+use crate::sensor::check_range_step;
 
 /// Settings of the planner. See the [module documentation](crate::planner).
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
@@ -109,16 +110,12 @@ impl PlannerConfig {
         if !(self.epsilon > 0.0 && self.epsilon.is_finite()) {
             return bad("epsilon", self.epsilon, "a positive, finite entropy");
         }
-        if let Some(step) = self.gain.range_step_m
-            && !(step > 0.0 && step.is_finite())
-        {
-            return bad(
-                "gain.range_step_m",
-                step,
-                "a positive, finite step (at most the grid resolution)",
-            );
+        // The grid is not known yet: the step's bound by the resolution is
+        // checked when the gain is evaluated on a map.
+        match self.gain.range_step_m {
+            Some(step) => check_range_step(step, None),
+            None => Ok(()),
         }
-        Ok(())
     }
 }
 
