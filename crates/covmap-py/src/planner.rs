@@ -11,7 +11,7 @@ use crate::coverage_map::PyCoverageMap;
 use crate::errors::OrRaise;
 use crate::keywords::keyword_class;
 use crate::plan::{PyExplorationStatus, PyPlan};
-use crate::sensor::AnyModel;
+use crate::sensor::any_model;
 
 /// The decision-theoretic exploration planner.
 ///
@@ -63,6 +63,8 @@ impl PyPlanner {
             unknown_is_free: keywords.unknown_is_free.unwrap_or(d.unknown_is_free),
             epsilon: keywords.epsilon.unwrap_or(d.epsilon),
             gain,
+            // The settings this binding does not take keep their defaults.
+            ..d
         };
         Planner::new(config).map(Self).or_raise(py)
     }
@@ -111,7 +113,7 @@ keyword_class! {
             ) -> PyResult<PyPlan> {
                 let pose = convert::pose(pose)?;
                 let bearings = convert::readings(bearings, "bearings")?;
-                let model = AnyModel::extract(model)?;
+                let model = any_model(model)?;
                 let (planner, map) = (&self.0, &map.0);
                 py.detach(|| planner.next_viewpoint(map, &pose, &bearings, &model))
                     .map(PyPlan)
