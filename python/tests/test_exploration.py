@@ -353,3 +353,21 @@ def test_a_world_the_robot_fits_nowhere_in_is_refused() -> None:
     block = covmap.World([[(0, 0), (0.5, 0), (0.5, 0.5), (0, 0.5)]])
     with pytest.raises(covmap.InvalidStartError, match="fits nowhere"):
         covmap.explore(block, covmap.Strategy.frontier(), robot_radius_m=2.0)
+
+
+def test_readme_exploration_example_runs() -> None:
+    import re
+    from pathlib import Path
+
+    readme = Path(__file__).resolve().parents[2] / "README.md"
+    if not readme.is_file():
+        pytest.skip("no README.md beside the package")
+    blocks = re.findall(r"```python\n(.*?)```", readme.read_text(), flags=re.S)
+    example = next(b for b in blocks if "covmap.explore(" in b)
+    namespace: dict[str, Any] = {}
+    exec(compile(example, str(readme), "exec"), namespace)
+    result, run = namespace["result"], namespace["run"]
+    assert result.termination == "limit" and result.steps == 10
+    assert namespace["seen"].shape == result.grid.shape
+    assert run.done and run.steps == 3
+    assert pickle.loads(pickle.dumps(run.result())).steps == 3

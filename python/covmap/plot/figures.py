@@ -9,7 +9,7 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from covmap.plot.drawing import plot_map, plot_trajectory, plot_world
+from covmap.plot.drawing import plot_map, plot_trajectory, plot_world, unknown_colormap
 from covmap.plot.saving import save_figure
 
 if TYPE_CHECKING:
@@ -52,10 +52,9 @@ def _figure_file(path: Path, *args: Any, **kwargs: Any) -> Iterator[tuple[Figure
 
 
 def _greys_unobserved() -> Colormap:
-    """Grey levels for coverage; masked (unobserved) cells light blue."""
-    import matplotlib
-
-    return matplotlib.colormaps["Greys"].with_extremes(bad="lightsteelblue")
+    """Grey levels for coverage; masked (unobserved) cells light blue
+    (:data:`~covmap.plot.drawing.UNKNOWN_COLOR`)."""
+    return unknown_colormap("Greys")
 
 
 def plot_fig1(runs: Sequence[Run], path: Path) -> Path:
