@@ -50,6 +50,9 @@ impl PyPlanner {
                 None => d.gain.stop_coverage,
             },
         };
+        // `..d`: settings the core gains later keep their defaults here until
+        // the binding takes them (today it may name every one).
+        #[allow(clippy::needless_update)]
         let config = PlannerConfig {
             alpha: keywords.alpha.unwrap_or(d.alpha),
             robot_radius_m: keywords.robot_radius_m.unwrap_or(d.robot_radius_m),
