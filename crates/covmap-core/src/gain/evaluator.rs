@@ -5,13 +5,11 @@ use std::borrow::Cow;
 use std::sync::OnceLock;
 
 use super::fast::{Arith, CellTerms, Queue};
-use super::map_terms::MapTerms;
 use super::schedule::in_groups;
 use super::{GainMethod, GainOptions};
 use crate::coverage_map::CoverageMap;
 use crate::error::Result;
 use crate::footprint::visit;
-use crate::grid::Grid;
 use crate::pose::{Pose, check_bearings, check_pose};
 use crate::sensor::{
     Footprint, KernelTable, RangeModel, ReadingDistribution, SensorModel, StopCoverage,
@@ -42,11 +40,10 @@ pub struct GainEvaluator<'a> {
     pub(super) table: Cow<'a, KernelTable>,
     pub(super) range: RangeModel,
     pub(super) footprint: Footprint,
-    /// The coverage of every cell that stops a predicted beam.
-    pub(super) stop: Cow<'a, [f32]>,
+    pub(super) stop: Vec<f32>,
     pub(super) step_m: f64,
-    /// What the fast evaluator knows of every cell.
-    pub(super) cell_terms: Terms<'a>,
+    /// What the fast evaluator knows of every cell, built on its first use.
+    pub(super) cell_terms: OnceLock<CellTerms>,
     /// The widest arithmetic the processor offers (detected at run time).
     pub(super) arith: Arith,
 }
@@ -64,72 +61,24 @@ impl<'a> GainEvaluator<'a> {
         model: &M,
         options: GainOptions,
     ) -> Result<Self> {
-        let step_m = Self::check(map, model, options)?;
+        model.validate()?;
+        let resolution = map.grid().resolution_m();
+        let step_m = options.range_step_m.unwrap_or(resolution);
+        check_range_step(step_m, Some(resolution))?;
         let range = *model.range_model();
         let table = map.kernel_table(&range)?;
+        let stop = match options.stop_coverage {
+            StopCoverage::MaximumLikelihood => map.ml(),
+            StopCoverage::Mean => map.mean(),
+        };
         Ok(Self {
             map,
             table,
             range,
             footprint: model.footprint(),
-            stop: Cow::Owned(stop_coverage(map, options.stop_coverage)),
+            stop,
             step_m,
-            cell_terms: Terms::Lazy(OnceLock::new()),
-            arith: Arith::detect(),
-        })
-    }
-
-    /// Errors as [`Self::new`] does, in the same order, for `model` and
-    /// `options` on `map`; else the spacing of the predicted readings.
-    pub(crate) fn check<M: SensorModel + ?Sized>(
-        map: &CoverageMap,
-        model: &M,
-        options: GainOptions,
-    ) -> Result<f64> {
-        model.validate()?;
-        let resolution = map.grid().resolution_m();
-        let step_m = options.range_step_m.unwrap_or(resolution);
-        check_range_step(step_m, Some(resolution))?;
-        Ok(step_m)
-    }
-
-    /// An evaluator for `map` and `model` that reads the per-map work from
-    /// `terms` (brought up to date with `map` by [`MapTerms::update`]) and
-    /// multiplies the kernels of `table`, instead of computing them: what
-    /// [`Self::new`] would compute, so that every gain is the same, bit for
-    /// bit.
-    ///
-    /// # Errors
-    /// As [`Self::new`].
-    ///
-    /// # Panics
-    /// If `terms` were not made for a map of `map`'s size with `options`'
-    /// stop coverage, or `table` does not serve `model` on `map`.
-    pub(crate) fn with_terms<M: SensorModel + ?Sized>(
-        map: &'a CoverageMap,
-        model: &M,
-        options: GainOptions,
-        table: &'a KernelTable,
-        terms: &'a MapTerms,
-    ) -> Result<Self> {
-        let step_m = Self::check(map, model, options)?;
-        let range = *model.range_model();
-        assert!(
-            table.serves(&range, map.grid().resolution_m(), map.bins()),
-            "the kernel table is not the model's"
-        );
-        assert!(
-            terms.fits(map, options.stop_coverage),
-            "the terms are not this map's"
-        );
-        Ok(Self {
-            map,
-            table: Cow::Borrowed(table),
-            range,
-            footprint: model.footprint(),
-            stop: Cow::Borrowed(&terms.stop),
-            step_m,
-            cell_terms: Terms::Given(&terms.cells),
+            cell_terms: OnceLock::new(),
             arith: Arith::detect(),
         })
     }
@@ -158,7 +107,11 @@ impl<'a> GainEvaluator<'a> {
         self.validate(poses, bearings)?;
         let evaluator = match method {
             GainMethod::Exact => Evaluator::Exact,
-            GainMethod::Fast => Evaluator::Fast(self.cell_terms()),
+            // What the fast evaluator knows of every cell, computed once.
+            GainMethod::Fast => Evaluator::Fast(
+                self.cell_terms
+                    .get_or_init(|| CellTerms::new(self.map, &self.table)),
+            ),
         };
         let beam = |pose: &Pose, bearing: f64, queue: &mut Queue| -> f64 {
             let origin = [pose.x_m, pose.y_m];
@@ -196,16 +149,15 @@ impl<'a> GainEvaluator<'a> {
     /// Errors unless every pose is finite and inside the map, and every
     /// bearing gives a finite direction from each.
     fn validate(&self, poses: &[Pose], bearings: &[f64]) -> Result<()> {
-        validate_candidates(self.map.grid(), poses, bearings)
-    }
-
-    /// What the fast evaluator knows of every cell: given, or computed on
-    /// first use.
-    pub(super) fn cell_terms(&self) -> &CellTerms {
-        match &self.cell_terms {
-            Terms::Lazy(terms) => terms.get_or_init(|| CellTerms::new(self.map, &self.table)),
-            Terms::Given(terms) => terms,
+        if poses.is_empty() {
+            // No direction to form: the bearings themselves.
+            return check_bearings(0.0, bearings);
         }
+        for pose in poses {
+            check_pose(self.map.grid(), pose)?;
+            check_bearings(pose.theta_rad, bearings)?;
+        }
+        Ok(())
     }
 
     /// The predicted readings of the beam from `origin` along `angle`.
@@ -228,37 +180,6 @@ impl<'a> GainEvaluator<'a> {
             .0
             .max(last + self.range.band_m)
     }
-}
-
-/// Errors as [`GainEvaluator::evaluate`] does, in the same order, for
-/// `poses` on `grid` and `bearings`: unless every pose is finite and inside
-/// the grid, and every bearing gives a finite direction from each.
-pub(crate) fn validate_candidates(grid: &Grid, poses: &[Pose], bearings: &[f64]) -> Result<()> {
-    if poses.is_empty() {
-        // No direction to form: the bearings themselves.
-        return check_bearings(0.0, bearings);
-    }
-    for pose in poses {
-        check_pose(grid, pose)?;
-        check_bearings(pose.theta_rad, bearings)?;
-    }
-    Ok(())
-}
-
-/// The coverage of every cell of `map` that stops a predicted beam.
-pub(super) fn stop_coverage(map: &CoverageMap, stop: StopCoverage) -> Vec<f32> {
-    match stop {
-        StopCoverage::MaximumLikelihood => map.ml(),
-        StopCoverage::Mean => map.mean(),
-    }
-}
-
-/// Where an evaluator's [`CellTerms`] come from.
-pub(super) enum Terms<'a> {
-    /// Computed from the map on first use ([`GainEvaluator::new`]).
-    Lazy(OnceLock<CellTerms>),
-    /// Kept up to date by the caller ([`GainEvaluator::with_terms`]).
-    Given(&'a CellTerms),
 }
 
 /// The evaluator a beam's gain is computed by, with what it needs.
