@@ -984,7 +984,8 @@ class Exploration:
     ``Step``, or ``None`` once the run is over. Iterating yields the steps.
     ``result()`` reports the run so far as an ``ExplorationResult``; stepping
     to the end gives the same result as ``explore`` with the same arguments.
-    The maps read out (``map``, ``occupancy``) are copies.
+    The maps read out (``map``, ``occupancy``) are copies. Touching the run
+    from another thread while a step runs raises ``RuntimeError``.
     """
 
     def __new__(

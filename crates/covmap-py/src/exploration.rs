@@ -247,7 +247,8 @@ run_keywords! { explore_function! {
 /// ``Step``, or ``None`` once the run is over. Iterating yields the steps.
 /// ``result()`` reports the run so far as an ``ExplorationResult``; stepping
 /// to the end gives the same result as ``explore`` with the same arguments.
-/// The maps read out (``map``, ``occupancy``) are copies.
+/// The maps read out (``map``, ``occupancy``) are copies. Touching the run
+/// from another thread while a step runs raises ``RuntimeError``.
 #[pyclass(name = "Exploration", module = "covmap._native")]
 pub(crate) struct PyExploration {
     run: SimExploration,

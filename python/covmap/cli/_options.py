@@ -108,6 +108,11 @@ def add_out(command: argparse.ArgumentParser, name: str) -> None:
     )
 
 
+def add_world(command: argparse.ArgumentParser) -> None:
+    """The ``--world`` option: a built-in world, default ``corridor``."""
+    command.add_argument("--world", default="corridor", help="built-in world (default corridor)")
+
+
 def add_seed(command: argparse.ArgumentParser) -> None:
     """The ``--seed`` option, default 0."""
     command.add_argument("--seed", type=seed, default=0, help="random seed, 0 to 2**64 - 1 (default 0)")
@@ -116,15 +121,17 @@ def add_seed(command: argparse.ArgumentParser) -> None:
 def add_run_limits(command: argparse.ArgumentParser) -> None:
     """The ``--max-steps`` and ``--max-path-m`` options of an exploration
     (default: the library's limits)."""
+    from covmap._native import _EXPLORE_DEFAULTS as defaults
+
     command.add_argument(
         "--max-steps",
         type=positive_int,
-        help=f"stop a run after this many steps, at most {MAX_COUNT} (default: the library's 5000)",
+        help=f"stop a run after this many steps, at most {MAX_COUNT} (default {defaults['max_steps']})",
     )
     command.add_argument(
         "--max-path-m",
         type=path_limit,
-        help="stop a run after driving this far, metres (default: the library's 2000)",
+        help=f"stop a run after driving this far, metres (default {defaults['max_path_m']:g})",
     )
 
 

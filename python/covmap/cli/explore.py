@@ -6,6 +6,7 @@ from typing import TYPE_CHECKING
 
 from covmap._native import DEFAULT_DISCOUNT_BEYOND_M, Laser, SonarRing, Strategy, World
 from covmap.cli import _options
+from covmap.experiments.exploration import MAX_FRAMES
 
 if TYPE_CHECKING:
     import argparse
@@ -34,7 +35,7 @@ DESCRIPTION = (
 
 def add_arguments(command: argparse.ArgumentParser) -> None:
     """The command's arguments."""
-    command.add_argument("--world", default="corridor", help="built-in world (default corridor)")
+    _options.add_world(command)
     command.add_argument(
         "--strategy",
         choices=("coverage", "counting", "frontier"),
@@ -72,8 +73,8 @@ def add_arguments(command: argparse.ArgumentParser) -> None:
     command.add_argument(
         "--frames",
         type=_options.frame_count,
-        default=60,
-        help="most frames of the animation, 2 to 1000 (default 60)",
+        default=MAX_FRAMES,
+        help=f"most frames of the animation, 2 to {_options.MAX_FRAMES} (default {MAX_FRAMES})",
     )
 
 

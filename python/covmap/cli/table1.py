@@ -32,7 +32,7 @@ DESCRIPTION = (
 
 def add_arguments(command: argparse.ArgumentParser) -> None:
     """The command's arguments."""
-    command.add_argument("--world", default="corridor", help="built-in world (default corridor)")
+    _options.add_world(command)
     command.add_argument(
         "--seeds",
         type=_options.positive_int,

@@ -172,7 +172,7 @@ def plot_table1(t: Table1, path: Path) -> Path:
     """Write Table I as a chart to ``path`` (PNG), atomically: each run's path
     length against the uncertain share of its evaluation cells, a marker per
     method, the methods' means circled, the paper's figures as stars of the
-    same colour. Returns the path."""
+    same colour; path lengths on a log scale. Returns the path."""
     colors = ["tab:green", "tab:orange", "tab:blue", "tab:purple"]
     with _figure_file(path, figsize=(7.5, 5.0), layout="constrained") as (_, ax):
         for row, color in zip(t.rows, colors):
@@ -199,7 +199,8 @@ def plot_table1(t: Table1, path: Path) -> Path:
                     s=180,
                     label=f"{m.label} (paper)",
                 )
-        ax.set_xlabel("path length [m]")
+        ax.set_xscale("log")  # from tens of metres (counting n = 1) to kilometres
+        ax.set_xlabel("path length [m], log scale")
         ax.set_ylabel("evaluation cells with H > epsilon [%]")
         ax.set_title(
             f"Table I, {t.world_name}, {len(t.seeds)} seed(s): runs (dots), their means (circles), the paper (stars)",

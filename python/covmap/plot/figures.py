@@ -165,12 +165,12 @@ def plot_world_and_coverage(
 def plot_planning_step(step: Step, path: Path) -> Path:
     """Write a :mod:`planning step <covmap.experiments.planning_step>` as a
     PNG of two panels, atomically: the ML map (cells no reading changed in
-    light blue), and the expected gain of every candidate over the entropy
+    light blue, :data:`~covmap.plot.drawing.UNKNOWN_COLOR`), and the expected gain of every candidate over the entropy
     map, with the start, the chosen viewpoint and the path. Both panels show
     the observed part of the map. Returns the path."""
     cmap, grid, plan = step.coverage_map, step.grid, step.plan
     entropy = cmap.entropy()
-    observed = entropy < math.log(cmap.bins) - 1e-4
+    observed = cmap.observed()
     rows_seen, cols_seen = np.nonzero(observed)
     gx0, gy0 = grid.origin
     r = grid.resolution
