@@ -1,11 +1,10 @@
 //! One scan's arguments, converted and copied out of Python.
 
 use covmap::Pose;
-use covmap::exploration::AnySensorModel;
 use pyo3::prelude::*;
 
 use crate::convert;
-use crate::sensor::any_model;
+use crate::sensor::AnyModel;
 
 /// The arguments of `integrate`: pose, readings and model, owned by Rust so the
 /// update can run with the GIL released.
@@ -13,7 +12,7 @@ pub(crate) struct Scan {
     pub(crate) pose: Pose,
     pub(crate) ranges: Vec<f64>,
     pub(crate) bearings: Vec<f64>,
-    pub(crate) model: AnySensorModel,
+    pub(crate) model: AnyModel,
 }
 
 impl Scan {
@@ -27,7 +26,7 @@ impl Scan {
             pose: convert::pose(pose)?,
             ranges: convert::readings(ranges, "ranges")?,
             bearings: convert::readings(bearings, "bearings")?,
-            model: any_model(model)?,
+            model: AnyModel::extract(model)?,
         })
     }
 }
