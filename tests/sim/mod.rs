@@ -1,6 +1,5 @@
 //! The simulator against the core and against real data.
 
-mod exploration;
 mod fig3;
 mod worlds;
 
