@@ -30,14 +30,17 @@ from __future__ import annotations
 from covmap import plot
 from covmap import _errors
 from covmap._errors import *  # noqa: F403 (the error classes, listed in _errors.__all__)
+from covmap._exploration import ExplorationErrors, ExplorationResult, Step, Timing
 from covmap._native import (
     DEFAULT_BINS,
+    DEFAULT_DISCOUNT_BEYOND_M,
     MAX_BINS,
     MIN_BINS,
     STAGNATION_MEASUREMENTS,
     STAGNATION_NATS,
     Candidates,
     CoverageMap,
+    Exploration,
     ExplorationStatus,
     Grid,
     Laser,
@@ -48,20 +51,26 @@ from covmap._native import (
     Robot,
     SonarModel,
     SonarRing,
+    Strategy,
     World,
     __version__,
     expected_information_gain,
+    explore,
     run_fig3,
 )
 
 __all__ = [
     "DEFAULT_BINS",
+    "DEFAULT_DISCOUNT_BEYOND_M",
     "MAX_BINS",
     "MIN_BINS",
     "STAGNATION_MEASUREMENTS",
     "STAGNATION_NATS",
     "Candidates",
     "CoverageMap",
+    "Exploration",
+    "ExplorationErrors",
+    "ExplorationResult",
     "ExplorationStatus",
     "Grid",
     "Laser",
@@ -72,9 +81,13 @@ __all__ = [
     "Robot",
     "SonarModel",
     "SonarRing",
+    "Step",
+    "Strategy",
+    "Timing",
     "World",
     "__version__",
     "expected_information_gain",
+    "explore",
     "plot",
     "run_fig3",
 ]

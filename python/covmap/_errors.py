@@ -4,7 +4,8 @@ Every error covmap raises for bad input is a :class:`CovmapError`; those caused
 by a bad value are also a :class:`ValueError` (a cell index out of range is an
 :class:`IndexError`, an array of the wrong dtype a :class:`TypeError`, a file
 that cannot be read an :class:`OSError`), so code that catches the builtin
-keeps working. The native module raises these classes.
+keeps working. A robot that fails during an exploration run raises
+:class:`RobotError`, a :class:`RuntimeError`. The native module raises these classes.
 """
 
 from __future__ import annotations
@@ -24,10 +25,12 @@ __all__ = [
     "InvalidPolygonError",
     "InvalidPoseError",
     "InvalidRangeError",
+    "InvalidStartError",
     "InvalidTypeError",
     "InvalidValueError",
     "LengthMismatchError",
     "PoseOutsideMapError",
+    "RobotError",
     "UnknownWorldError",
 ]
 
@@ -103,6 +106,18 @@ class InvalidValueError(CovmapError, ValueError):
 
 class UnknownWorldError(CovmapError, ValueError):
     """No built-in world has the requested name; the message lists those that do."""
+
+
+class InvalidStartError(CovmapError, ValueError):
+    """An exploration cannot start where asked (the robot's disc overlaps an
+    obstacle), or the robot fits nowhere to start; the message gives the
+    position and the reason."""
+
+
+class RobotError(CovmapError, RuntimeError):
+    """The robot failed during an exploration run: its sensor or its drive
+    could not do what the loop asked. Not caused by a bad argument: a
+    :class:`RuntimeError`, not a :class:`ValueError`."""
 
 
 class FileFormatError(CovmapError, ValueError):

@@ -13,6 +13,7 @@ import numpy as np
 import numpy.typing as npt
 from typing_extensions import Self
 
+from covmap._exploration import ExplorationResult, Step
 from covmap.experiments.fig3 import Fig3Result
 
 __all__ = [
@@ -37,6 +38,10 @@ __all__ = [
     "Laser",
     "Robot",
     "run_fig3",
+    "Strategy",
+    "DEFAULT_DISCOUNT_BEYOND_M",
+    "explore",
+    "Exploration",
 ]
 
 __version__: str
@@ -45,6 +50,8 @@ MIN_BINS: int
 MAX_BINS: int
 STAGNATION_MEASUREMENTS: int
 STAGNATION_NATS: float
+DEFAULT_DISCOUNT_BEYOND_M: float
+_EXPLORE_DEFAULTS: dict[str, Any]
 
 _Readings = npt.NDArray[np.float64] | Sequence[float]
 _Pose = Sequence[float] | npt.NDArray[np.floating[Any]]
@@ -54,6 +61,7 @@ _Points = npt.NDArray[np.float64] | Sequence[Sequence[float]]
 _Point = Sequence[float] | npt.NDArray[np.floating[Any]]
 _Path = str | PathLike[str]
 _HistoryState = tuple[npt.NDArray[np.float32], npt.NDArray[np.uint32]]
+_Sensor = SonarRing | Laser
 
 @final
 class Grid:
@@ -257,6 +265,12 @@ class CoverageMap:
         """The entropy map in nats (``ln(bins)`` at the prior, 0 when certain),
         float32, ``(rows, cols)``.
         """
+    def observed(self) -> npt.NDArray[np.bool_]:
+        """Which cells some evidence reached (a reading, or the robot touching an
+        obstacle): those whose histogram is no longer the uniform prior, bool,
+        ``(rows, cols)``. Unknown is a value of its own: an unobserved cell
+        reads 0 on ``ml()``, as an empty cell does, and this tells them apart.
+        """
     def integrate(
         self, pose: _Pose, ranges: _Readings, bearings: _Readings, model: _Model
     ) -> int:
@@ -332,6 +346,23 @@ class OccupancyGrid:
     def counts(self) -> npt.NDArray[np.float32]:
         """How many beams intercepted each cell (up to its end point), float32,
         ``(rows, cols)``.
+        """
+    def observed(self) -> npt.NDArray[np.bool_]:
+        """Which cells some evidence reached (a beam intercepted them, or the
+        robot touched an obstacle there): bool, ``(rows, cols)``. The others are
+        unknown, whatever ``probabilities()`` reads there (0.5).
+        """
+    def __getnewargs__(self) -> tuple[Grid]:
+        """Pickle and copy support: the grid, for ``__new__``."""
+    def __getstate__(self) -> bytes:
+        """Pickle and copy support: the model, log-odds and counts, as the
+        core's serialised form (JSON bytes; every float32 value exact).
+        """
+    def __setstate__(self, state: bytes) -> None:
+        """Unpickling support: restore the state saved by ``__getstate__``
+        (validated: a valid model, one log-odds value within its limit and one
+        finite, non-negative count per cell of this grid). After an error the
+        grid is exactly as it was.
         """
 
 def expected_information_gain(
@@ -837,3 +868,194 @@ def write_atomic(path: _Path, data: bytes) -> None:
     left behind. The directory must exist. A file that cannot be written
     raises ``FileIOError`` (an ``OSError``). Runs with the GIL released.
     """
+
+@final
+class Strategy:
+    """How an exploring robot chooses where to go next (``explore``,
+    ``Exploration``). Build one with a static method:
+
+    - ``Strategy.coverage(alpha=0.5)``: the paper's decision-theoretic choice
+      (eq. 14) on the coverage map, ``alpha`` the weight of information
+      against travel in ``[0, 1]``; done when every cell of the reachable
+      region is certain (entropy below ``epsilon``) or has stagnated;
+    - ``Strategy.counting(n=50, discount_beyond_m=None)``: extended scan
+      counting, a cell explored once ``n`` beams intercepted it (a beam reading
+      ``d`` beyond ``discount_beyond_m`` counts ``discount_beyond_m / d``;
+      ``None``: every beam counts 1; Table I's row uses
+      ``DEFAULT_DISCOUNT_BEYOND_M``); the robot goes to the nearest candidate
+      that would intercept an unexplored cell;
+    - ``Strategy.frontier()``: nearest-frontier exploration (Yamauchi 1997) on
+      the occupancy grid.
+
+    Strategies compare equal when their settings are equal, hash, pickle and
+    show as the call that builds them.
+    """
+
+    @staticmethod
+    def coverage(alpha: float = 0.5) -> Strategy:
+        """The paper's decision-theoretic strategy (eq. 14) with weight ``alpha``
+        in ``[0, 1]`` (0: the nearest candidate, 1: the most informative);
+        another value, NaN included, raises ``InvalidParameterError``.
+        """
+    @staticmethod
+    def counting(n: int = 50, discount_beyond_m: float | None = None) -> Strategy:
+        """Extended scan counting to ``n`` (at least 1) interceptions, beams
+        reading farther than ``discount_beyond_m`` (positive, finite; ``None``:
+        no discount) counted ``discount_beyond_m / d``; a bad value raises
+        ``InvalidParameterError``.
+        """
+    @staticmethod
+    def frontier() -> Strategy:
+        """Nearest-frontier exploration on the occupancy grid."""
+    @property
+    def name(self) -> Literal["coverage", "counting", "frontier"]:
+        """``"coverage"``, ``"counting"`` or ``"frontier"``."""
+    @property
+    def alpha(self) -> float | None:
+        """The weight of information against travel (``coverage``), else ``None``."""
+    @property
+    def n(self) -> int | None:
+        """The interceptions that make a cell explored (``counting``), else ``None``."""
+    @property
+    def discount_beyond_m(self) -> float | None:
+        """The discount range of ``counting``, metres (``None``: no discount, or
+        another strategy).
+        """
+    def __reduce__(self) -> tuple[Any, tuple[Any, ...]]:
+        """Pickle and copy support: the static method that builds the strategy
+        and its arguments.
+        """
+    def __eq__(self, value: object, /) -> bool: ...
+    def __ne__(self, value: object, /) -> bool: ...
+    def __hash__(self) -> int: ...
+
+def explore(
+    world: World,
+    strategy: Strategy,
+    *,
+    start: _Pose | None = None,
+    seed: int = 0,
+    sensor: _Sensor | None = None,
+    model: _Model | None = None,
+    resolution: float = 0.05,
+    bins: int = 16,
+    epsilon: float = 0.65,
+    robot_radius_m: float = 0.25,
+    candidate_stride_m: float = 0.5,
+    scan_spacing_m: float = 0.25,
+    max_path_m: float = 2000.0,
+    max_steps: int = 5000,
+) -> ExplorationResult:
+    """Explore ``world`` (a ``World``) with ``strategy`` (a ``Strategy``) until
+    the strategy is done or a limit is reached; returns an
+    ``ExplorationResult``. Runs with the GIL released.
+
+    The robot is a disc of ``robot_radius_m`` starting at ``start``
+    (``(x, y, theta)``; ``None``: a free pose drawn from ``seed``, the
+    centre of a cell of the largest free region keeping twice the radius
+    from every obstacle, facing a random heading). It scans with ``sensor``
+    (a ``SonarRing`` or a ``Laser``; ``None``: the 24-sonar ring) into a
+    ``CoverageMap`` of ``bins`` bins over the world's bounds plus 0.5 m at
+    ``resolution`` metres, and into an ``OccupancyGrid`` and scan counts
+    fed the same beams, integrating with ``model`` (a ``SonarModel`` or a
+    ``LaserModel``; ``None``: the sensor's default). Each step the strategy
+    picks a goal on the maps (candidates ``candidate_stride_m`` apart), the
+    robot follows the planned path through the true world, scanning every
+    ``scan_spacing_m`` of travel and at the goal; where the map was wrong
+    it stops at the obstacle, scans, and the contact is integrated as
+    covered. Poses are exact (no localisation error). A cell is certain
+    below ``epsilon`` nats. The run stops by the strategy's rule, or after
+    ``max_path_m`` metres or ``max_steps`` steps.
+
+    Every random draw (start, sensor noise) comes from ``seed``: the same
+    seed gives the same run at any thread count. Every option is checked
+    before anything runs: a bad value raises ``InvalidParameterError``
+    naming it, a start in an obstacle ``InvalidStartError``, one off the
+    map ``PoseOutsideMapError`` (all ``ValueError``).
+    """
+
+@final
+class Exploration:
+    """An exploration run to watch or steer step by step.
+
+    ``Exploration(world, strategy, **options)`` takes the arguments of
+    ``explore`` and checks them all, but runs nothing: each ``step()`` (GIL
+    released) chooses a goal, drives there scanning on the way and returns a
+    ``Step``, or ``None`` once the run is over. Iterating yields the steps.
+    ``result()`` reports the run so far as an ``ExplorationResult``; stepping
+    to the end gives the same result as ``explore`` with the same arguments.
+    The maps read out (``map``, ``occupancy``) are copies. Touching the run
+    from another thread while a step runs raises ``RuntimeError``.
+    """
+
+    def __new__(
+        cls,
+        world: World,
+        strategy: Strategy,
+        *,
+        start: _Pose | None = None,
+        seed: int = 0,
+        sensor: _Sensor | None = None,
+        model: _Model | None = None,
+        resolution: float = 0.05,
+        bins: int = 16,
+        epsilon: float = 0.65,
+        robot_radius_m: float = 0.25,
+        candidate_stride_m: float = 0.5,
+        scan_spacing_m: float = 0.25,
+        max_path_m: float = 2000.0,
+        max_steps: int = 5000,
+    ) -> Exploration: ...
+    def step(self) -> Step | None:
+        """Take one step: a ``Step``, or ``None`` once the run is over."""
+    def run(self) -> ExplorationResult:
+        """Step to the end of the run; returns ``result()``."""
+    def result(self) -> ExplorationResult:
+        """The run so far as an ``ExplorationResult`` (its ``termination`` is
+        ``None`` while the run goes on).
+        """
+    def __iter__(self) -> Self: ...
+    def __next__(self) -> Step: ...
+    @property
+    def map(self) -> CoverageMap:
+        """A copy of the coverage map built so far."""
+    @property
+    def occupancy(self) -> OccupancyGrid:
+        """A copy of the occupancy grid built so far from the same beams."""
+    @property
+    def pose(self) -> npt.NDArray[np.float64]:
+        """The robot's pose ``(x, y, theta)``: float64 ``(3,)``."""
+    @property
+    def trajectory(self) -> npt.NDArray[np.float64]:
+        """Every pose so far, the start first: float64 ``(K, 3)``."""
+    @property
+    def done(self) -> bool:
+        """Whether the run is over."""
+    @property
+    def termination(self) -> Literal["certain", "stagnated", "no_goal", "limit"] | None:
+        """How the run ended (``"certain"``, ``"stagnated"``, ``"no_goal"``,
+        ``"limit"``), or ``None`` while it goes on.
+        """
+    @property
+    def steps(self) -> int:
+        """Steps taken."""
+    @property
+    def scans(self) -> int:
+        """Scans taken."""
+    @property
+    def path_length_m(self) -> float:
+        """Distance driven, metres."""
+    @property
+    def uncertain_fraction(self) -> float:
+        """Fraction of the evaluation cells whose entropy is above epsilon now."""
+    @property
+    def evaluation_cells(self) -> npt.NDArray[np.bool_]:
+        """The cells the run is judged on: bool ``(rows, cols)`` (see
+        ``ExplorationResult.evaluation_cells``).
+        """
+    @property
+    def grid(self) -> Grid:
+        """The grid of the maps."""
+    @property
+    def strategy(self) -> Strategy:
+        """The strategy."""

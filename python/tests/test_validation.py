@@ -119,10 +119,15 @@ def test_wrong_argument_types_are_type_errors(grid: covmap.Grid, model: Any) -> 
 
 def test_every_error_class_derives_from_covmap_error() -> None:
     classes = [getattr(covmap, name) for name in covmap.__all__ if name.endswith("Error")]
-    assert len(classes) == 19
+    assert len(classes) == 21
     for cls in classes:
         assert issubclass(cls, covmap.CovmapError)
-        assert cls is covmap.CovmapError or issubclass(cls, (ValueError, IndexError, TypeError, OSError))
+        # RobotError is no bad input: a robot's sensor or drive failed during a run.
+        assert cls in (covmap.CovmapError, covmap.RobotError) or issubclass(
+            cls, (ValueError, IndexError, TypeError, OSError)
+        )
+    assert issubclass(covmap.RobotError, RuntimeError) and not issubclass(covmap.RobotError, ValueError)
+    assert issubclass(covmap.InvalidStartError, ValueError)
     assert issubclass(covmap.CellOutOfBoundsError, IndexError)
     assert issubclass(covmap.ArrayDtypeError, TypeError)
     assert issubclass(covmap.InvalidTypeError, TypeError)

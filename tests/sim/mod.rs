@@ -1,5 +1,6 @@
 //! The simulator against the core and against real data.
 
+mod exploration;
 mod fig3;
 mod worlds;
 

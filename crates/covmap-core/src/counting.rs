@@ -121,23 +121,26 @@ impl ScanCounts {
         model: &M,
     ) -> Result<()> {
         validate_scan(&self.grid, pose, ranges, bearings, model)?;
-        self.count(pose, ranges, bearings, model);
+        self.count(pose, ranges, bearings, model, None);
         Ok(())
     }
 
-    /// Count a scan already validated.
+    /// Count a scan already validated, no-echo reading `k` up to
+    /// `no_echo_reach_m[k]` if given (see
+    /// [`crate::CoverageMap::integrate_clipped`]).
     pub(crate) fn count<M: SensorModel + ?Sized>(
         &mut self,
         pose: &Pose,
         ranges: &[f64],
         bearings: &[f64],
         model: &M,
+        no_echo_reach_m: Option<&[f64]>,
     ) {
         let range = model.range_model();
         let half = 0.5 * self.grid.resolution_m();
-        for (&r, &bearing) in ranges.iter().zip(bearings) {
+        for (k, (&r, &bearing)) in ranges.iter().zip(bearings).enumerate() {
             let reach = if r >= range.max_range_m {
-                range.max_range_m
+                no_echo_reach_m.map_or(range.max_range_m, |c| c[k].min(range.max_range_m))
             } else {
                 r + half
             };

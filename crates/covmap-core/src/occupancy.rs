@@ -193,14 +193,51 @@ impl OccupancyGrid {
         model: &M,
     ) -> Result<()> {
         validate_scan(self.grid(), pose, ranges, bearings, model)?;
+        self.apply(pose, ranges, bearings, model, None);
+        Ok(())
+    }
+
+    /// [`OccupancyGrid::integrate`] with no-echo reading `i` clearing only up
+    /// to `no_echo_reach_m[i]` metres, as
+    /// [`crate::CoverageMap::integrate_clipped`] (the counts too).
+    ///
+    /// # Errors
+    /// As [`crate::CoverageMap::integrate_clipped`]; the grid is unchanged then.
+    pub fn integrate_clipped<M: SensorModel + ?Sized>(
+        &mut self,
+        pose: &Pose,
+        ranges: &[f64],
+        bearings: &[f64],
+        model: &M,
+        no_echo_reach_m: &[f64],
+    ) -> Result<()> {
+        crate::coverage_map::check_reaches(ranges, no_echo_reach_m)?;
+        validate_scan(self.grid(), pose, ranges, bearings, model)?;
+        self.apply(pose, ranges, bearings, model, Some(no_echo_reach_m));
+        Ok(())
+    }
+
+    /// Integrate and count a validated scan.
+    fn apply<M: SensorModel + ?Sized>(
+        &mut self,
+        pose: &Pose,
+        ranges: &[f64],
+        bearings: &[f64],
+        model: &M,
+        no_echo_reach_m: Option<&[f64]>,
+    ) {
         let (l_occ, l_free) = (logit(self.model.p_occupied), logit(self.model.p_free));
         let limit = self.model.log_odds_limit as f32;
         let range = model.range_model();
         let grid = *self.grid();
         let half = 0.5 * grid.resolution_m();
-        for (&r, &bearing) in ranges.iter().zip(bearings) {
+        for (k, (&r, &bearing)) in ranges.iter().zip(bearings).enumerate() {
             let echo = r < range.max_range_m;
-            let reach = if echo { r + half } else { range.max_range_m };
+            let reach = if echo {
+                r + half
+            } else {
+                no_echo_reach_m.map_or(range.max_range_m, |c| c[k].min(range.max_range_m))
+            };
             let log_odds = &mut self.log_odds;
             visit(
                 &grid,
@@ -218,8 +255,8 @@ impl OccupancyGrid {
                 },
             );
         }
-        self.counts.count(pose, ranges, bearings, model);
-        Ok(())
+        self.counts
+            .count(pose, ranges, bearings, model, no_echo_reach_m);
     }
 }
 

@@ -117,6 +117,14 @@ impl PyCoverageMap {
         cell_array(py, self.0.grid(), self.0.entropy())
     }
 
+    /// Which cells some evidence reached (a reading, or the robot touching an
+    /// obstacle): those whose histogram is no longer the uniform prior, bool,
+    /// ``(rows, cols)``. Unknown is a value of its own: an unobserved cell
+    /// reads 0 on ``ml()``, as an empty cell does, and this tells them apart.
+    fn observed<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray2<bool>>> {
+        cell_array(py, self.0.grid(), self.0.observed())
+    }
+
     /// Integrate one scan taken from ``pose = (x, y, theta)`` (metres, radians):
     /// reading ``ranges[i]`` (metres) along ``theta + bearings[i]`` (radians).
     /// ``ranges`` and ``bearings`` are 1-D float64 arrays (or sequences of

@@ -26,6 +26,10 @@ pub(crate) enum Exception {
     CellOutOfBounds,
     InvalidHistogram,
     InvalidHistory,
+    /// A start pose the robot cannot take, or none found (a `ValueError`).
+    InvalidStart,
+    /// The robot's scan source or motion failed during a run.
+    Robot,
     /// An array argument has the wrong number of dimensions or shape.
     ArrayShape,
     /// An array argument has the wrong element type.
@@ -56,6 +60,8 @@ impl Exception {
             Self::CellOutOfBounds => "CellOutOfBoundsError",
             Self::InvalidHistogram => "InvalidHistogramError",
             Self::InvalidHistory => "InvalidHistoryError",
+            Self::InvalidStart => "InvalidStartError",
+            Self::Robot => "RobotError",
             Self::ArrayShape => "ArrayShapeError",
             Self::ArrayDtype => "ArrayDtypeError",
             Self::InvalidPolygon => "InvalidPolygonError",
@@ -80,6 +86,8 @@ impl Exception {
             CovmapError::CellOutOfBounds { .. } => Self::CellOutOfBounds,
             CovmapError::InvalidHistogram(_) => Self::InvalidHistogram,
             CovmapError::InvalidHistory { .. } => Self::InvalidHistory,
+            CovmapError::InvalidStart { .. } => Self::InvalidStart,
+            CovmapError::Robot(_) => Self::Robot,
             // The core enum is non-exhaustive: a new variant is still a CovmapError.
             _ => Self::Base,
         }

@@ -7,7 +7,7 @@ use pyo3::prelude::*;
 use crate::convert;
 use crate::coverage_map::PyCoverageMap;
 use crate::errors::OrRaise;
-use crate::sensor::AnyModel;
+use crate::sensor::any_model;
 
 /// The expected information gain (nats) of scanning ``map`` from each of
 /// ``poses`` (float64 ``(N, 3)`` of ``(x, y, theta)``) with beams at
@@ -45,7 +45,7 @@ pub(crate) fn expected_information_gain<'py>(
     };
     let poses = convert::poses(poses, "poses")?;
     let bearings = convert::readings(bearings, "bearings")?;
-    let model = AnyModel::extract(model)?;
+    let model = any_model(model)?;
     let map = &map.0;
     let gains = py
         .detach(|| {

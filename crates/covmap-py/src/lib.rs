@@ -8,6 +8,7 @@ mod convert;
 mod coverage_map;
 mod errors;
 mod experiments;
+mod exploration;
 mod files;
 mod gain;
 mod grid;
@@ -19,6 +20,7 @@ mod robot;
 mod scan;
 mod sensor;
 mod sim_sensor;
+mod strategy;
 mod world;
 
 use pyo3::prelude::*;
@@ -48,6 +50,16 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<sim_sensor::PyLaser>()?;
     m.add_class::<robot::PyRobot>()?;
     m.add_function(wrap_pyfunction!(experiments::run_fig3, m)?)?;
+    m.add_class::<strategy::PyStrategy>()?;
+    m.add(
+        "DEFAULT_DISCOUNT_BEYOND_M",
+        covmap::exploration::DEFAULT_DISCOUNT_BEYOND_M,
+    )?;
+    m.add_function(wrap_pyfunction!(exploration::explore, m)?)?;
+    m.add_class::<exploration::PyExploration>()?;
+    // Not in `__all__`: the defaults of `explore`'s keywords, for the
+    // package's test that its signature shows the simulator's.
+    m.setattr("_EXPLORE_DEFAULTS", exploration::defaults(m.py())?)?;
     // Not in `__all__`: a helper of the package (covmap.plot), not its API.
     m.setattr("write_atomic", wrap_pyfunction!(files::write_atomic, m)?)?;
     Ok(())

@@ -3,9 +3,10 @@
 use covmap::OccupancyGrid;
 use numpy::PyArray2;
 use pyo3::prelude::*;
+use pyo3::types::PyBytes;
 
 use crate::convert::cell_array;
-use crate::errors::OrRaise;
+use crate::errors::{Exception, OrRaise};
 use crate::grid::PyGrid;
 use crate::scan::Scan;
 
@@ -16,7 +17,7 @@ use crate::scan::Scan;
 /// end point's cell occupied (p = 0.7), cells behind are not touched; log-odds
 /// are clamped to ``[-5, 5]``. Per-cell arrays are indexed ``[row, col]``.
 #[pyclass(name = "OccupancyGrid", module = "covmap._native")]
-pub(crate) struct PyOccupancyGrid(OccupancyGrid);
+pub(crate) struct PyOccupancyGrid(pub(crate) OccupancyGrid);
 
 #[pymethods]
 impl PyOccupancyGrid {
@@ -62,7 +63,53 @@ impl PyOccupancyGrid {
         cell_array(py, self.0.grid(), self.0.counts().counts().to_vec())
     }
 
+    /// Which cells some evidence reached (a beam intercepted them, or the
+    /// robot touched an obstacle there): bool, ``(rows, cols)``. The others are
+    /// unknown, whatever ``probabilities()`` reads there (0.5).
+    fn observed<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray2<bool>>> {
+        cell_array(py, self.0.grid(), self.0.observed())
+    }
+
     fn __repr__(&self) -> String {
         format!("OccupancyGrid({})", self.grid().__repr__())
+    }
+    /// Pickle and copy support: the grid, for ``__new__``.
+    fn __getnewargs__(&self) -> (PyGrid,) {
+        (self.grid(),)
+    }
+    /// Pickle and copy support: the model, log-odds and counts, as the
+    /// core's serialised form (JSON bytes; every float32 value exact).
+    fn __getstate__<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyBytes>> {
+        // Through a JSON value, which holds each float32 as the float64 it
+        // equals, so that the text round-trips every value exactly.
+        let state = serde_json::to_value(&self.0)
+            .and_then(|value| serde_json::to_vec(&value))
+            .map_err(|e| Exception::Base.err(py, format!("cannot save the occupancy grid: {e}")))?;
+        Ok(PyBytes::new(py, &state))
+    }
+    /// Unpickling support: restore the state saved by ``__getstate__``
+    /// (validated: a valid model, one log-odds value within its limit and one
+    /// finite, non-negative count per cell of this grid). After an error the
+    /// grid is exactly as it was.
+    fn __setstate__(&mut self, py: Python<'_>, state: &Bound<'_, PyAny>) -> PyResult<()> {
+        let Ok(bytes) = state.cast::<PyBytes>() else {
+            return Err(Exception::InvalidType
+                .err(py, format!("state must be bytes, got {}", state.get_type())));
+        };
+        let restored: OccupancyGrid = serde_json::from_slice(bytes.as_bytes()).map_err(|e| {
+            Exception::InvalidValue.err(py, format!("not a saved occupancy grid: {e}"))
+        })?;
+        if restored.grid() != self.0.grid() {
+            return Err(Exception::InvalidValue.err(
+                py,
+                format!(
+                    "the saved occupancy grid lies on {}, not on this grid {}",
+                    PyGrid(*restored.grid()).__repr__(),
+                    self.grid().__repr__()
+                ),
+            ));
+        }
+        self.0 = restored;
+        Ok(())
     }
 }

@@ -11,7 +11,7 @@ use crate::coverage_map::PyCoverageMap;
 use crate::errors::OrRaise;
 use crate::keywords::keyword_class;
 use crate::plan::{PyExplorationStatus, PyPlan};
-use crate::sensor::AnyModel;
+use crate::sensor::any_model;
 
 /// The decision-theoretic exploration planner.
 ///
@@ -50,6 +50,9 @@ impl PyPlanner {
                 None => d.gain.stop_coverage,
             },
         };
+        // `..d`: settings the core gains later keep their defaults here until
+        // the binding takes them (today it may name every one).
+        #[allow(clippy::needless_update)]
         let config = PlannerConfig {
             alpha: keywords.alpha.unwrap_or(d.alpha),
             robot_radius_m: keywords.robot_radius_m.unwrap_or(d.robot_radius_m),
@@ -63,6 +66,8 @@ impl PyPlanner {
             unknown_is_free: keywords.unknown_is_free.unwrap_or(d.unknown_is_free),
             epsilon: keywords.epsilon.unwrap_or(d.epsilon),
             gain,
+            // The settings this binding does not take keep their defaults.
+            ..d
         };
         Planner::new(config).map(Self).or_raise(py)
     }
@@ -111,7 +116,7 @@ keyword_class! {
             ) -> PyResult<PyPlan> {
                 let pose = convert::pose(pose)?;
                 let bearings = convert::readings(bearings, "bearings")?;
-                let model = AnyModel::extract(model)?;
+                let model = any_model(model)?;
                 let (planner, map) = (&self.0, &map.0);
                 py.detach(|| planner.next_viewpoint(map, &pose, &bearings, &model))
                     .map(PyPlan)

@@ -1,10 +1,11 @@
 //! One scan's arguments, converted and copied out of Python.
 
 use covmap::Pose;
+use covmap::exploration::AnySensorModel;
 use pyo3::prelude::*;
 
 use crate::convert;
-use crate::sensor::AnyModel;
+use crate::sensor::any_model;
 
 /// The arguments of `integrate`: pose, readings and model, owned by Rust so the
 /// update can run with the GIL released.
@@ -12,7 +13,7 @@ pub(crate) struct Scan {
     pub(crate) pose: Pose,
     pub(crate) ranges: Vec<f64>,
     pub(crate) bearings: Vec<f64>,
-    pub(crate) model: AnyModel,
+    pub(crate) model: AnySensorModel,
 }
 
 impl Scan {
@@ -26,7 +27,7 @@ impl Scan {
             pose: convert::pose(pose)?,
             ranges: convert::readings(ranges, "ranges")?,
             bearings: convert::readings(bearings, "bearings")?,
-            model: AnyModel::extract(model)?,
+            model: any_model(model)?,
         })
     }
 }

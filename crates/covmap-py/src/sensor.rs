@@ -4,7 +4,8 @@
 //! angle of its cone; [`sensor_model_class!`] writes their Python methods
 //! once for both.
 
-use covmap::{Footprint, LaserModel, RangeModel, SensorModel, SonarModel};
+use covmap::exploration::AnySensorModel;
+use covmap::{LaserModel, RangeModel, SensorModel, SonarModel};
 use numpy::PyArray1;
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyTuple, PyType};
@@ -179,7 +180,7 @@ sensor_model_class! {
 /// ``InvalidParameterError``.
 #[pyclass(frozen, eq, name = "LaserModel", module = "covmap._native")]
 #[derive(Clone, PartialEq)]
-pub(crate) struct PyLaserModel(LaserModel);
+pub(crate) struct PyLaserModel(pub(crate) LaserModel);
 
 sensor_model_class! {
     impl PyLaserModel as "LaserModel" for LaserModel {
@@ -188,48 +189,20 @@ sensor_model_class! {
     }
 }
 
-/// A `model` argument: either sensor model, copied out of Python.
-#[derive(Clone, Copy)]
-pub(crate) enum AnyModel {
-    Sonar(SonarModel),
-    Laser(LaserModel),
-}
-
-impl AnyModel {
-    pub(crate) fn extract(obj: &Bound<'_, PyAny>) -> PyResult<Self> {
-        if let Ok(m) = obj.cast::<PySonarModel>() {
-            Ok(Self::Sonar(m.get().0))
-        } else if let Ok(m) = obj.cast::<PyLaserModel>() {
-            Ok(Self::Laser(m.get().0))
-        } else {
-            Err(Exception::InvalidType.err(
-                obj.py(),
-                format!(
-                    "model must be a SonarModel or a LaserModel, got {}",
-                    obj.get_type()
-                ),
-            ))
-        }
-    }
-}
-
-impl SensorModel for AnyModel {
-    fn range_model(&self) -> &RangeModel {
-        match self {
-            Self::Sonar(m) => m.range_model(),
-            Self::Laser(m) => m.range_model(),
-        }
-    }
-    fn footprint(&self) -> Footprint {
-        match self {
-            Self::Sonar(m) => m.footprint(),
-            Self::Laser(m) => m.footprint(),
-        }
-    }
-    fn validate(&self) -> covmap::Result<()> {
-        match self {
-            Self::Sonar(m) => m.validate(),
-            Self::Laser(m) => m.validate(),
-        }
+/// A `model` argument: a `SonarModel` or a `LaserModel`, copied out of
+/// Python as the core's either-model type.
+pub(crate) fn any_model(obj: &Bound<'_, PyAny>) -> PyResult<AnySensorModel> {
+    if let Ok(m) = obj.cast::<PySonarModel>() {
+        Ok(AnySensorModel::Sonar(m.get().0))
+    } else if let Ok(m) = obj.cast::<PyLaserModel>() {
+        Ok(AnySensorModel::Laser(m.get().0))
+    } else {
+        Err(Exception::InvalidType.err(
+            obj.py(),
+            format!(
+                "model must be a SonarModel or a LaserModel, got {}",
+                obj.get_type()
+            ),
+        ))
     }
 }

@@ -138,7 +138,7 @@ macro_rules! range_sensor_class {
 /// raises ``InvalidParameterError`` (or ``InvalidValueError`` for a bearing).
 #[pyclass(frozen, eq, name = "SonarRing", module = "covmap._native")]
 #[derive(Clone, PartialEq)]
-pub(crate) struct PySonarRing(SonarRing);
+pub(crate) struct PySonarRing(pub(crate) SonarRing);
 
 range_sensor_class! {
     impl PySonarRing {
@@ -274,7 +274,7 @@ range_sensor_class! {
 /// exactly ``max_range_m``. Every surface, glass included, reflects it.
 #[pyclass(frozen, eq, name = "Laser", module = "covmap._native")]
 #[derive(Clone, PartialEq)]
-pub(crate) struct PyLaser(Laser);
+pub(crate) struct PyLaser(pub(crate) Laser);
 
 range_sensor_class! {
     impl PyLaser {

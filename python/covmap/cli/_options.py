@@ -5,7 +5,7 @@ from __future__ import annotations
 
 import argparse
 from pathlib import Path
-from typing import Callable, TypeVar
+from typing import Any, Callable, TypeVar
 
 T = TypeVar("T", int, float)
 
@@ -78,6 +78,25 @@ weight = _within(_number, lambda v: 0.0 <= v <= 1.0, "a weight in [0, 1]")
 seed = _within(_integer, lambda v: 0 <= v <= MAX_SEED, "a seed from 0 to 2**64 - 1")
 """A seed of the random generators."""
 
+MAX_PATH_M = 1_000_000.0
+"""The longest path an exploration may be given as its limit, metres."""
+
+MAX_FRAMES = 1000
+"""The most frames an animation may be asked for."""
+
+path_limit = _within(
+    _number, lambda v: 0.0 < v <= MAX_PATH_M, f"a distance in metres, more than 0 and at most {MAX_PATH_M:g}"
+)
+"""An exploration's limit on its path length, metres."""
+
+discount = _within(
+    _number, lambda v: 0.0 < v <= MAX_LENGTH_M, f"a distance in metres, more than 0 and at most {MAX_LENGTH_M:g}"
+)
+"""The range beyond which scan counting discounts a beam, metres."""
+
+frame_count = _within(_integer, lambda v: 2 <= v <= MAX_FRAMES, f"an integer from 2 to {MAX_FRAMES}")
+"""The most frames of an animation."""
+
 
 def add_out(command: argparse.ArgumentParser, name: str) -> None:
     """The ``--out`` option of subcommand ``name``, default ``covmap-out/<name>``."""
@@ -89,6 +108,35 @@ def add_out(command: argparse.ArgumentParser, name: str) -> None:
     )
 
 
+def add_world(command: argparse.ArgumentParser) -> None:
+    """The ``--world`` option: a built-in world, default ``corridor``."""
+    command.add_argument("--world", default="corridor", help="built-in world (default corridor)")
+
+
 def add_seed(command: argparse.ArgumentParser) -> None:
     """The ``--seed`` option, default 0."""
     command.add_argument("--seed", type=seed, default=0, help="random seed, 0 to 2**64 - 1 (default 0)")
+
+
+def add_run_limits(command: argparse.ArgumentParser) -> None:
+    """The ``--max-steps`` and ``--max-path-m`` options of an exploration
+    (default: the library's limits)."""
+    from covmap._native import _EXPLORE_DEFAULTS as defaults
+
+    command.add_argument(
+        "--max-steps",
+        type=positive_int,
+        help=f"stop a run after this many steps, at most {MAX_COUNT} (default {defaults['max_steps']})",
+    )
+    command.add_argument(
+        "--max-path-m",
+        type=path_limit,
+        help=f"stop a run after driving this far, metres (default {defaults['max_path_m']:g})",
+    )
+
+
+def run_limits(args: argparse.Namespace) -> dict[str, Any]:
+    """The limits of :func:`add_run_limits` that were given, as keywords of
+    :func:`covmap.explore`."""
+    limits = {"max_steps": args.max_steps, "max_path_m": args.max_path_m}
+    return {name: value for name, value in limits.items() if value is not None}

@@ -27,7 +27,7 @@ DESCRIPTION = (
 
 def add_arguments(command: argparse.ArgumentParser) -> None:
     """The command's arguments."""
-    command.add_argument("--world", default="corridor", help="built-in world (default corridor)")
+    _options.add_world(command)
     _options.add_out(command, NAME)
     command.add_argument(
         "--scans", type=_options.positive_int, default=3, help="sonar scans, at most 1000000 (default 3)"

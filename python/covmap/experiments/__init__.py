@@ -6,9 +6,13 @@ drawing them to :mod:`covmap.plot` and running them to the ``covmap`` command.
 - :mod:`~covmap.experiments.fig3`: a corridor mapped with simulated sonars,
   measured against the exact ground truth (the result of :func:`covmap.run_fig3`);
 - :mod:`~covmap.experiments.planning_step`: one step of exploration, where to
-  look next after a few scans.
+  look next after a few scans;
+- :mod:`~covmap.experiments.exploration`: a whole exploration run watched step
+  by step (``covmap explore``), with snapshots for its animation;
+- :mod:`~covmap.experiments.table1`: the paper's Table I, coverage maps against
+  scan counting (and nearest frontiers) over several seeds.
 """
 
-from covmap.experiments import fig1, fig3, planning_step
+from covmap.experiments import exploration, fig1, fig3, planning_step, table1
 
-__all__ = ["fig1", "fig3", "planning_step"]
+__all__ = ["exploration", "fig1", "fig3", "planning_step", "table1"]

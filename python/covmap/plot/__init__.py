@@ -5,10 +5,13 @@ matplotlib is imported inside the functions, so ``import covmap`` does not pay
 for it. The drawing functions (``plot_world``, ``plot_map``,
 ``plot_trajectory``) draw into ``ax`` (a new figure's axes when ``None``) and
 return the axes; coordinates are world metres, x to the right and y up.
-``save_figure`` writes a figure to a PNG file atomically. The figures of the
-experiments (``plot_fig1``, ``plot_fig3``, ``plot_planning_step``,
-``plot_world_and_coverage``) are drawn and written to PNG files whole, as the
-``covmap`` command writes them.
+``save_figure`` writes a figure to a PNG file atomically. Unknown is a value
+of its own: ``plot_map`` draws the cells no evidence reached (``observed=``,
+e.g. ``CoverageMap.observed()``, or masked values) in ``UNKNOWN_COLOR``,
+never as free. The figures of the experiments (``plot_fig1``, ``plot_fig3``,
+``plot_planning_step``, ``plot_world_and_coverage``, ``plot_exploration``
+with its GIF ``save_animation``, ``plot_table1``) are drawn and written to
+files whole, as the ``covmap`` command writes them.
 
 >>> import matplotlib
 >>> matplotlib.use("Agg")
@@ -23,7 +26,15 @@ experiments (``plot_fig1``, ``plot_fig3``, ``plot_planning_step``,
 >>> plt.close(ax.figure)
 """
 
-from covmap.plot.drawing import MATERIAL_COLORS, plot_map, plot_trajectory, plot_world
+from covmap.plot.drawing import (
+    MATERIAL_COLORS,
+    UNKNOWN_COLOR,
+    plot_map,
+    plot_trajectory,
+    plot_world,
+    unknown_colormap,
+)
+from covmap.plot.exploration import plot_exploration, plot_table1, save_animation
 from covmap.plot.figures import (
     plot_fig1,
     plot_fig3,
@@ -34,12 +45,17 @@ from covmap.plot.saving import save_figure
 
 __all__ = [
     "MATERIAL_COLORS",
+    "UNKNOWN_COLOR",
+    "plot_exploration",
     "plot_fig1",
     "plot_fig3",
     "plot_map",
     "plot_planning_step",
+    "plot_table1",
     "plot_trajectory",
     "plot_world",
     "plot_world_and_coverage",
+    "save_animation",
     "save_figure",
+    "unknown_colormap",
 ]

@@ -15,11 +15,30 @@ from covmap._errors import ArrayShapeError
 if TYPE_CHECKING:
     import numpy.typing as npt
     from matplotlib.axes import Axes
+    from matplotlib.colors import Colormap
 
     from covmap._native import Grid, World
 
 MATERIAL_COLORS = {"wall": "dimgray", "glass": "lightskyblue"}
 """Fill colour of each material in :func:`plot_world`."""
+
+UNKNOWN_COLOR = "lightsteelblue"
+"""Colour of the cells no evidence reached (unknown) in :func:`plot_map`: no
+grey level, so that an unknown cell cannot be read as free (an unobserved
+cell's ML coverage is 0, as a free cell's is) or as a coverage at all."""
+
+
+def unknown_colormap(cmap: Any) -> Colormap:
+    """``cmap`` (a name or a colormap) whose "bad" colour, the colour of
+    masked cells, is :data:`UNKNOWN_COLOR`, unless the colormap already has a
+    visible one of its own (matplotlib's default is transparent, which shows
+    the white background: unknown cells would look free)."""
+    import matplotlib
+
+    colormap = matplotlib.colormaps[cmap] if isinstance(cmap, str) else cmap
+    if colormap.get_bad()[3] == 0.0:
+        colormap = colormap.with_extremes(bad=UNKNOWN_COLOR)
+    return colormap
 
 
 def _axes(ax: Axes | None) -> Axes:
@@ -80,6 +99,7 @@ def plot_map(
     grid: Grid,
     ax: Axes | None = None,
     *,
+    observed: npt.ArrayLike | None = None,
     cmap: Any = "Greys",
     title: str | None = None,
     vmin: float | None = 0.0,
@@ -89,18 +109,29 @@ def plot_map(
     """Draw a per-cell array of ``grid`` (shape ``(rows, cols)``, e.g.
     ``CoverageMap.ml()`` or ``World.coverage(grid)``) as an image over the
     grid's extent: rows run along y, row 0 at the bottom. ``vmin``/``vmax``
-    default to the coverage range ``[0, 1]`` (``None``: the data's range);
-    masked values show in the colormap's "bad" colour."""
+    default to the coverage range ``[0, 1]`` (``None``: the data's range).
+
+    Unknown is a value of its own: cells where ``observed`` (a bool array of
+    the same shape, e.g. ``CoverageMap.observed()``) is ``False``, and
+    masked values, show in :data:`UNKNOWN_COLOR` (or the colormap's own
+    visible "bad" colour), never as free."""
     data: np.ma.MaskedArray[Any, Any] = np.ma.asarray(values)
     if data.shape != grid.shape:
         raise ArrayShapeError(f"values of shape {data.shape} do not fit a grid of shape {grid.shape}")
+    if observed is not None:
+        seen = np.asarray(observed)
+        if seen.shape != grid.shape or seen.dtype != np.bool_:
+            raise ArrayShapeError(
+                f"observed must be a bool array of the grid's shape {grid.shape}, got {seen.dtype} {seen.shape}"
+            )
+        data = np.ma.masked_where(~seen, data)
     ax = _axes(ax)
     x0, y0, x1, y1 = grid.bounds
     image = ax.imshow(
         data,
         origin="lower",
         extent=(x0, x1, y0, y1),
-        cmap=cmap,
+        cmap=unknown_colormap(cmap),
         vmin=vmin,
         vmax=vmax,
         interpolation="nearest",

@@ -9,7 +9,7 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from covmap.plot.drawing import plot_map, plot_trajectory, plot_world
+from covmap.plot.drawing import plot_map, plot_trajectory, plot_world, unknown_colormap
 from covmap.plot.saving import save_figure
 
 if TYPE_CHECKING:
@@ -52,10 +52,9 @@ def _figure_file(path: Path, *args: Any, **kwargs: Any) -> Iterator[tuple[Figure
 
 
 def _greys_unobserved() -> Colormap:
-    """Grey levels for coverage; masked (unobserved) cells light blue."""
-    import matplotlib
-
-    return matplotlib.colormaps["Greys"].with_extremes(bad="lightsteelblue")
+    """Grey levels for coverage; masked (unobserved) cells light blue
+    (:data:`~covmap.plot.drawing.UNKNOWN_COLOR`)."""
+    return unknown_colormap("Greys")
 
 
 def plot_fig1(runs: Sequence[Run], path: Path) -> Path:
@@ -166,12 +165,12 @@ def plot_world_and_coverage(
 def plot_planning_step(step: Step, path: Path) -> Path:
     """Write a :mod:`planning step <covmap.experiments.planning_step>` as a
     PNG of two panels, atomically: the ML map (cells no reading changed in
-    light blue), and the expected gain of every candidate over the entropy
+    light blue, :data:`~covmap.plot.drawing.UNKNOWN_COLOR`), and the expected gain of every candidate over the entropy
     map, with the start, the chosen viewpoint and the path. Both panels show
     the observed part of the map. Returns the path."""
     cmap, grid, plan = step.coverage_map, step.grid, step.plan
     entropy = cmap.entropy()
-    observed = entropy < math.log(cmap.bins) - 1e-4
+    observed = cmap.observed()
     rows_seen, cols_seen = np.nonzero(observed)
     gx0, gy0 = grid.origin
     r = grid.resolution

@@ -60,6 +60,47 @@ impl CoverageMap {
         Ok(())
     }
 
+    /// A copy of the map, without its entropy history, in which each of
+    /// `cells` holds what a contact alone says of it: every coverage of at
+    /// least [`CONTACT_COVERAGE`] equally likely, nothing below. What a robot
+    /// plans on when it remembers where it ran into something: readings may
+    /// clear such a cell again (a specular surface no echo shows), the
+    /// contact stands.
+    ///
+    /// # Errors
+    /// [`CovmapError::CellOutOfBounds`](crate::CovmapError::CellOutOfBounds)
+    /// if a cell is not on the grid.
+    pub fn with_contacts(&self, cells: &[Cell]) -> Result<CoverageMap> {
+        let indices = cells
+            .iter()
+            .map(|&cell| self.grid.index(cell))
+            .collect::<Result<Vec<_>>>()?;
+        let bins = self.bins;
+        let blocking = (0..bins)
+            .filter(|&b| histogram::bin_value(b, bins) >= CONTACT_COVERAGE)
+            .count();
+        let pinned: Vec<f32> = (0..bins)
+            .map(|b| {
+                if histogram::bin_value(b, bins) >= CONTACT_COVERAGE {
+                    1.0 / blocking as f32
+                } else {
+                    histogram::BIN_FLOOR
+                }
+            })
+            .collect();
+        let mut copy = CoverageMap {
+            grid: self.grid,
+            bins,
+            data: self.data.clone(),
+            table: None,
+            history: None,
+        };
+        for i in indices {
+            copy.data[i * bins..(i + 1) * bins].copy_from_slice(&pinned);
+        }
+        Ok(copy)
+    }
+
     /// Which cells some evidence has reached, row-major: those whose
     /// histogram is no longer the uniform prior. Unknown is a value of its
     /// own: an unobserved cell reads 0 on the ML map ([`CoverageMap::ml`]),
@@ -111,5 +152,20 @@ mod tests {
         let h = map.histogram(cell).unwrap();
         assert!((h.iter().sum::<f32>() - 1.0).abs() < 1e-5);
         assert!(map.integrate_contact(Cell { row: 40, col: 0 }).is_err());
+        // Cleared again by many no-echo readings, the cell still blocks on
+        // the copy that remembers the contact.
+        for _ in 0..60 {
+            map.integrate(&pose, &no_echo(), &[0.0], &sonar).unwrap();
+        }
+        assert_eq!(map.ml()[i], 0.0, "cleared again");
+        let pinned = map.with_contacts(&[cell]).unwrap();
+        assert!(f64::from(pinned.ml()[i]) >= CONTACT_COVERAGE);
+        assert!(!pinned.tracks_history());
+        let other = grid.index(grid.world_to_cell(1.0, 1.0).unwrap()).unwrap();
+        assert_eq!(
+            pinned.histograms()[other * 16..][..16],
+            map.histograms()[other * 16..][..16]
+        );
+        assert!(map.with_contacts(&[Cell { row: 0, col: 80 }]).is_err());
     }
 }

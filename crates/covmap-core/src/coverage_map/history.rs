@@ -215,6 +215,7 @@ impl CoverageMap {
         pose: &Pose,
         ranges: &[f64],
         bearings: &[f64],
+        no_echo_reach_m: Option<&[f64]>,
         model: &M,
     ) {
         let Self {
@@ -231,8 +232,8 @@ impl CoverageMap {
         let scan = history.scan;
         let range = model.range_model();
         let mut touched = Vec::new();
-        for (&r, &bearing) in ranges.iter().zip(bearings) {
-            let (reach, _) = range.reach(r);
+        for (k, (&r, &bearing)) in ranges.iter().zip(bearings).enumerate() {
+            let (reach, _) = super::update::beam_reach(range, r, k, no_echo_reach_m);
             visit(
                 grid,
                 [pose.x_m, pose.y_m],

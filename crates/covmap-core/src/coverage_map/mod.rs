@@ -8,3 +8,4 @@ mod update;
 pub use contact::CONTACT_COVERAGE;
 pub use history::{HistoryState, STAGNATION_MEASUREMENTS, STAGNATION_NATS};
 pub use storage::CoverageMap;
+pub(crate) use update::check_reaches;

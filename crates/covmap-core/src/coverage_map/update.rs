@@ -27,6 +27,42 @@ impl CoverageMap {
         bearings: &[f64],
         model: &M,
     ) -> Result<usize> {
+        self.integrate_reaching(pose, ranges, bearings, model, None)
+    }
+
+    /// [`CoverageMap::integrate`], with no-echo reading `i` clearing its
+    /// footprint only up to `no_echo_reach_m[i]` metres (at most the maximum
+    /// range; echo readings ignore it): a no-echo reading that the caller
+    /// takes to have missed an obstacle specularly says nothing of what lies
+    /// behind it. (The exploration loop stops each at the first obstacle its
+    /// map holds along the beam.)
+    ///
+    /// # Errors
+    /// As [`CoverageMap::integrate`];
+    /// [`CovmapError::LengthMismatch`](crate::CovmapError::LengthMismatch)
+    /// unless there is one reach a reading,
+    /// [`CovmapError::InvalidParameter`](crate::CovmapError::InvalidParameter)
+    /// for a reach that is NaN or negative. The map is unchanged then.
+    pub fn integrate_clipped<M: SensorModel + ?Sized>(
+        &mut self,
+        pose: &Pose,
+        ranges: &[f64],
+        bearings: &[f64],
+        model: &M,
+        no_echo_reach_m: &[f64],
+    ) -> Result<usize> {
+        check_reaches(ranges, no_echo_reach_m)?;
+        self.integrate_reaching(pose, ranges, bearings, model, Some(no_echo_reach_m))
+    }
+
+    fn integrate_reaching<M: SensorModel + ?Sized>(
+        &mut self,
+        pose: &Pose,
+        ranges: &[f64],
+        bearings: &[f64],
+        model: &M,
+        no_echo_reach_m: Option<&[f64]>,
+    ) -> Result<usize> {
         validate_scan(&self.grid, pose, ranges, bearings, model)?;
         let table = cached_or_new(
             self.table.as_deref(),
@@ -40,16 +76,50 @@ impl CoverageMap {
             &mut self.data,
             &table,
             pose,
-            ranges,
-            bearings,
+            (ranges, bearings, no_echo_reach_m),
             model
         ));
         if let Cow::Owned(table) = table {
             // The table of the model the next scans most likely come from.
             self.table = Some(Box::new(table));
         }
-        self.record_history(pose, ranges, bearings, model);
+        self.record_history(pose, ranges, bearings, no_echo_reach_m, model);
         Ok(updates)
+    }
+}
+
+/// Errors unless there is one reach, not NaN and non-negative, a reading.
+pub(crate) fn check_reaches(ranges: &[f64], no_echo_reach_m: &[f64]) -> Result<()> {
+    if no_echo_reach_m.len() != ranges.len() {
+        return Err(crate::CovmapError::LengthMismatch {
+            what: "ranges and no-echo reaches",
+            left: ranges.len(),
+            right: no_echo_reach_m.len(),
+        });
+    }
+    match no_echo_reach_m.iter().find(|r| !(**r >= 0.0)) {
+        Some(&value) => Err(crate::CovmapError::InvalidParameter {
+            name: "no_echo_reach_m",
+            value,
+            expected: "a non-negative distance (metres)",
+        }),
+        None => Ok(()),
+    }
+}
+
+/// How far reading `k` of `r` metres reaches along its beam, and whether it
+/// is an echo: [`RangeModel::reach`](crate::RangeModel::reach), a no-echo
+/// reading cut to its entry of `no_echo_reach_m`, if any.
+pub(super) fn beam_reach(
+    range: &crate::RangeModel,
+    r: f64,
+    k: usize,
+    no_echo_reach_m: Option<&[f64]>,
+) -> (f64, bool) {
+    let (reach, echo) = range.reach(r);
+    match no_echo_reach_m {
+        Some(clip) if !echo => (reach.min(clip[k]), echo),
+        _ => (reach, echo),
     }
 }
 
@@ -61,8 +131,7 @@ fn apply<const N: usize, M: SensorModel + ?Sized>(
     data: &mut [f32],
     table: &KernelTable,
     pose: &Pose,
-    ranges: &[f64],
-    bearings: &[f64],
+    (ranges, bearings, no_echo_reach_m): (&[f64], &[f64], Option<&[f64]>),
     model: &M,
 ) -> usize {
     let bins = table.bins();
@@ -70,8 +139,8 @@ fn apply<const N: usize, M: SensorModel + ?Sized>(
     let range = model.range_model();
     let footprint = model.footprint();
     let mut updates = 0;
-    for (&r, &bearing) in ranges.iter().zip(bearings) {
-        let (reach, echo) = range.reach(r);
+    for (k, (&r, &bearing)) in ranges.iter().zip(bearings).enumerate() {
+        let (reach, echo) = beam_reach(range, r, k, no_echo_reach_m);
         let mut beam = BeamUpdate::<N> {
             data,
             table,

@@ -30,6 +30,11 @@ pub struct ExplorationConfig {
     pub max_path_m: f64,
     /// The run stops after this many steps ([`Termination::Limit`](super::Termination::Limit)).
     pub max_steps: usize,
+    /// Whether a reading at the maximum range ("no echo") clears only the
+    /// cells before the first obstacle the coverage map holds along its
+    /// axis (see the [module documentation](super)), rather than its whole
+    /// footprint to the maximum range as the sensor model has it.
+    pub occlude_no_echo: bool,
 }
 
 impl Default for ExplorationConfig {
@@ -42,6 +47,7 @@ impl Default for ExplorationConfig {
             min_travel_m: 0.25,
             max_path_m: 2000.0,
             max_steps: 5000,
+            occlude_no_echo: true,
         }
     }
 }

@@ -10,9 +10,12 @@
 //! 3. **Integrate** every scan into all three maps (coverage map, occupancy
 //!    grid, scan counts: the very same beams).
 //! 4. On **contact** (the map showed the way free, the world did not), the
-//!    robot stops at its last free point and scans; the cell it ran into is
-//!    integrated as covered into the coverage map and as occupied into the
-//!    occupancy grid (a bumper), and the step ends: the next one replans.
+//!    robot stops at its last free point and scans; the cells it ran into
+//!    are integrated as covered into the coverage map and as occupied into
+//!    the occupancy grid (a bumper), it backs off a cell, and the step
+//!    ends: the next one replans. A goal the robot could make no headway
+//!    towards (less than a centimetre) is a *failed goal*: no strategy
+//!    chooses it again, since the map may go on showing the way free.
 //!
 //! Poses are exact: the robot is where the motion says, with no
 //! localisation error (the paper's runs assume a localised robot too).
@@ -20,22 +23,29 @@
 use std::time::Instant;
 
 use super::config::ExplorationConfig;
+use super::region;
 use super::result::{ExplorationResult, StepReport, Termination, Timing, Trace, Trajectory};
 use super::sensor::AnySensorModel;
 use super::source::{Motion, ScanSource};
 use super::strategy::{Chooser, Decision, Outcome, Strategy, View};
 use crate::counting::ScanCounts;
+use crate::coverage_map::CONTACT_COVERAGE;
 use crate::coverage_map::CoverageMap;
 use crate::error::{CovmapError, Result};
-use crate::grid::Grid;
+use crate::footprint::visit;
+use crate::grid::{Cell, Grid};
+use crate::histogram;
 use crate::histogram::DEFAULT_BINS;
 use crate::occupancy::{OccupancyGrid, OccupancyModel};
 use crate::pose::{Pose, check_bearings, check_pose};
-use crate::sensor::SensorModel;
+use crate::sensor::{Footprint, SensorModel};
 
 /// How far a contact point is moved into the obstacle to find the cell it
 /// lies in, metres (a point on a cell's edge belongs to one of two cells).
 const INTO_CONTACT_M: f64 = 1e-3;
+
+/// Headway below which a drive to a goal made none, metres.
+const NO_HEADWAY_M: f64 = 0.01;
 
 /// Everything a run starts from, besides its scan source and motion.
 #[derive(Clone, Debug, PartialEq)]
@@ -103,12 +113,21 @@ pub struct Exploration<S, M> {
     trace: Trace,
     timing: Timing,
     termination: Option<Termination>,
+    /// Goals (row-major cells) the robot could make no headway towards.
+    failed_goals: Vec<usize>,
+    /// Every cell the robot has run into, in the order it did.
+    contact_cells: Vec<Cell>,
+    /// The coverage map with the contact cells pinned, for planning
+    /// (`None`: no contact yet, the map itself).
+    planning_map: Option<CoverageMap>,
 }
 
 /// How one drive along a path went.
 struct Drive {
     reached: bool,
     travelled_m: f64,
+    /// Distance driven towards the goal (without backing off a contact).
+    headway_m: f64,
     scans: usize,
     contact_m: Option<[f64; 2]>,
 }
@@ -190,6 +209,9 @@ impl<S: ScanSource, M: Motion> Exploration<S, M> {
             trace: Trace::default(),
             timing: Timing::default(),
             termination: None,
+            failed_goals: Vec::new(),
+            contact_cells: Vec::new(),
+            planning_map: None,
         })
     }
 
@@ -214,8 +236,14 @@ impl<S: ScanSource, M: Motion> Exploration<S, M> {
             return Ok(None);
         }
 
-        // 1. Decide on the maps.
+        // 1. Decide on the maps (the cells the robot ran into pinned: see
+        //    `CoverageMap::with_contacts`).
         let started = Instant::now();
+        self.planning_map = if self.contact_cells.is_empty() {
+            None
+        } else {
+            Some(self.map.with_contacts(&self.contact_cells)?)
+        };
         let decision = {
             let (chooser, view) = self.chooser_and_view();
             chooser.decide(&view)?
@@ -235,8 +263,13 @@ impl<S: ScanSource, M: Motion> Exploration<S, M> {
         self.refresh_entropy();
         let outcome = Outcome {
             reached: drive.reached,
-            travelled_m: drive.travelled_m,
         };
+        if !drive.reached
+            && drive.headway_m < NO_HEADWAY_M
+            && let Some(cell) = self.map.grid().world_to_cell(goal.x_m, goal.y_m)
+        {
+            self.failed_goals.push(self.map.grid().index(cell)?);
+        }
         let (chooser, view) = self.chooser_and_view();
         chooser.learn(&view, &outcome);
 
@@ -278,10 +311,15 @@ impl<S: ScanSource, M: Motion> Exploration<S, M> {
         let mut drive = Drive {
             reached: false,
             travelled_m: 0.0,
+            headway_m: 0.0,
             scans: self.scans,
             contact_m: None,
         };
-        for waypoint in straight_runs(path, resolution_m) {
+        // The path starts at the centre of the robot's cell: the robot heads
+        // for the next corner straight away (a detour to its own cell's
+        // centre could run into what it has just touched).
+        let corners = straight_runs(path, resolution_m);
+        for waypoint in corners.into_iter().skip(usize::from(path.len() > 1)) {
             loop {
                 let here = [self.pose.x_m, self.pose.y_m];
                 let left_m = (waypoint[0] - here[0]).hypot(waypoint[1] - here[1]);
@@ -322,6 +360,8 @@ impl<S: ScanSource, M: Motion> Exploration<S, M> {
                 if let Some(contact_m) = travel.contact_m {
                     self.scan_here()?;
                     self.integrate_contact(contact_m)?;
+                    drive.headway_m = drive.travelled_m;
+                    drive.travelled_m += self.back_off(contact_m)?;
                     drive.contact_m = Some(contact_m);
                     drive.scans = self.scans - drive.scans;
                     return Ok(drive);
@@ -333,6 +373,7 @@ impl<S: ScanSource, M: Motion> Exploration<S, M> {
                     if self.since_scan_m > 0.0 {
                         self.scan_here()?;
                     }
+                    drive.headway_m = drive.travelled_m;
                     drive.scans = self.scans - drive.scans;
                     return Ok(drive);
                 }
@@ -348,6 +389,7 @@ impl<S: ScanSource, M: Motion> Exploration<S, M> {
             self.scan_here()?;
         }
         drive.reached = true;
+        drive.headway_m = drive.travelled_m;
         drive.scans = self.scans - drive.scans;
         Ok(drive)
     }
@@ -360,8 +402,23 @@ impl<S: ScanSource, M: Motion> Exploration<S, M> {
         self.timing.sensing_s += (integrating - started).as_secs_f64();
         let (pose, bearings, model) = (&self.pose, &self.bearings[..], self.model.as_dyn());
         // The coverage map validates the scan first: an invalid one changes no map.
-        self.map.integrate(pose, &ranges, bearings, model)?;
-        self.occupancy.integrate(pose, &ranges, bearings, model)?;
+        if self.config.occlude_no_echo {
+            let reaches = no_echo_reaches(
+                &self.map,
+                &self.contact_cells,
+                pose,
+                &ranges,
+                bearings,
+                model,
+            );
+            self.map
+                .integrate_clipped(pose, &ranges, bearings, model, &reaches)?;
+            self.occupancy
+                .integrate_clipped(pose, &ranges, bearings, model, &reaches)?;
+        } else {
+            self.map.integrate(pose, &ranges, bearings, model)?;
+            self.occupancy.integrate(pose, &ranges, bearings, model)?;
+        }
         self.timing.integration_s += integrating.elapsed().as_secs_f64();
         self.scans += 1;
         self.since_scan_m = 0.0;
@@ -376,21 +433,73 @@ impl<S: ScanSource, M: Motion> Exploration<S, M> {
     }
 
     /// Integrate a contact at `contact_m` (world metres) into the coverage
-    /// map and the occupancy grid: the cell the robot ran into.
+    /// map and the occupancy grid: the cell the robot ran into, and its
+    /// neighbours along the surface there, one cell either side (the
+    /// surface is taken to go on that far: a wall, a pane, a column's
+    /// flank; a flat bumper learns no more).
     fn integrate_contact(&mut self, contact_m: [f64; 2]) -> Result<()> {
         let started = Instant::now();
+        let resolution_m = self.map.grid().resolution_m();
         let (dx, dy) = (contact_m[0] - self.pose.x_m, contact_m[1] - self.pose.y_m);
         let length = dx.hypot(dy).max(f64::MIN_POSITIVE);
-        let inside = [
-            contact_m[0] + INTO_CONTACT_M * dx / length,
-            contact_m[1] + INTO_CONTACT_M * dy / length,
-        ];
-        let cell = self.map.grid().check_inside(inside[0], inside[1])?;
-        self.map.integrate_contact(cell)?;
-        self.occupancy.integrate_contact(cell)?;
+        let (normal, tangent) = ([dx / length, dy / length], [-dy / length, dx / length]);
+        let mut cells = Vec::new();
+        for along in [-1.0, 0.0, 1.0] {
+            let x = contact_m[0] + INTO_CONTACT_M * normal[0] + along * resolution_m * tangent[0];
+            let y = contact_m[1] + INTO_CONTACT_M * normal[1] + along * resolution_m * tangent[1];
+            if let Some(cell) = self.map.grid().world_to_cell(x, y)
+                && !cells.contains(&cell)
+            {
+                cells.push(cell);
+            }
+        }
+        if cells.is_empty() {
+            // The contact lies off the map: the map's error, named.
+            self.map.grid().check_inside(contact_m[0], contact_m[1])?;
+        }
+        for cell in cells {
+            self.map.integrate_contact(cell)?;
+            self.occupancy.integrate_contact(cell)?;
+            if !self.contact_cells.contains(&cell) {
+                self.contact_cells.push(cell);
+            }
+        }
         self.contacts += 1;
         self.timing.integration_s += started.elapsed().as_secs_f64();
         Ok(())
+    }
+
+    /// Back off a cell straight away from the contact at `contact_m`, as
+    /// far as the motion lets the robot (and the path limit); the distance
+    /// driven. A robot left touching a wall could not start along it.
+    fn back_off(&mut self, contact_m: [f64; 2]) -> Result<f64> {
+        let (dx, dy) = (self.pose.x_m - contact_m[0], self.pose.y_m - contact_m[1]);
+        let length = dx.hypot(dy);
+        let distance_m = self
+            .map
+            .grid()
+            .resolution_m()
+            .min(self.config.max_path_m - self.path_length_m);
+        if !(length > 0.0 && distance_m > 0.0) {
+            return Ok(0.0);
+        }
+        let away = [dx / length, dy / length];
+        let here = [self.pose.x_m, self.pose.y_m];
+        let to = [
+            here[0] + away[0] * distance_m,
+            here[1] + away[1] * distance_m,
+        ];
+        let started = Instant::now();
+        let travel = self.motion.drive(here, to)?;
+        self.timing.sensing_s += started.elapsed().as_secs_f64();
+        let travelled_m = travel.travelled_m.clamp(0.0, distance_m);
+        // Backing up: the robot keeps facing the way it came.
+        self.pose.x_m = here[0] + away[0] * travelled_m;
+        self.pose.y_m = here[1] + away[1] * travelled_m;
+        self.trajectory.push(self.pose, false);
+        self.path_length_m += travelled_m;
+        self.since_scan_m += travelled_m;
+        Ok(travelled_m)
     }
 
     /// Recompute the entropy map after the scans of a step.
@@ -404,18 +513,38 @@ impl<S: ScanSource, M: Motion> Exploration<S, M> {
     fn chooser_and_view(&mut self) -> (&mut Chooser, View<'_>) {
         let view = View {
             map: &self.map,
+            planning_map: self.planning_map.as_ref().unwrap_or(&self.map),
+            contact_cells: &self.contact_cells,
             occupancy: &self.occupancy,
             entropy: &self.entropy,
             pose: self.pose,
             bearings: &self.bearings,
             model: &self.model,
             config: &self.config,
+            failed_goals: &self.failed_goals,
         };
         (&mut self.chooser, view)
     }
 }
 
 impl<S, M> Exploration<S, M> {
+    /// The region the robot can reach on its coverage map now, one flag a
+    /// cell: the cells the coverage strategy's termination rule and the
+    /// counting strategy's unexplored cells are taken from (see
+    /// [`Strategy`]'s documentation).
+    ///
+    /// # Errors
+    /// None in practice (the robot's pose lies on the map).
+    pub fn region(&self) -> Result<Vec<bool>> {
+        let navigator = region::navigator(self.config.robot_radius_m, self.map.grid(), 0.0)?;
+        region::reachable_region(
+            &navigator,
+            &self.map,
+            &self.pose,
+            self.model.as_dyn().range_model().band_m,
+        )
+    }
+
     /// The fraction of the report cells whose entropy is above epsilon now.
     pub fn uncertain_fraction(&self) -> f64 {
         let epsilon = self.config.epsilon;
@@ -538,6 +667,57 @@ impl<S: ScanSource, M: Motion> Iterator for Exploration<S, M> {
     fn next(&mut self) -> Option<Self::Item> {
         self.step().transpose()
     }
+}
+
+/// How far each no-echo reading of a scan clears: to the first cell along
+/// its axis that `map` holds as covered (ML coverage above
+/// [`CONTACT_COVERAGE`]) or that the robot ran into, at most the maximum
+/// range; echo readings get the maximum range (they ignore it).
+fn no_echo_reaches(
+    map: &CoverageMap,
+    contact_cells: &[Cell],
+    pose: &Pose,
+    ranges: &[f64],
+    bearings: &[f64],
+    model: &dyn SensorModel,
+) -> Vec<f64> {
+    let grid = map.grid();
+    let (bins, histograms) = (map.bins(), map.histograms());
+    let max_range_m = model.range_model().max_range_m;
+    let half = 0.5 * grid.resolution_m();
+    let contacts: Vec<usize> = contact_cells
+        .iter()
+        .filter_map(|&c| grid.index(c).ok())
+        .collect();
+    let covered = |i: usize| {
+        let ml = histogram::bin_value(
+            histogram::argmax(&histograms[i * bins..(i + 1) * bins]),
+            bins,
+        );
+        ml > CONTACT_COVERAGE || contacts.contains(&i)
+    };
+    ranges
+        .iter()
+        .zip(bearings)
+        .map(|(&r, &bearing)| {
+            let mut reach = max_range_m;
+            if r >= max_range_m {
+                visit(
+                    grid,
+                    [pose.x_m, pose.y_m],
+                    pose.theta_rad + bearing,
+                    max_range_m,
+                    Footprint::Ray,
+                    &mut |i: usize, d_l: f64| {
+                        if d_l - half < reach && covered(i) {
+                            reach = (d_l - half).max(0.0);
+                        }
+                    },
+                );
+            }
+            reach
+        })
+        .collect()
 }
 
 /// The corners of `path` (cell centres, 8-connected steps): its first and

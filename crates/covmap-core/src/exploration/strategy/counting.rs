@@ -25,8 +25,9 @@
 //! what a reading of that length would.
 //!
 //! A prediction can be wrong (the ML map is not the world). When the robot
-//! has reached a goal and scanned there, the unexplored cells it went for
-//! whose counts did not grow are given up: they are not chosen for again.
+//! has reached a goal and scanned there, every unexplored cell it went for
+//! whose count did not grow has missed once; a cell that has missed three
+//! times is given up: no goal is chosen for it again.
 //!
 //! # Termination
 //! [`Termination::NoGoal`]: no candidate would intercept an unexplored cell.
@@ -41,11 +42,15 @@ use crate::planner::Planner;
 use crate::pose::Pose;
 use crate::sensor::{SensorModel, trace_readings};
 
+/// Visits that miss a cell after which it is given up.
+const GIVE_UP_AFTER: u8 = 3;
+
 /// The scan-counting strategy's state.
 pub(crate) struct Counting {
     n: f32,
-    /// Cells given up: no scan counted them when the prediction said one would.
-    given_up: Vec<bool>,
+    /// Visits to each cell that did not count it when the prediction said
+    /// they would; at [`GIVE_UP_AFTER`] the cell is given up.
+    misses: Vec<u8>,
     /// The cells the last goal was chosen for, and their counts then.
     targets: Vec<(usize, f32)>,
     navigator: Option<Planner>,
@@ -55,7 +60,7 @@ impl Counting {
     pub fn new(n: u32, grid: &Grid) -> Self {
         Self {
             n: n as f32,
-            given_up: vec![false; grid.len()],
+            misses: vec![0; grid.len()],
             targets: Vec::new(),
             navigator: None,
         }
@@ -69,16 +74,21 @@ impl Counting {
                 .insert(navigator(view.config.robot_radius_m, view.grid(), 0.0)?),
         };
         let model = view.model.as_dyn();
-        let region = reachable_region(navigator, view.map, &view.pose, model.range_model().band_m)?;
+        let region = reachable_region(
+            navigator,
+            view.planning_map,
+            &view.pose,
+            view.grid().resolution_m(),
+        )?;
         let counts = view.occupancy.counts().counts();
         let unexplored: Vec<bool> = (0..region.len())
-            .map(|i| region[i] && counts[i] < self.n && !self.given_up[i])
+            .map(|i| region[i] && counts[i] < self.n && self.misses[i] < GIVE_UP_AFTER)
             .collect();
         if !unexplored.iter().any(|&u| u) {
             return Ok(Decision::Done(Termination::NoGoal));
         }
-        let free = navigator.free_space(view.map);
-        let reach = navigator.reachability(view.map, &view.pose)?;
+        let free = navigator.free_space(view.planning_map);
+        let reach = navigator.reachability(view.planning_map, &view.pose)?;
         let grid = view.grid();
         let stride =
             ((view.config.candidate_stride_m / grid.resolution_m()).round() as usize).max(1);
@@ -86,13 +96,17 @@ impl Counting {
         for row in (stride / 2..grid.rows()).step_by(stride) {
             for col in (stride / 2..grid.cols()).step_by(stride) {
                 let i = row * grid.cols() + col;
-                if free[i] && reach.reachable(i) && reach.cost(i) >= view.config.min_travel_m {
+                if free[i]
+                    && reach.reachable(i)
+                    && reach.cost(i) >= view.config.min_travel_m
+                    && !view.failed_goals.contains(&i)
+                {
                     candidates.push(i);
                 }
             }
         }
         candidates.sort_by(|&a, &b| reach.cost(a).total_cmp(&reach.cost(b)).then(a.cmp(&b)));
-        let ml = view.map.ml();
+        let ml = view.planning_map.ml();
         for &i in &candidates {
             let [x, y] = grid.cell_center(grid.cell(i));
             let pose = Pose::new(x, y, view.pose.theta_rad);
@@ -115,7 +129,7 @@ impl Counting {
         let counts = view.occupancy.counts().counts();
         for &(cell, before) in &self.targets {
             if counts[cell] <= before {
-                self.given_up[cell] = true;
+                self.misses[cell] = self.misses[cell].saturating_add(1);
             }
         }
         self.targets.clear();

@@ -9,16 +9,29 @@
 //! cost`. Paths and costs are for the planning radius (the robot's and one
 //! cell, see [`region`](crate::exploration)), with unknown cells blocking.
 //!
-//! A goal the robot could not make any headway towards (a contact within a
-//! centimetre of where it stood) is never chosen again: the map may keep
-//! showing the way free (a wall no reading has seen), and the same goal
-//! would win again and again. The best candidate left is taken instead.
+//! A goal the robot could not make any headway towards (a failed goal, see
+//! [`Exploration`](crate::exploration::Exploration)) is not chosen again:
+//! the best candidate left is taken instead.
 //!
 //! # Termination
 //! Done when every cell of the reachable region is certain (entropy below
 //! epsilon: [`Termination::Certain`]) or, some not being certain, has
-//! stagnated ([`Termination::Stagnated`]); before that, when no candidate
-//! is worth visiting ([`Termination::NoGoal`]).
+//! stagnated ([`Termination::Stagnated`]: its entropy changed by less than
+//! 0.001 nats over its last five measurements); before that, when no
+//! candidate is worth visiting ([`Termination::NoGoal`]).
+//!
+//! The run as a whole has stagnated too ([`Termination::Stagnated`]) when
+//! for [`STALL_STEPS`] (20) steps in a row the number of cells of the
+//! region that are certain or stagnated has not risen above the most there
+//! were before *and* the region's entropy has fallen by less than the
+//! planner's `min_gain_nats` (1 nat) a step: the steps gain less than a goal
+//! must promise to be chosen. covmap's choice where the paper is silent: a cell whose true
+//! coverage lies between two bin values ends up split between them, with an
+//! entropy near `ln 2 = 0.69` nats, above the paper's epsilon of 0.65; every
+//! reading that ends in it tips the split one way or the other, so its
+//! entropy never settles to within 0.001, and a few such cells along the
+//! walls would keep the run going forever, the robot collecting fractions
+//! of a nat from them.
 
 use super::{Decision, Outcome, View};
 use crate::error::Result;
@@ -28,18 +41,19 @@ use crate::exploration::result::Termination;
 use crate::grid::Grid;
 use crate::planner::{Plan, Planner, PlannerConfig};
 
-/// Headway below which a drive made none, metres.
-const NO_HEADWAY_M: f64 = 0.01;
+/// Steps without a new settled cell after which the run has stagnated.
+pub(crate) const STALL_STEPS: usize = 20;
 
 /// The decision-theoretic strategy's state.
 pub(crate) struct Coverage {
     planner: Planner,
     /// The planner with `alpha` irrelevant: reachability and free space.
     navigator: Planner,
-    /// Goals (row-major cell indices) the robot made no headway towards.
-    failed: Vec<usize>,
-    /// The cell of the last goal.
-    last_goal: Option<usize>,
+    /// The most cells of the region certain or stagnated at once so far.
+    most_settled: usize,
+    /// The region's entropy (nats) at each decision since that number last
+    /// grew.
+    entropy_since_more_settled: Vec<f64>,
 }
 
 impl Coverage {
@@ -54,8 +68,8 @@ impl Coverage {
         Ok(Self {
             planner,
             navigator,
-            failed: Vec::new(),
-            last_goal: None,
+            most_settled: 0,
+            entropy_since_more_settled: Vec::new(),
         })
     }
 
@@ -71,8 +85,8 @@ impl Coverage {
                 .and_then(|c| grid.index(c).ok())
         };
         let chosen = match plan.chosen {
-            Some(k) if index_of(k).is_some_and(|i| self.failed.contains(&i)) => {
-                self.best_not_failed(&plan, index_of)
+            Some(k) if index_of(k).is_some_and(|i| view.failed_goals.contains(&i)) => {
+                best_not_failed(&plan, index_of, view.failed_goals)
             }
             other => other,
         };
@@ -82,10 +96,9 @@ impl Coverage {
         let path = if Some(k) == plan.chosen {
             plan.path
         } else {
-            let reach = self.planner.reachability(view.map, &view.pose)?;
+            let reach = self.planner.reachability(view.planning_map, &view.pose)?;
             index_of(k).map_or_else(Vec::new, |i| reach.path_to(i))
         };
-        self.last_goal = index_of(k);
         Ok(Decision::Goal {
             pose: plan.candidates.poses[k],
             path,
@@ -95,54 +108,64 @@ impl Coverage {
     /// The one call of the planner's choice (eq. 14).
     fn plan(&self, view: &View) -> Result<Plan> {
         self.planner
-            .next_viewpoint(view.map, &view.pose, view.bearings, view.model)
+            .next_viewpoint(view.planning_map, &view.pose, view.bearings, view.model)
     }
 
-    /// The candidate of greatest utility whose cell is no failed goal.
-    fn best_not_failed(
-        &self,
-        plan: &Plan,
-        index_of: impl Fn(usize) -> Option<usize>,
-    ) -> Option<usize> {
-        let utilities = &plan.candidates.utilities;
-        (0..utilities.len())
-            .filter(|&k| utilities[k] > f64::NEG_INFINITY)
-            .filter(|&k| index_of(k).is_some_and(|i| !self.failed.contains(&i)))
-            .max_by(|&a, &b| {
-                utilities[a]
-                    .total_cmp(&utilities[b])
-                    .then_with(|| b.cmp(&a))
-            })
-    }
-
-    /// Whether every cell of the reachable region is certain or stagnated.
-    fn termination(&self, view: &View) -> Result<Option<Termination>> {
+    /// Whether every cell of the reachable region is certain or stagnated,
+    /// or the run has stagnated (see the module documentation).
+    fn termination(&mut self, view: &View) -> Result<Option<Termination>> {
         let band_m = view.model.as_dyn().range_model().band_m;
-        let region = reachable_region(&self.navigator, view.map, &view.pose, band_m)?;
+        let region = reachable_region(&self.navigator, view.planning_map, &view.pose, band_m)?;
         let epsilon = view.config.epsilon;
-        let mut stagnated = false;
+        let (mut certain, mut stagnated, mut open) = (0usize, 0usize, 0usize);
+        let mut entropy = 0.0;
         for (i, _) in region.iter().enumerate().filter(|(_, r)| **r) {
+            entropy += f64::from(view.entropy[i]);
             if f64::from(view.entropy[i]) < epsilon {
-                continue;
+                certain += 1;
+            } else if view.map.stagnated_at(i) {
+                stagnated += 1;
+            } else {
+                open += 1;
             }
-            if !view.map.stagnated_at(i) {
-                return Ok(None);
-            }
-            stagnated = true;
         }
-        Ok(Some(if stagnated {
-            Termination::Stagnated
-        } else {
-            Termination::Certain
-        }))
+        if open == 0 {
+            return Ok(Some(if stagnated > 0 {
+                Termination::Stagnated
+            } else {
+                Termination::Certain
+            }));
+        }
+        let history = &mut self.entropy_since_more_settled;
+        if certain + stagnated > self.most_settled {
+            self.most_settled = certain + stagnated;
+            history.clear();
+        }
+        history.push(entropy);
+        // The region's entropy `STALL_STEPS` decisions ago, and now.
+        let stalled = history.len() > STALL_STEPS
+            && history[history.len() - 1 - STALL_STEPS] - entropy
+                < STALL_STEPS as f64 * self.planner.config().min_gain_nats;
+        Ok(stalled.then_some(Termination::Stagnated))
     }
 
-    pub fn learn(&mut self, _view: &View, outcome: &Outcome) {
-        if !outcome.reached
-            && outcome.travelled_m < NO_HEADWAY_M
-            && let Some(goal) = self.last_goal
-        {
-            self.failed.push(goal);
-        }
-    }
+    pub fn learn(&mut self, _view: &View, _outcome: &Outcome) {}
+}
+
+/// The candidate of greatest utility whose cell (`index_of`) is no failed
+/// goal.
+fn best_not_failed(
+    plan: &Plan,
+    index_of: impl Fn(usize) -> Option<usize>,
+    failed: &[usize],
+) -> Option<usize> {
+    let utilities = &plan.candidates.utilities;
+    (0..utilities.len())
+        .filter(|&k| utilities[k] > f64::NEG_INFINITY)
+        .filter(|&k| index_of(k).is_some_and(|i| !failed.contains(&i)))
+        .max_by(|&a, &b| {
+            utilities[a]
+                .total_cmp(&utilities[b])
+                .then_with(|| b.cmp(&a))
+        })
 }

@@ -53,7 +53,11 @@ impl Frontier {
     pub fn decide(&mut self, view: &View) -> Result<Decision> {
         let grid = view.grid();
         let radius_m = planning_radius_m(view.config.robot_radius_m, grid);
-        let (known, known_free) = known_cells(view.occupancy);
+        let (known, mut known_free) = known_cells(view.occupancy);
+        // The cells the robot ran into block, whatever the readings say since.
+        for &cell in view.contact_cells {
+            known_free[grid.index(cell)?] = false;
+        }
         let blocked: Vec<bool> = known_free.iter().map(|f| !f).collect();
         let (free, reach) = paths_from(grid, &blocked, radius_m, &view.pose)?;
         let frontier: Vec<bool> = frontier_cells(grid, &known, &known_free)
@@ -79,6 +83,7 @@ impl Frontier {
                     let usable = free[goal]
                         && cost.is_finite()
                         && cost >= view.config.min_travel_m
+                        && !view.failed_goals.contains(&goal)
                         && (x - fx).hypot(y - fy) <= approach;
                     if usable && nearest.is_none_or(|n| (cost, goal) < n) {
                         nearest = Some((cost, goal));

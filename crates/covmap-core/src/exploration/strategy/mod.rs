@@ -36,7 +36,7 @@ use super::result::Termination;
 use super::sensor::AnySensorModel;
 use crate::coverage_map::CoverageMap;
 use crate::error::{Result, check_parameter};
-use crate::grid::Grid;
+use crate::grid::{Cell, Grid};
 use crate::occupancy::OccupancyGrid;
 use crate::pose::Pose;
 
@@ -158,7 +158,14 @@ impl Strategy {
 
 /// What a strategy sees when it decides: the maps, the robot, the sensor.
 pub(super) struct View<'a> {
+    /// The coverage map, as the readings and contacts made it.
     pub map: &'a CoverageMap,
+    /// The coverage map to plan on: `map` with every cell the robot has run
+    /// into pinned as covered (the robot remembers its contacts, whatever
+    /// the readings say since).
+    pub planning_map: &'a CoverageMap,
+    /// The cells the robot has run into.
+    pub contact_cells: &'a [Cell],
     pub occupancy: &'a OccupancyGrid,
     /// The coverage map's entropy, nats, computed once after the last scan.
     pub entropy: &'a [f32],
@@ -166,6 +173,9 @@ pub(super) struct View<'a> {
     pub bearings: &'a [f64],
     pub model: &'a AnySensorModel,
     pub config: &'a ExplorationConfig,
+    /// Goals (row-major cells) the robot could make no headway towards:
+    /// none is chosen again (the map may keep showing the way free).
+    pub failed_goals: &'a [usize],
 }
 
 impl View<'_> {
@@ -186,8 +196,6 @@ pub(super) enum Decision {
 pub(super) struct Outcome {
     /// Whether the robot got to the goal.
     pub reached: bool,
-    /// Distance driven, metres.
-    pub travelled_m: f64,
 }
 
 /// A strategy at work: its settings and what it remembers between steps.

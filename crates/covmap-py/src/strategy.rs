@@ -1,0 +1,146 @@
+//! `covmap.Strategy`: how an exploring robot chooses where to go next.
+
+use covmap::exploration::Strategy;
+use pyo3::prelude::*;
+use pyo3::types::PyTuple;
+
+use crate::errors::{Exception, OrRaise};
+use crate::keywords::PyRepr;
+
+/// How an exploring robot chooses where to go next (``explore``,
+/// ``Exploration``). Build one with a static method:
+///
+/// - ``Strategy.coverage(alpha=0.5)``: the paper's decision-theoretic choice
+///   (eq. 14) on the coverage map, ``alpha`` the weight of information
+///   against travel in ``[0, 1]``; done when every cell of the reachable
+///   region is certain (entropy below ``epsilon``) or has stagnated;
+/// - ``Strategy.counting(n=50, discount_beyond_m=None)``: extended scan
+///   counting, a cell explored once ``n`` beams intercepted it (a beam reading
+///   ``d`` beyond ``discount_beyond_m`` counts ``discount_beyond_m / d``;
+///   ``None``: every beam counts 1; Table I's row uses
+///   ``DEFAULT_DISCOUNT_BEYOND_M``); the robot goes to the nearest candidate
+///   that would intercept an unexplored cell;
+/// - ``Strategy.frontier()``: nearest-frontier exploration (Yamauchi 1997) on
+///   the occupancy grid.
+///
+/// Strategies compare equal when their settings are equal, hash, pickle and
+/// show as the call that builds them.
+#[pyclass(frozen, eq, hash, name = "Strategy", module = "covmap._native")]
+#[derive(Clone, Copy, PartialEq)]
+pub(crate) struct PyStrategy(pub(crate) Strategy);
+
+impl std::hash::Hash for PyStrategy {
+    fn hash<H: std::hash::Hasher>(&self, state: &mut H) {
+        let (alpha, n, discount) = match self.0 {
+            Strategy::Coverage { alpha } => (alpha, 0, None),
+            Strategy::Counting {
+                n,
+                discount_beyond_m,
+            } => (0.0, n, discount_beyond_m),
+            Strategy::Frontier => (0.0, 0, None),
+        };
+        let bits = |v: f64| (if v == 0.0 { 0.0f64 } else { v }).to_bits();
+        (self.0.name(), bits(alpha), n, discount.map(bits)).hash(state);
+    }
+}
+
+#[pymethods]
+impl PyStrategy {
+    /// The paper's decision-theoretic strategy (eq. 14) with weight ``alpha``
+    /// in ``[0, 1]`` (0: the nearest candidate, 1: the most informative);
+    /// another value, NaN included, raises ``InvalidParameterError``.
+    #[staticmethod]
+    #[pyo3(signature = (alpha=0.5))]
+    fn coverage(py: Python<'_>, alpha: f64) -> PyResult<Self> {
+        Strategy::coverage(alpha).map(Self).or_raise(py)
+    }
+
+    /// Extended scan counting to ``n`` (at least 1) interceptions, beams
+    /// reading farther than ``discount_beyond_m`` (positive, finite; ``None``:
+    /// no discount) counted ``discount_beyond_m / d``; a bad value raises
+    /// ``InvalidParameterError``.
+    #[staticmethod]
+    #[pyo3(signature = (n=50, discount_beyond_m=None))]
+    fn counting(py: Python<'_>, n: i64, discount_beyond_m: Option<f64>) -> PyResult<Self> {
+        let Ok(n) = u32::try_from(n) else {
+            return Err(Exception::InvalidParameter.err(
+                py,
+                format!("invalid parameter `n` = {n}: expected a count from 1 to 2**32 - 1"),
+            ));
+        };
+        Strategy::counting(n, discount_beyond_m)
+            .map(Self)
+            .or_raise(py)
+    }
+
+    /// Nearest-frontier exploration on the occupancy grid.
+    #[staticmethod]
+    fn frontier() -> Self {
+        Self(Strategy::frontier())
+    }
+
+    /// ``"coverage"``, ``"counting"`` or ``"frontier"``.
+    #[getter]
+    fn name(&self) -> &'static str {
+        self.0.name()
+    }
+    /// The weight of information against travel (``coverage``), else ``None``.
+    #[getter]
+    fn alpha(&self) -> Option<f64> {
+        match self.0 {
+            Strategy::Coverage { alpha } => Some(alpha),
+            _ => None,
+        }
+    }
+    /// The interceptions that make a cell explored (``counting``), else ``None``.
+    #[getter]
+    fn n(&self) -> Option<u32> {
+        match self.0 {
+            Strategy::Counting { n, .. } => Some(n),
+            _ => None,
+        }
+    }
+    /// The discount range of ``counting``, metres (``None``: no discount, or
+    /// another strategy).
+    #[getter]
+    fn discount_beyond_m(&self) -> Option<f64> {
+        match self.0 {
+            Strategy::Counting {
+                discount_beyond_m, ..
+            } => discount_beyond_m,
+            _ => None,
+        }
+    }
+
+    pub(crate) fn __repr__(&self) -> String {
+        match self.0 {
+            Strategy::Coverage { alpha } => format!("Strategy.coverage(alpha={})", alpha.py_repr()),
+            Strategy::Counting {
+                n,
+                discount_beyond_m,
+            } => format!(
+                "Strategy.counting(n={n}, discount_beyond_m={})",
+                discount_beyond_m.py_repr()
+            ),
+            Strategy::Frontier => "Strategy.frontier()".to_owned(),
+        }
+    }
+
+    /// Pickle and copy support: the static method that builds the strategy
+    /// and its arguments.
+    fn __reduce__<'py>(
+        &self,
+        py: Python<'py>,
+    ) -> PyResult<(Bound<'py, PyAny>, Bound<'py, PyTuple>)> {
+        let build = py.get_type::<Self>().getattr(self.0.name())?;
+        let args = match self.0 {
+            Strategy::Coverage { alpha } => PyTuple::new(py, [alpha])?,
+            Strategy::Counting {
+                n,
+                discount_beyond_m,
+            } => (n, discount_beyond_m).into_pyobject(py)?,
+            Strategy::Frontier => PyTuple::empty(py),
+        };
+        Ok((build, args))
+    }
+}

@@ -1,0 +1,176 @@
+//! The paper's Table I in simulation: every strategy on the built-in
+//! worlds, over a few seeds.
+//!
+//! ```text
+//! cargo run --release -p covmap-sim --example table1 -- [--worlds corridor,office] [--seeds N]
+//!     [--strategies coverage,count1,count50,frontier] [--laser] [--verbose]
+//! ```
+//!
+//! Prints one row a run: path length, the fraction of evaluation cells whose
+//! entropy is above epsilon at the end, the termination, steps, scans,
+//! contacts, the maps' errors, wall time and the ratio of real time at
+//! 0.5 m/s to wall time.
+
+use std::process::ExitCode;
+use std::sync::Arc;
+
+use covmap_core::exploration::{DEFAULT_DISCOUNT_BEYOND_M, Strategy};
+use covmap_sim::World;
+use covmap_sim::exploration::{ExploreOptions, SimExploration, SimSensor};
+
+fn strategy(name: &str) -> Option<Strategy> {
+    Some(match name {
+        "coverage" => Strategy::coverage(0.5).ok()?,
+        "coverage0.2" => Strategy::coverage(0.2).ok()?,
+        "coverage0.8" => Strategy::coverage(0.8).ok()?,
+        "count1" => Strategy::counting(1, None).ok()?,
+        "count1d" => Strategy::counting(1, Some(DEFAULT_DISCOUNT_BEYOND_M)).ok()?,
+        "count50" => Strategy::counting(50, Some(DEFAULT_DISCOUNT_BEYOND_M)).ok()?,
+        "count50u" => Strategy::counting(50, None).ok()?,
+        "frontier" => Strategy::frontier(),
+        _ => return None,
+    })
+}
+
+fn main() -> ExitCode {
+    let mut worlds = vec!["corridor".to_string()];
+    let mut seeds = 1u64;
+    let mut strategies: Vec<String> = ["coverage", "count1", "count50", "frontier"]
+        .map(String::from)
+        .to_vec();
+    let (mut verbose, mut laser, mut no_echo_out) = (false, false, false);
+    let mut args = std::env::args().skip(1);
+    while let Some(a) = args.next() {
+        let list = |v: Option<String>| -> Vec<String> {
+            v.unwrap_or_default().split(',').map(String::from).collect()
+        };
+        match a.as_str() {
+            "--worlds" => worlds = list(args.next()),
+            "--strategies" => strategies = list(args.next()),
+            "--seeds" => match args.next().and_then(|s| s.parse().ok()) {
+                Some(n) => seeds = n,
+                None => return usage("--seeds needs a count"),
+            },
+            "--verbose" => verbose = true,
+            "--laser" => laser = true,
+            "--no-echo-out" => no_echo_out = true,
+            _ => return usage(&format!("unexpected argument {a:?}")),
+        }
+    }
+    println!(
+        "{:<9} {:<8} {:>4} {:>8} {:>10} {:<10} {:>5} {:>6} {:>8} {:>8} {:>8} {:>8} {:>7}",
+        "strategy",
+        "world",
+        "seed",
+        "path m",
+        "uncert. %",
+        "end",
+        "steps",
+        "scans",
+        "contacts",
+        "mae cov",
+        "mae occ",
+        "seconds",
+        "x real"
+    );
+    for world_name in &worlds {
+        let world = match World::builtin(world_name) {
+            Ok(w) => Arc::new(w),
+            Err(e) => return usage(&e.to_string()),
+        };
+        for name in &strategies {
+            let Some(s) = strategy(name) else {
+                return usage(&format!("unknown strategy {name:?}"));
+            };
+            for seed in 0..seeds {
+                let mut options = ExploreOptions {
+                    seed,
+                    sensor: if laser {
+                        SimSensor::laser()
+                    } else {
+                        SimSensor::default()
+                    },
+                    ..ExploreOptions::default()
+                };
+                options.config.occlude_no_echo = std::env::var("NOECHO").is_err();
+                let _ = no_echo_out;
+                match run(&world, s, &options, verbose) {
+                    Ok(row) => println!("{:<9} {:<8} {:>4} {row}", name, world_name, seed),
+                    Err(e) => {
+                        eprintln!("table1: {e}");
+                        return ExitCode::FAILURE;
+                    }
+                }
+            }
+        }
+    }
+    ExitCode::SUCCESS
+}
+
+fn run(
+    world: &Arc<World>,
+    strategy: Strategy,
+    options: &ExploreOptions,
+    verbose: bool,
+) -> Result<String, Box<dyn std::error::Error>> {
+    let mut sim = SimExploration::new(Arc::clone(world), strategy, options)?;
+    while let Some(step) = sim.step()? {
+        if verbose {
+            let e = sim.exploration();
+            eprintln!(
+                "  step {:>4}: goal ({:6.2}, {:5.2}) reached {:5} contact {:?} pose ({:.3}, {:.3}) path {:7.2} m, uncertain {:5.2} %",
+                step.index,
+                step.goal.x_m,
+                step.goal.y_m,
+                step.reached,
+                step.contact_m,
+                step.pose.x_m,
+                step.pose.y_m,
+                e.path_length_m(),
+                100.0 * e.uncertain_fraction()
+            );
+        }
+    }
+    let run = sim.into_result()?;
+    let r = &run.result;
+    let first = |f: f64| {
+        r.trace
+            .uncertain_fraction
+            .iter()
+            .position(|&u| u <= f)
+            .map_or("-".to_string(), |k| {
+                format!("{:.0}", r.trace.path_length_m[k])
+            })
+    };
+    eprintln!(
+        "    path at 10/5/2/1 % uncertain: {} {} {} {} m",
+        first(0.1),
+        first(0.05),
+        first(0.02),
+        first(0.01)
+    );
+    let real_s = r.path_length_m / 0.5;
+    Ok(format!(
+        "{:>8.1} {:>10.2} {:<10} {:>5} {:>6} {:>8} {:>8.4} {:>8.4} {:>8.2} {:>7.0}   (plan {:.2} s, sense {:.2} s, integrate {:.2} s)",
+        r.path_length_m,
+        100.0 * run.high_entropy_fraction,
+        r.termination.map_or("-", |t| t.as_str()),
+        r.steps,
+        r.scans,
+        r.contacts,
+        run.errors.coverage_map,
+        run.errors.occupancy,
+        run.seconds,
+        real_s / run.seconds,
+        r.timing.planning_s,
+        r.timing.sensing_s,
+        r.timing.integration_s,
+    ))
+}
+
+fn usage(problem: &str) -> ExitCode {
+    eprintln!(
+        "table1: {problem}\nusage: table1 [--worlds corridor,office] [--seeds N] [--strategies coverage,count1,count1d,count50,count50u,frontier] [--laser] [--verbose]"
+    );
+    ExitCode::from(2)
+}

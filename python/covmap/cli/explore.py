@@ -1,0 +1,124 @@
+"""``covmap explore``: a simulated robot explores a world until it is done."""
+
+from __future__ import annotations
+
+from typing import TYPE_CHECKING
+
+from covmap._native import DEFAULT_DISCOUNT_BEYOND_M, Laser, SonarRing, Strategy, World
+from covmap.cli import _options
+from covmap.experiments.exploration import MAX_FRAMES
+
+if TYPE_CHECKING:
+    import argparse
+
+    from covmap._exploration import Step
+    from covmap._native import Exploration
+
+NAME = "explore"
+"""The command's name: ``covmap explore``."""
+
+HELP = "a simulated robot explores a world until its strategy is done"
+"""The command's line in ``covmap --help``."""
+
+DESCRIPTION = (
+    "A disc robot with 24 simulated sonars (or a laser) starts at a free pose drawn from the "
+    "seed in a built-in world, scans, chooses where to look next with the strategy (coverage: "
+    "the paper's eq. 14; counting: scan counting to n; frontier: nearest frontier), drives "
+    "there scanning on the way, and stops when the strategy is done or at a limit. Shows its "
+    "progress, prints a summary, and writes WORLD-STRATEGY-map.png (the ML map with the "
+    "trajectory and the scan points over the true outlines), WORLD-STRATEGY-entropy.png "
+    "(entropy and uncertain cells) and WORLD-STRATEGY.gif (the run). Exits 1 if the run "
+    "ended at a limit (--max-steps, --max-path-m) rather than by its strategy's rule."
+)
+"""What ``covmap explore --help`` says the command does."""
+
+
+def add_arguments(command: argparse.ArgumentParser) -> None:
+    """The command's arguments."""
+    _options.add_world(command)
+    command.add_argument(
+        "--strategy",
+        choices=("coverage", "counting", "frontier"),
+        default="coverage",
+        help="how the robot chooses where to go next (default coverage)",
+    )
+    command.add_argument(
+        "--alpha",
+        type=_options.weight,
+        default=0.5,
+        help="coverage: weight of information against travel in [0, 1] (default 0.5)",
+    )
+    command.add_argument(
+        "--n",
+        type=_options.positive_int,
+        default=50,
+        help="counting: interceptions that make a cell explored, at most 1000000 (default 50)",
+    )
+    command.add_argument(
+        "--discount-beyond-m",
+        type=_options.discount,
+        metavar="M",
+        help="counting: beams reading d beyond M metres count M / d (default: no discount; "
+        f"Table I's n = 50 row: {DEFAULT_DISCOUNT_BEYOND_M:g})",
+    )
+    _options.add_seed(command)
+    command.add_argument(
+        "--sensor",
+        choices=("sonar", "laser"),
+        default="sonar",
+        help="24 sonars all around, or a 180-degree laser of 361 beams (default sonar)",
+    )
+    _options.add_out(command, NAME)
+    _options.add_run_limits(command)
+    command.add_argument(
+        "--frames",
+        type=_options.frame_count,
+        default=MAX_FRAMES,
+        help=f"most frames of the animation, 2 to {_options.MAX_FRAMES} (default {MAX_FRAMES})",
+    )
+
+
+def strategy(args: argparse.Namespace) -> Strategy:
+    """The strategy the arguments name."""
+    if args.strategy == "coverage":
+        return Strategy.coverage(args.alpha)
+    if args.strategy == "counting":
+        return Strategy.counting(args.n, args.discount_beyond_m)
+    return Strategy.frontier()
+
+
+def run(args: argparse.Namespace) -> int:
+    """Explore, print the summary and draw the run; 1 unless it ended by its
+    strategy's rule (rather than at a limit)."""
+    from covmap.cli._progress import Progress
+    from covmap.experiments import exploration
+    from covmap.plot import plot_exploration
+
+    world = World.builtin(args.world)
+    sensor = SonarRing() if args.sensor == "sonar" else Laser.sick_361()
+
+    with Progress(None, "step") as progress:
+
+        def show(run_: Exploration, step: Step) -> None:
+            progress.update(
+                f"{run_.path_length_m:.1f} m, {run_.scans} scans, "
+                f"{100.0 * run_.uncertain_fraction:.1f} % uncertain"
+            )
+
+        result = exploration.run(
+            world,
+            strategy(args),
+            world_name=args.world,
+            frames=args.frames,
+            progress=show,
+            seed=args.seed,
+            sensor=sensor,
+            **_options.run_limits(args),
+        )
+    print(exploration.summary(result))
+    for path in plot_exploration(result, args.out):
+        print(f"wrote {path}")
+    if result.result.termination == "limit":
+        print("the run ended at a limit, not by its strategy's rule")
+        return 1
+    return 0

@@ -1,0 +1,212 @@
+"""The figures of exploration runs: ``covmap explore``'s maps and animation
+and ``covmap table1``'s chart, each written whole or not at all."""
+
+from __future__ import annotations
+
+import io
+import math
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
+
+from covmap.plot.drawing import plot_map, plot_trajectory, plot_world, unknown_colormap
+from covmap.plot.figures import _figure_file
+
+__all__ = ["plot_exploration", "plot_table1", "save_animation"]
+
+if TYPE_CHECKING:
+    from pathlib import Path
+
+    from matplotlib.axes import Axes
+
+    from covmap._exploration import ExplorationResult
+    from covmap._native import Grid, World
+    from covmap.experiments.exploration import ExploreRun, Snapshot
+    from covmap.experiments.table1 import Table1
+
+GIF_FRAME_MS = 150
+"""How long each frame of an exploration's animation shows, milliseconds."""
+
+GIF_LAST_FRAME_MS = 2000
+"""How long the last frame (the run's end) shows, milliseconds."""
+
+
+def _size(grid: Grid, width: float = 9.0) -> tuple[float, float]:
+    """A figure size of ``width`` inches that fits the grid's aspect."""
+    x0, y0, x1, y1 = grid.bounds
+    return width, max(2.5, width * (y1 - y0) / (x1 - x0) + 1.0)
+
+
+def _outline(world: World, ax: Axes) -> None:
+    """The true obstacles' outlines, over a map."""
+    plot_world(world, ax, colors={"wall": "none", "glass": "none"}, edgecolor="tab:orange", linewidth=0.6, alpha=0.8)
+
+
+def _robot_path(trajectory: Any, ax: Axes, scanned: Any | None = None) -> None:
+    """The trajectory, and the scan points where given."""
+    plot_trajectory(trajectory, ax, color="tab:red", linewidth=0.8, label="path")
+    if scanned is not None:
+        points = trajectory[scanned]
+        ax.plot(points[:, 0], points[:, 1], ".", color="tab:blue", markersize=2.5, label="scans")
+
+
+def _fit(ax: Axes, grid: Grid) -> None:
+    x0, y0, x1, y1 = grid.bounds
+    ax.set_xlim(x0, x1)
+    ax.set_ylim(y0, y1)
+
+
+def plot_exploration(run: ExploreRun, out: Path, name: str | None = None) -> list[Path]:
+    """Write the figures of a ``covmap explore`` run into ``out``, each
+    atomically, files named ``<name>-...`` (default: world and strategy):
+
+    - ``-map.png``: the final ML map (unknown cells in
+      :data:`~covmap.plot.drawing.UNKNOWN_COLOR`), the true obstacles'
+      outlines, the trajectory and the scan points;
+    - ``-entropy.png``: the entropy map, and the evaluation cells with the
+      uncertain ones (entropy above epsilon) marked;
+    - ``.gif``: the run as an animation of its snapshots.
+
+    Returns the paths."""
+    r = run.result
+    name = name or f"{run.world_name}-{r.strategy.name}"
+    grid = r.grid
+    title = f"{run.world_name}, {r.strategy!r}, seed {r.seed}"
+    written = []
+    path = out / f"{name}-map.png"
+    with _figure_file(path, figsize=_size(grid), layout="constrained") as (_, ax):
+        plot_map(r.map.ml(), grid, ax, observed=r.map.observed(), colorbar=True)
+        _outline(run.world, ax)
+        _robot_path(r.trajectory, ax, r.scanned)
+        _fit(ax, grid)
+        ax.set_title(
+            f"{title}: ML coverage (unknown: light blue), {r.path_length_m:.1f} m, {r.scans} scans, {r.termination}",
+            fontsize=9,
+        )
+        ax.legend(loc="upper right", fontsize=7)
+    written.append(path)
+
+    path = out / f"{name}-entropy.png"
+    w, h = _size(grid)
+    with _figure_file(path, 2, 1, figsize=(w, 2 * h - 0.5), layout="constrained") as (fig, (ent_ax, unc_ax)):
+        plot_map(
+            r.map.entropy(),
+            grid,
+            ent_ax,
+            cmap="viridis",
+            vmin=0.0,
+            vmax=math.log(r.map.bins),
+            colorbar=True,
+        )
+        ent_ax.set_title(f"{title}: entropy [nats]", fontsize=9)
+        # 0: outside the evaluation cells, 1: evaluation cell, certain, 2: uncertain.
+        classes = np.where(r.uncertain_cells, 2.0, np.where(r.evaluation_cells, 1.0, 0.0))
+        from matplotlib.colors import ListedColormap
+
+        plot_map(classes, grid, unc_ax, cmap=ListedColormap(["white", "lightgray", "tab:red"]), vmin=0.0, vmax=2.0)
+        unc_ax.set_title(
+            f"uncertain (H > {r.epsilon:g} nats, red): {100.0 * r.high_entropy_fraction:.2f} % of the "
+            f"evaluation cells (grey)",
+            fontsize=9,
+        )
+        for ax in (ent_ax, unc_ax):
+            _outline(run.world, ax)
+            _fit(ax, grid)
+    written.append(path)
+
+    written.append(save_animation(run.frames, r, run.world, out / f"{name}.gif", title=title))
+    return written
+
+
+def _frame(fig: Any, ax: Axes, snap: Snapshot, result: ExplorationResult, world: World, title: str) -> Any:
+    """Draw one snapshot into ``ax`` and return the rendered image (PIL)."""
+    from PIL import Image
+
+    ax.clear()
+    plot_map(snap.ml_coverage, result.grid, ax, cmap=unknown_colormap("Greys"))
+    _outline(world, ax)
+    if len(snap.trajectory):
+        _robot_path(snap.trajectory, ax)
+    _fit(ax, result.grid)
+    ax.set_title(
+        f"{title}: step {snap.step}, {snap.path_length_m:.1f} m, "
+        f"{100.0 * snap.uncertain_fraction:.1f} % uncertain",
+        fontsize=8,
+    )
+    fig.canvas.draw()
+    rgba = np.asarray(fig.canvas.buffer_rgba())
+    return Image.fromarray(rgba[:, :, :3].copy()).quantize(colors=64, method=Image.Quantize.MEDIANCUT)
+
+
+def save_animation(
+    frames: list[Snapshot], result: ExplorationResult, world: World, path: Path, *, title: str = ""
+) -> Path:
+    """Write ``frames`` (snapshots of the run ``result`` in ``world``) as an
+    animated GIF to ``path``, atomically: the ML map with unknown cells in
+    :data:`~covmap.plot.drawing.UNKNOWN_COLOR`, the true outlines and the
+    path so far, one frame a snapshot, the last held longer. Drawn with the
+    Agg backend and encoded by Pillow (which matplotlib depends on) in memory,
+    then written by the same atomic writer as the PNGs. Returns the path."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    from covmap._native import write_atomic
+
+    w, h = _size(result.grid, 6.0)
+    fig, ax = plt.subplots(figsize=(w, h), dpi=80, layout="constrained")
+    try:
+        images = [_frame(fig, ax, snap, result, world, title) for snap in frames]
+    finally:
+        plt.close(fig)
+    durations = [GIF_FRAME_MS] * (len(images) - 1) + [GIF_LAST_FRAME_MS]
+    gif = io.BytesIO()
+    images[0].save(gif, format="GIF", save_all=True, append_images=images[1:], duration=durations, loop=0)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    write_atomic(path, gif.getvalue())
+    return path
+
+
+def plot_table1(t: Table1, path: Path) -> Path:
+    """Write Table I as a chart to ``path`` (PNG), atomically: each run's path
+    length against the uncertain share of its evaluation cells, a marker per
+    method, the methods' means circled, the paper's figures as stars of the
+    same colour; path lengths on a log scale. Returns the path."""
+    colors = ["tab:green", "tab:orange", "tab:blue", "tab:purple"]
+    with _figure_file(path, figsize=(7.5, 5.0), layout="constrained") as (_, ax):
+        for row, color in zip(t.rows, colors):
+            m = row.method
+            paths = [r.path_length_m for r in row.runs]
+            uncertain = [100.0 * r.uncertain_fraction for r in row.runs]
+            ax.scatter(paths, uncertain, color=color, s=22, alpha=0.7, label=f"{m.label} (runs)")
+            ax.scatter(
+                [row.stat("path_length_m")[0]],
+                [100.0 * row.stat("uncertain_fraction")[0]],
+                facecolors="none",
+                edgecolors=color,
+                s=140,
+                linewidths=1.5,
+            )
+            if m.paper_path_m is not None and m.paper_uncertain is not None:
+                ax.scatter(
+                    [m.paper_path_m],
+                    [100.0 * m.paper_uncertain],
+                    marker="*",
+                    color=color,
+                    edgecolors="black",
+                    linewidths=0.5,
+                    s=180,
+                    label=f"{m.label} (paper)",
+                )
+        ax.set_xscale("log")  # from tens of metres (counting n = 1) to kilometres
+        ax.set_xlabel("path length [m], log scale")
+        ax.set_ylabel("evaluation cells with H > epsilon [%]")
+        ax.set_title(
+            f"Table I, {t.world_name}, {len(t.seeds)} seed(s): runs (dots), their means (circles), the paper (stars)",
+            fontsize=9,
+        )
+        ax.grid(alpha=0.3)
+        ax.legend(fontsize=7)
+    return path
+
