@@ -1,3 +1,4 @@
+mod exploration;
 mod fig1;
 mod gain;
 mod properties;

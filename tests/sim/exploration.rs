@@ -233,6 +233,55 @@ fn stepping_adds_up_to_the_run() {
     assert_eq!(stepped.high_entropy_fraction, whole.high_entropy_fraction);
 }
 
+/// A closed 4 m x 3 m room with a wall half across its middle.
+fn room() -> World {
+    let (w, h, t) = (4.0, 3.0, 0.1);
+    World::from_vertex_lists(
+        vec![
+            vec![[0.0, 0.0], [w, 0.0], [w, t], [0.0, t]],
+            vec![[0.0, h - t], [w, h - t], [w, h], [0.0, h]],
+            vec![[0.0, 0.0], [t, 0.0], [t, h], [0.0, h]],
+            vec![[w - t, 0.0], [w, 0.0], [w, h], [w - t, h]],
+            vec![[1.8, 0.0], [2.0, 0.0], [2.0, 1.8], [1.8, 1.8]],
+        ],
+        covmap::sim::Material::Wall,
+    )
+    .unwrap()
+}
+
+/// Every strategy explores a small room to its end, by its rule, on coarse
+/// cells, for a few seeds.
+#[test]
+fn every_strategy_explores_a_room_to_its_end_by_rule() {
+    let world = room();
+    for seed in 0..3 {
+        for strategy in [
+            Strategy::coverage(0.5).unwrap(),
+            Strategy::counting(1, None).unwrap(),
+            Strategy::counting(50, Some(DEFAULT_DISCOUNT_BEYOND_M)).unwrap(),
+            Strategy::frontier(),
+        ] {
+            let options = ExploreOptions {
+                seed,
+                resolution_m: 0.1,
+                ..ExploreOptions::default()
+            };
+            let run = explore(&world, strategy, &options).unwrap();
+            let termination = run.result.termination.unwrap();
+            let figures = format!(
+                "seed {seed}, {strategy:?}: {termination} after {} steps, {:.1} m, {:.1} % uncertain, {} contacts",
+                run.result.steps,
+                run.result.path_length_m,
+                100.0 * run.high_entropy_fraction,
+                run.result.contacts
+            );
+            assert!(termination.by_rule(), "{figures}");
+            assert!(run.high_entropy_fraction < 0.6, "{figures}");
+            check_trajectory(&world, &run);
+        }
+    }
+}
+
 /// Table I's strategies on one world and seed: path length and uncertain
 /// fraction of each, every run ended by its rule.
 fn table1(world: &str, seed: u64) -> [(f64, f64); 3] {

@@ -61,11 +61,12 @@ impl CoverageMap {
     }
 
     /// A copy of the map, without its entropy history, in which each of
-    /// `cells` holds what a contact alone says of it: every coverage of at
-    /// least [`CONTACT_COVERAGE`] equally likely, nothing below. What a robot
-    /// plans on when it remembers where it ran into something: readings may
-    /// clear such a cell again (a specular surface no echo shows), the
-    /// contact stands.
+    /// `cells` is certainly covered (all its mass in the top bin): what a
+    /// robot plans on when it remembers where it ran into something.
+    /// Readings may clear such a cell again (a specular surface no echo
+    /// shows), the contact stands; and a planner predicting readings on the
+    /// copy neither expects to learn anything about the cell nor to see
+    /// through it, whatever the readings did to it since.
     ///
     /// # Errors
     /// [`CovmapError::CellOutOfBounds`](crate::CovmapError::CellOutOfBounds)
@@ -76,18 +77,8 @@ impl CoverageMap {
             .map(|&cell| self.grid.index(cell))
             .collect::<Result<Vec<_>>>()?;
         let bins = self.bins;
-        let blocking = (0..bins)
-            .filter(|&b| histogram::bin_value(b, bins) >= CONTACT_COVERAGE)
-            .count();
-        let pinned: Vec<f32> = (0..bins)
-            .map(|b| {
-                if histogram::bin_value(b, bins) >= CONTACT_COVERAGE {
-                    1.0 / blocking as f32
-                } else {
-                    histogram::BIN_FLOOR
-                }
-            })
-            .collect();
+        let mut pinned = vec![histogram::BIN_FLOOR; bins];
+        pinned[bins - 1] = 1.0 - (bins - 1) as f32 * histogram::BIN_FLOOR;
         let mut copy = CoverageMap {
             grid: self.grid,
             bins,
@@ -159,7 +150,8 @@ mod tests {
         }
         assert_eq!(map.ml()[i], 0.0, "cleared again");
         let pinned = map.with_contacts(&[cell]).unwrap();
-        assert!(f64::from(pinned.ml()[i]) >= CONTACT_COVERAGE);
+        assert_eq!(pinned.ml()[i], 1.0);
+        assert!(pinned.entropy()[i] < 1e-6);
         assert!(!pinned.tracks_history());
         let other = grid.index(grid.world_to_cell(1.0, 1.0).unwrap()).unwrap();
         assert_eq!(

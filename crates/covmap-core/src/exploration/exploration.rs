@@ -87,8 +87,9 @@ impl ExplorationSetup {
 
 /// A robot exploring: its maps, its strategy, where it is and has been.
 ///
-/// Drive it one step at a time ([`Exploration::step`], or as an iterator of
-/// steps) or to the end ([`Exploration::run`]).
+/// Drive it one step at a time ([`Exploration::step`]) or to the end
+/// ([`Exploration::run`]). (It is no iterator of its steps on purpose: an
+/// iterator's `map` would hide [`Exploration::map`].)
 pub struct Exploration<S, M> {
     source: S,
     motion: M,
@@ -185,7 +186,7 @@ impl<S: ScanSource, M: Motion> Exploration<S, M> {
             _ => ScanCounts::new(grid),
         };
         let occupancy = OccupancyGrid::with_model(OccupancyModel::default(), counts)?;
-        let chooser = Chooser::new(&strategy, &config, &grid)?;
+        let chooser = Chooser::new(&strategy, &config, &grid, bins)?;
         let entropy = map.entropy();
         Ok(Self {
             source,
@@ -216,7 +217,7 @@ impl<S: ScanSource, M: Motion> Exploration<S, M> {
     }
 
     /// One step: decide, drive, scan, integrate (see the
-    /// [module documentation](self)). Returns what the step did, or `None`
+    /// [module documentation](crate::exploration)). Returns what the step did, or `None`
     /// once the run is over (the strategy is done or a limit is reached:
     /// [`Exploration::termination`] says which).
     ///
@@ -658,14 +659,6 @@ impl<S, M> Exploration<S, M> {
             map: self.map,
             occupancy: self.occupancy,
         }
-    }
-}
-
-/// The steps of a run, until it is over.
-impl<S: ScanSource, M: Motion> Iterator for Exploration<S, M> {
-    type Item = Result<StepReport>;
-    fn next(&mut self) -> Option<Self::Item> {
-        self.step().transpose()
     }
 }
 

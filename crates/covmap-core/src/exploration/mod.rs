@@ -10,9 +10,63 @@
 //! real robot can be others. The strategies ([`Strategy`], one file each in
 //! `strategy/`) choose on the maps only.
 //!
+//! # The loop's model (covmap's choices where the paper is silent)
+//! - **A step**: the strategy picks a goal and a path (cell centres) on the
+//!   maps; the robot drives the path's straight runs through the world,
+//!   scanning every `scan_spacing_m` of travel and at the goal (after
+//!   turning to the goal's heading), and integrates every scan into the
+//!   coverage map, the occupancy grid and the scan counts, the very same
+//!   beams. Poses are exact: no localisation error.
+//! - **No echo**: a reading at the maximum range clears only the cells
+//!   before the first obstacle the coverage map already holds along its
+//!   axis (ML coverage above 0.5, or a contact), the same in all three maps
+//!   ([`ExplorationConfig::occlude_no_echo`], on by default). A sonar's
+//!   specular miss of a known wall says nothing of what lies behind it;
+//!   integrated to the maximum range, as the sensor model alone has it,
+//!   oblique misses erase the walls the perpendicular echoes found (in the
+//!   built-in corridor the robot then plans through walls on most steps).
+//! - **Contacts**: where the world stops the robot short of its target (the
+//!   map showed the way free), the robot stops at its last free point,
+//!   scans, integrates the contact into the coverage map (the cell it ran
+//!   into and its neighbours along the surface: at least half covered,
+//!   [`CoverageMap::integrate_contact`](crate::CoverageMap::integrate_contact))
+//!   and the occupancy grid (occupied), backs off a cell and replans. The
+//!   robot remembers its contacts: the strategies plan on the coverage map
+//!   with every contact cell certainly covered
+//!   ([`CoverageMap::with_contacts`](crate::CoverageMap::with_contacts)), so
+//!   a wall the sensor misses cannot lure the robot back. A goal it could
+//!   make no headway towards (less than a centimetre) is never chosen again.
+//! - **Planning radius**: paths are planned for a disc one cell wider than
+//!   the robot, since a cell less than half covered reads free.
+//! - **The reachable region**: the cells the robot can reach through known
+//!   free space, plus a shell of the planning radius and the sensor's end
+//!   band (coverage) or one cell (counting) around them: an unexplored
+//!   doorway is in it, the unknown outside a building is not
+//!   ([`Exploration::region`]).
+//! - **Coverage** ([`Strategy::Coverage`]): eq. 14 through the
+//!   [`Planner`](crate::planner::Planner), candidates on a lattice of
+//!   `candidate_stride_m`, at least `min_travel_m` away, promising more than
+//!   `ln bins - epsilon` nats (what making one unknown cell certain is
+//!   worth). Ends [`Termination::Certain`] when every region cell is below
+//!   epsilon, [`Termination::Stagnated`] when the rest have stagnated (the
+//!   paper's rule) or when for 20 steps no more region cells became
+//!   certain or stagnated and the region's entropy fell by less than that
+//!   least gain a step (cells split between two bins sit near `ln 2` nats,
+//!   above epsilon, for ever), [`Termination::NoGoal`] when no candidate is
+//!   worth visiting. A goal reached whose step gained less than that least
+//!   gain is not chosen again.
+//! - **Counting** ([`Strategy::Counting`]): the nearest candidate from which
+//!   the beams, traced on the ML map, would intercept a region cell counted
+//!   fewer than `n` times; cells a visit failed to count three times are
+//!   given up. Ends [`Termination::NoGoal`].
+//! - **Frontier** ([`Strategy::Frontier`]): the nearest reachable group of
+//!   known-free cells of the occupancy grid next to unknown ones (groups of
+//!   fewer cells than the robot's diameter spans dropped). Ends
+//!   [`Termination::NoGoal`].
+//!
 //! # Example
-//! A robot with one laser beam in an empty 4 m x 4 m room whose walls its
-//! motion stops it at.
+//! A robot with a ring of 90 laser beams in an empty 4 m x 4 m room whose
+//! walls its motion stops it at.
 //! ```
 //! use covmap_core::exploration::{
 //!     AnySensorModel, Exploration, ExplorationSetup, Motion, ScanSource, Strategy, Travel,
@@ -58,6 +112,8 @@ mod result;
 mod sensor;
 mod source;
 mod strategy;
+#[cfg(test)]
+mod test_maps;
 
 pub use config::ExplorationConfig;
 pub use evaluation::{high_entropy_fraction, mean_absolute_error};

@@ -58,7 +58,7 @@ pub(super) fn reachable_region(
 
 /// `mask` (one flag a cell of `grid`, row-major) grown by `radius_m`: every
 /// cell whose centre lies within `radius_m` of the centre of a cell of
-/// `mask`. The region's shell (see the [module documentation](self)), and a
+/// `mask`. The region's shell (see the [module documentation](crate::exploration)), and a
 /// simulation's evaluation cells, are grown so.
 ///
 /// # Panics
@@ -179,6 +179,36 @@ fn grow(grid: &Grid, mask: &[bool], offsets: &[(i64, i64)]) -> Vec<bool> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::exploration::test_maps::{ROOM, scanned_room};
+
+    /// The region takes in an unexplored doorway (unknown cells within the
+    /// shell of where the robot can go) but not the unknown space outside
+    /// the walls, nor the far side of a wall beyond its end band.
+    #[test]
+    fn an_open_doorway_is_in_the_region_the_outside_is_not() {
+        let (map, _, pose) = scanned_room(true, 12);
+        let grid = *map.grid();
+        let navigator = navigator(0.25, &grid, 0.5).unwrap();
+        let region = reachable_region(&navigator, &map, &pose, 0.2).unwrap();
+        let at = |x: f64, y: f64| region[grid.index(grid.world_to_cell(x, y).unwrap()).unwrap()];
+        let [x0, y0, x1, y1] = ROOM;
+        assert!(at(3.0, 2.5), "the room");
+        assert!(at(x1 + 0.12, 2.7), "the doorway");
+        assert!(at(x1 + 0.1, 1.5), "the band behind the east wall");
+        for (x, y) in [
+            (x0 - 0.5, 2.5),
+            (3.0, y1 + 0.6),
+            (3.0, y0 - 0.8),
+            (x1 + 0.8, 1.5),
+        ] {
+            assert!(!at(x, y), "({x}, {y}) outside the walls");
+        }
+        let entropy = map.entropy();
+        let doorway = grid
+            .index(grid.world_to_cell(x1 + 0.12, 2.7).unwrap())
+            .unwrap();
+        assert!(entropy[doorway] > 2.7, "the doorway is unknown");
+    }
 
     /// Growing only the edge cells gives the same set as growing every cell.
     #[test]

@@ -24,10 +24,12 @@
 //! a beam is taken to read its median predicted reading and to intercept
 //! what a reading of that length would.
 //!
-//! A prediction can be wrong (the ML map is not the world). When the robot
-//! has reached a goal and scanned there, every unexplored cell it went for
-//! whose count did not grow has missed once; a cell that has missed three
-//! times is given up: no goal is chosen for it again.
+//! A prediction can be wrong (the ML map is not the world), and a cell only
+//! long, discounted beams reach may need far more visits than `n`. When the
+//! robot has reached a goal and scanned there, every unexplored cell it went
+//! for whose count grew by less than one full interception (and did not
+//! reach `n`) has missed once; a cell that has missed three times is given
+//! up: no goal is chosen for it again.
 //!
 //! # Termination
 //! [`Termination::NoGoal`]: no candidate would intercept an unexplored cell.
@@ -128,7 +130,7 @@ impl Counting {
         }
         let counts = view.occupancy.counts().counts();
         for &(cell, before) in &self.targets {
-            if counts[cell] <= before {
+            if counts[cell] < (before + 1.0).min(self.n) {
                 self.misses[cell] = self.misses[cell].saturating_add(1);
             }
         }

@@ -15,15 +15,18 @@
 //!   is left.
 //!
 //! # The reachable region
-//! Coverage's termination and counting's "known, reachable region" are the
-//! same set of cells ([`region`](super::region)): the cells the robot's
+//! Coverage's termination and counting's "known, reachable region" start
+//! from the same cells ([`region`](super::region)): those the robot's
 //! centre can reach through space the coverage map knows to be free, plus
-//! the shell of cells within the robot's (planning) radius and the sensor
-//! model's end band (`band_m`) of them. An unexplored doorway lies in that
-//! shell (the robot stops a radius short of unknown cells, and the doorway's
-//! cells are within a radius of where it stops), so it keeps the run going;
-//! the unknown margin outside a building lies behind walls the robot cannot
-//! pass and more than the band behind their faces, so it does not.
+//! a shell around them: the planning radius and the sensor model's end
+//! band (`band_m`) for coverage (the cells the disc and the readings' end
+//! bands touch), the planning radius and one cell for counting (the cells
+//! the disc touches and the end points' cells: what a count can reach). An
+//! unexplored doorway lies in that shell (the robot stops a radius short of
+//! unknown cells, and the doorway's cells are within a radius of where it
+//! stops), so it keeps the run going; the unknown margin outside a building
+//! lies behind walls the robot cannot pass and more than the band behind
+//! their faces, so it does not.
 
 mod counting;
 mod coverage;
@@ -52,7 +55,8 @@ pub const DEFAULT_DISCOUNT_BEYOND_M: f64 = 2.0;
 ///
 /// Build one with [`Strategy::coverage`], [`Strategy::counting`] or
 /// [`Strategy::frontier`], which check the values; a run checks them again
-/// ([`Strategy::validate`]).
+/// ([`Strategy::validate`]). How each chooses its goals and when it is done:
+/// the [module documentation](crate::exploration).
 ///
 /// # Example
 /// ```
@@ -207,11 +211,16 @@ pub(super) enum Chooser {
 
 impl Chooser {
     /// The strategy's state at the start of a run on `grid` (validated).
-    pub fn new(strategy: &Strategy, config: &ExplorationConfig, grid: &Grid) -> Result<Self> {
+    pub fn new(
+        strategy: &Strategy,
+        config: &ExplorationConfig,
+        grid: &Grid,
+        bins: usize,
+    ) -> Result<Self> {
         strategy.validate()?;
         Ok(match *strategy {
             Strategy::Coverage { alpha } => {
-                Self::Coverage(coverage::Coverage::new(alpha, config, grid)?)
+                Self::Coverage(coverage::Coverage::new(alpha, config, grid, bins)?)
             }
             Strategy::Counting { n, .. } => Self::Counting(counting::Counting::new(n, grid)),
             Strategy::Frontier => Self::Frontier(frontier::Frontier::new(grid)),
