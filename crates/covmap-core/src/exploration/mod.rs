@@ -39,10 +39,11 @@
 //! - **Planning radius**: paths are planned for a disc one cell wider than
 //!   the robot, since a cell less than half covered reads free.
 //! - **The reachable region**: the cells the robot can reach through known
-//!   free space, plus a shell of the planning radius and the sensor's end
-//!   band (coverage) or one cell (counting) around them: an unexplored
-//!   doorway is in it, the unknown outside a building is not
-//!   ([`Exploration::region`]).
+//!   free space (of the coverage map; counting: of the occupancy grid, what
+//!   the beams have seen), plus a shell of the planning radius and the
+//!   sensor's end band (coverage) or one cell (counting) around them: an
+//!   unexplored doorway is in it, the unknown outside a building is not
+//!   ([`Exploration::region`]: coverage's).
 //! - **Coverage** ([`Strategy::Coverage`]): eq. 14 through the
 //!   [`Planner`](crate::planner::Planner), candidates on a lattice of
 //!   `candidate_stride_m`, at least `min_travel_m` away, promising more than
@@ -57,8 +58,9 @@
 //!   gain is not chosen again.
 //! - **Counting** ([`Strategy::Counting`]): the nearest candidate from which
 //!   the beams, traced on the ML map, would intercept a region cell counted
-//!   fewer than `n` times; cells a visit failed to count three times are
-//!   given up. Ends [`Termination::NoGoal`].
+//!   fewer than `n` times (beams beyond `discount_beyond_m` count
+//!   `discount_beyond_m / d`); a cell three visits failed to add a full
+//!   interception to is given up. Ends [`Termination::NoGoal`].
 //! - **Frontier** ([`Strategy::Frontier`]): the nearest reachable group of
 //!   known-free cells of the occupancy grid next to unknown ones (groups of
 //!   fewer cells than the robot's diameter spans dropped). Ends

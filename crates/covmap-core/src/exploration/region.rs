@@ -19,7 +19,8 @@
 
 use crate::coverage_map::CoverageMap;
 use crate::error::Result;
-use crate::grid::Grid;
+use crate::grid::{Cell, Grid};
+use crate::occupancy::OccupancyGrid;
 use crate::planner::{Planner, PlannerConfig, Reachability, shortest_paths};
 use crate::pose::{Pose, check_pose};
 
@@ -134,6 +135,33 @@ pub(super) fn paths_from(
     }
     let reach = shortest_paths(grid, &passable, start)?;
     Ok((free, reach))
+}
+
+/// Which cells of `occupancy` are known (some evidence reached them), and
+/// which known free (log-odds below 0).
+pub(super) fn known_cells(occupancy: &OccupancyGrid) -> (Vec<bool>, Vec<bool>) {
+    let known = occupancy.observed();
+    let known_free = known
+        .iter()
+        .zip(occupancy.log_odds())
+        .map(|(&k, &l)| k && l < 0.0)
+        .collect();
+    (known, known_free)
+}
+
+/// The cells that block a robot navigating `occupancy`: every cell not
+/// known free, and every cell it ran into (`contact_cells`), whatever the
+/// readings say since.
+pub(super) fn blocked_on_occupancy(
+    occupancy: &OccupancyGrid,
+    contact_cells: &[Cell],
+) -> Result<Vec<bool>> {
+    let (_, known_free) = known_cells(occupancy);
+    let mut blocked: Vec<bool> = known_free.iter().map(|f| !f).collect();
+    for &cell in contact_cells {
+        blocked[occupancy.grid().index(cell)?] = true;
+    }
+    Ok(blocked)
 }
 
 /// The offsets `(rows, columns)` within `radius` cells for which `keep` holds.

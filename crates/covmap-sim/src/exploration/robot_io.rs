@@ -61,8 +61,9 @@ impl ScanSource for WorldScans {
 
 /// The disc robot driving in the true world: a straight drive goes as far
 /// as [`Robot::free_travel_m`] lets it, and stops [`STANDOFF_M`] short of a
-/// contact; the contact point is the point of the world's boundary nearest
-/// to the disc's centre where it touched.
+/// contact (a target itself closer than that to an obstacle ahead is a
+/// contact too); the contact point is the point of the world's boundary
+/// nearest to the disc's centre where it touched.
 #[derive(Clone, Debug)]
 pub struct WorldMotion {
     world: Arc<World>,
@@ -83,10 +84,9 @@ impl WorldMotion {
 impl Motion for WorldMotion {
     fn drive(&mut self, from_m: [f64; 2], to_m: [f64; 2]) -> covmap_core::Result<Travel> {
         let length = (to_m[0] - from_m[0]).hypot(to_m[1] - from_m[1]);
-        let free = self.robot.free_travel_m(&self.world, from_m, to_m);
-        if free >= length {
+        if !(length > 0.0) {
             return Ok(Travel {
-                travelled_m: length,
+                travelled_m: 0.0,
                 contact_m: None,
             });
         }
@@ -94,6 +94,20 @@ impl Motion for WorldMotion {
             (to_m[0] - from_m[0]) / length,
             (to_m[1] - from_m[1]) / length,
         ];
+        // A target closer than the stand-off to an obstacle ahead is a
+        // contact too: the robot never stops touching (it could not move off
+        // again).
+        let beyond = [
+            to_m[0] + direction[0] * STANDOFF_M,
+            to_m[1] + direction[1] * STANDOFF_M,
+        ];
+        let free = self.robot.free_travel_m(&self.world, from_m, beyond);
+        if free >= length + STANDOFF_M {
+            return Ok(Travel {
+                travelled_m: length,
+                contact_m: None,
+            });
+        }
         let touching = [
             from_m[0] + direction[0] * free,
             from_m[1] + direction[1] * free,
@@ -110,7 +124,7 @@ impl Motion for WorldMotion {
             None => touching,
         };
         Ok(Travel {
-            travelled_m: (free - STANDOFF_M).max(0.0),
+            travelled_m: (free - STANDOFF_M).clamp(0.0, length),
             contact_m: Some(contact_m),
         })
     }

@@ -13,10 +13,17 @@
 //! until everything was seen once".
 //!
 //! # Choice
-//! Candidates are the cells on the lattice of `candidate_stride_m` where the
-//! robot (at the planning radius) fits and which it can reach through known
-//! free space of the coverage map, at least `min_travel_m` away along the
-//! path. The robot goes to the nearest one (by path length; ties to the
+//! Scan counting knows a cell once a beam has intercepted it, so the robot
+//! navigates as the frontier strategy does, on what the beams have seen:
+//! the occupancy grid's known-free cells (and never a cell it ran into).
+//! Its region is the cells it can reach so, and those within the planning
+//! radius and one cell of them (the cells its disc touches and the end
+//! points' cells: what a count can reach). (On the coverage map a cell one
+//! long beam has crossed may still be unknown, and the robot would never
+//! pass the doorway of the room it starts in.) Candidates are the cells on
+//! the lattice of `candidate_stride_m` where the robot (at the planning
+//! radius) fits and which it can reach, at least `min_travel_m` away along
+//! the path. The robot goes to the nearest one (by path length; ties to the
 //! lower cell index) from which its sensor would intercept at least one
 //! unexplored cell of the reachable region. Interceptions are predicted by
 //! tracing every beam in the current ML coverage map (the sensor's forward
@@ -36,11 +43,10 @@
 
 use super::{Decision, Outcome, View};
 use crate::error::Result;
-use crate::exploration::region::{navigator, reachable_region};
+use crate::exploration::region::{blocked_on_occupancy, dilate, paths_from, planning_radius_m};
 use crate::exploration::result::Termination;
 use crate::footprint::visit;
 use crate::grid::Grid;
-use crate::planner::Planner;
 use crate::pose::Pose;
 use crate::sensor::{SensorModel, trace_readings};
 
@@ -55,7 +61,6 @@ pub(crate) struct Counting {
     misses: Vec<u8>,
     /// The cells the last goal was chosen for, and their counts then.
     targets: Vec<(usize, f32)>,
-    navigator: Option<Planner>,
 }
 
 impl Counting {
@@ -64,24 +69,17 @@ impl Counting {
             n: n as f32,
             misses: vec![0; grid.len()],
             targets: Vec::new(),
-            navigator: None,
         }
     }
 
     pub fn decide(&mut self, view: &View) -> Result<Decision> {
-        let navigator = match &self.navigator {
-            Some(planner) => planner,
-            None => self
-                .navigator
-                .insert(navigator(view.config.robot_radius_m, view.grid(), 0.0)?),
-        };
+        let grid = view.grid();
         let model = view.model.as_dyn();
-        let region = reachable_region(
-            navigator,
-            view.planning_map,
-            &view.pose,
-            view.grid().resolution_m(),
-        )?;
+        let radius_m = planning_radius_m(view.config.robot_radius_m, grid);
+        let blocked = blocked_on_occupancy(view.occupancy, view.contact_cells)?;
+        let (free, reach) = paths_from(grid, &blocked, radius_m, &view.pose)?;
+        let reachable: Vec<bool> = reach.costs().iter().map(|c| c.is_finite()).collect();
+        let region = dilate(grid, &reachable, radius_m + grid.resolution_m());
         let counts = view.occupancy.counts().counts();
         let unexplored: Vec<bool> = (0..region.len())
             .map(|i| region[i] && counts[i] < self.n && self.misses[i] < GIVE_UP_AFTER)
@@ -89,9 +87,6 @@ impl Counting {
         if !unexplored.iter().any(|&u| u) {
             return Ok(Decision::Done(Termination::NoGoal));
         }
-        let free = navigator.free_space(view.planning_map);
-        let reach = navigator.reachability(view.planning_map, &view.pose)?;
-        let grid = view.grid();
         let stride =
             ((view.config.candidate_stride_m / grid.resolution_m()).round() as usize).max(1);
         let mut candidates = Vec::new();

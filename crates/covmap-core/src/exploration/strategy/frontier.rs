@@ -29,10 +29,11 @@
 
 use super::{Decision, Outcome, View};
 use crate::error::Result;
-use crate::exploration::region::{paths_from, planning_radius_m};
+use crate::exploration::region::{
+    blocked_on_occupancy, known_cells, paths_from, planning_radius_m,
+};
 use crate::exploration::result::Termination;
 use crate::grid::Grid;
-use crate::occupancy::OccupancyGrid;
 use crate::pose::Pose;
 
 /// The frontier strategy's state.
@@ -53,12 +54,8 @@ impl Frontier {
     pub fn decide(&mut self, view: &View) -> Result<Decision> {
         let grid = view.grid();
         let radius_m = planning_radius_m(view.config.robot_radius_m, grid);
-        let (known, mut known_free) = known_cells(view.occupancy);
-        // The cells the robot ran into block, whatever the readings say since.
-        for &cell in view.contact_cells {
-            known_free[grid.index(cell)?] = false;
-        }
-        let blocked: Vec<bool> = known_free.iter().map(|f| !f).collect();
+        let (known, known_free) = known_cells(view.occupancy);
+        let blocked = blocked_on_occupancy(view.occupancy, view.contact_cells)?;
         let (free, reach) = paths_from(grid, &blocked, radius_m, &view.pose)?;
         let frontier: Vec<bool> = frontier_cells(grid, &known, &known_free)
             .into_iter()
@@ -122,17 +119,6 @@ impl Frontier {
         }
         self.group.clear();
     }
-}
-
-/// Which cells are known, and which known free.
-fn known_cells(occupancy: &OccupancyGrid) -> (Vec<bool>, Vec<bool>) {
-    let known = occupancy.observed();
-    let known_free = known
-        .iter()
-        .zip(occupancy.log_odds())
-        .map(|(&k, &l)| k && l < 0.0)
-        .collect();
-    (known, known_free)
 }
 
 /// Known-free cells with an unknown 4-neighbour.

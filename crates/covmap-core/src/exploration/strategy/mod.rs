@@ -15,13 +15,14 @@
 //!   is left.
 //!
 //! # The reachable region
-//! Coverage's termination and counting's "known, reachable region" start
-//! from the same cells ([`region`](super::region)): those the robot's
-//! centre can reach through space the coverage map knows to be free, plus
-//! a shell around them: the planning radius and the sensor model's end
-//! band (`band_m`) for coverage (the cells the disc and the readings' end
-//! bands touch), the planning radius and one cell for counting (the cells
-//! the disc touches and the end points' cells: what a count can reach). An
+//! Coverage's termination and counting's "known, reachable region" are
+//! built alike ([`region`](super::region)): the cells the robot's centre
+//! can reach through known free space (the coverage map's for coverage,
+//! the occupancy grid's, what the beams have seen, for counting), plus a
+//! shell around them: the planning radius and the sensor model's end band
+//! (`band_m`) for coverage (the cells the disc and the readings' end bands
+//! touch), the planning radius and one cell for counting (the cells the
+//! disc touches and the end points' cells: what a count can reach). An
 //! unexplored doorway lies in that shell (the robot stops a radius short of
 //! unknown cells, and the doorway's cells are within a radius of where it
 //! stops), so it keeps the run going; the unknown margin outside a building
@@ -204,7 +205,8 @@ pub(super) struct Outcome {
 
 /// A strategy at work: its settings and what it remembers between steps.
 pub(super) enum Chooser {
-    Coverage(coverage::Coverage),
+    // Boxed: the planner and its state outweigh the other strategies'.
+    Coverage(Box<coverage::Coverage>),
     Counting(counting::Counting),
     Frontier(frontier::Frontier),
 }
@@ -219,9 +221,9 @@ impl Chooser {
     ) -> Result<Self> {
         strategy.validate()?;
         Ok(match *strategy {
-            Strategy::Coverage { alpha } => {
-                Self::Coverage(coverage::Coverage::new(alpha, config, grid, bins)?)
-            }
+            Strategy::Coverage { alpha } => Self::Coverage(Box::new(coverage::Coverage::new(
+                alpha, config, grid, bins,
+            )?)),
             Strategy::Counting { n, .. } => Self::Counting(counting::Counting::new(n, grid)),
             Strategy::Frontier => Self::Frontier(frontier::Frontier::new(grid)),
         })
