@@ -193,19 +193,12 @@ impl CoverageMap {
     /// `grid.len()`) that is no scan, and keep its entropy, if the history
     /// is kept.
     pub(super) fn record_cell_history(&mut self, index: usize) {
-        let Self {
-            bins,
-            data,
-            history,
-            ..
-        } = self;
-        let Some(history) = history.as_deref_mut() else {
-            return;
-        };
-        let measured = history.count[index] as usize;
-        history.entropies[index][measured % (STAGNATION_MEASUREMENTS + 1)] =
-            histogram::entropy(&data[index * *bins..(index + 1) * *bins]);
-        history.count[index] = history.count[index].saturating_add(1);
+        if let Some(history) = self.history.as_deref_mut() {
+            history.measure(
+                index,
+                &self.data[index * self.bins..(index + 1) * self.bins],
+            );
+        }
     }
 
     /// Count a validated scan as one measurement of every cell it updates,
@@ -248,13 +241,18 @@ impl CoverageMap {
                 },
             );
         }
-        let len = STAGNATION_MEASUREMENTS + 1;
         for i in touched {
-            let measured = history.count[i] as usize;
-            history.entropies[i][measured % len] =
-                histogram::entropy(&data[i * *bins..(i + 1) * *bins]);
-            history.count[i] = history.count[i].saturating_add(1);
+            history.measure(i, &data[i * *bins..(i + 1) * *bins]);
         }
+    }
+}
+
+impl History {
+    /// Count one measurement of cell `i`, whose histogram is now `h`.
+    fn measure(&mut self, i: usize, h: &[f32]) {
+        let measured = self.count[i] as usize;
+        self.entropies[i][measured % (STAGNATION_MEASUREMENTS + 1)] = histogram::entropy(h);
+        self.count[i] = self.count[i].saturating_add(1);
     }
 }
 

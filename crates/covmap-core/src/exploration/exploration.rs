@@ -26,7 +26,7 @@ use super::config::ExplorationConfig;
 use super::region;
 use super::result::{ExplorationResult, StepReport, Termination, Timing, Trace, Trajectory};
 use super::sensor::AnySensorModel;
-use super::source::{Motion, ScanSource};
+use super::source::{Motion, ScanSource, Travel};
 use super::strategy::{Chooser, Decision, Outcome, Strategy, View};
 use crate::counting::ScanCounts;
 use crate::coverage_map::CONTACT_COVERAGE;
@@ -343,20 +343,9 @@ impl<S: ScanSource, M: Motion> Exploration<S, M> {
                         here[1] + direction[1] * leg_m,
                     ]
                 };
-                let started = Instant::now();
-                let travel = self.motion.drive(here, to)?;
-                self.timing.sensing_s += started.elapsed().as_secs_f64();
-
-                let travelled_m = travel.travelled_m.clamp(0.0, leg_m);
-                self.pose = Pose::new(
-                    here[0] + direction[0] * travelled_m,
-                    here[1] + direction[1] * travelled_m,
-                    direction[1].atan2(direction[0]),
-                );
-                self.trajectory.push(self.pose, false);
-                self.path_length_m += travelled_m;
-                self.since_scan_m += travelled_m;
-                drive.travelled_m += travelled_m;
+                let heading = direction[1].atan2(direction[0]);
+                let travel = self.drive_straight(to, direction, leg_m, heading)?;
+                drive.travelled_m += travel.travelled_m;
 
                 if let Some(contact_m) = travel.contact_m {
                     self.scan_here()?;
@@ -485,22 +474,43 @@ impl<S: ScanSource, M: Motion> Exploration<S, M> {
             return Ok(0.0);
         }
         let away = [dx / length, dy / length];
-        let here = [self.pose.x_m, self.pose.y_m];
         let to = [
-            here[0] + away[0] * distance_m,
-            here[1] + away[1] * distance_m,
+            self.pose.x_m + away[0] * distance_m,
+            self.pose.y_m + away[1] * distance_m,
         ];
+        // Backing up: the robot keeps facing the way it came.
+        let travel = self.drive_straight(to, away, distance_m, self.pose.theta_rad)?;
+        Ok(travel.travelled_m)
+    }
+
+    /// Drive straight towards `to`, `distance_m` away along the unit vector
+    /// `direction`, facing `theta_rad`, with the motion: the robot ends where
+    /// the motion stopped it, the pose on the trajectory, the distance on
+    /// the path. Returns the distance driven and the contact, if any.
+    fn drive_straight(
+        &mut self,
+        to: [f64; 2],
+        direction: [f64; 2],
+        distance_m: f64,
+        theta_rad: f64,
+    ) -> Result<Travel> {
+        let here = [self.pose.x_m, self.pose.y_m];
         let started = Instant::now();
         let travel = self.motion.drive(here, to)?;
         self.timing.sensing_s += started.elapsed().as_secs_f64();
         let travelled_m = travel.travelled_m.clamp(0.0, distance_m);
-        // Backing up: the robot keeps facing the way it came.
-        self.pose.x_m = here[0] + away[0] * travelled_m;
-        self.pose.y_m = here[1] + away[1] * travelled_m;
+        self.pose = Pose::new(
+            here[0] + direction[0] * travelled_m,
+            here[1] + direction[1] * travelled_m,
+            theta_rad,
+        );
         self.trajectory.push(self.pose, false);
         self.path_length_m += travelled_m;
         self.since_scan_m += travelled_m;
-        Ok(travelled_m)
+        Ok(Travel {
+            travelled_m,
+            contact_m: travel.contact_m,
+        })
     }
 
     /// Recompute the entropy map after the scans of a step.

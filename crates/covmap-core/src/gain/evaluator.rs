@@ -2,14 +2,18 @@
 //! per map state, and the evaluation of candidates.
 
 use std::borrow::Cow;
+use std::f64::consts::TAU;
 use std::sync::OnceLock;
 
 use super::fast::{Arith, CellTerms, Queue};
+use super::map_terms::MapTerms;
 use super::schedule::in_groups;
 use super::{GainMethod, GainOptions};
 use crate::coverage_map::CoverageMap;
 use crate::error::Result;
 use crate::footprint::visit;
+use crate::grid::Grid;
+use crate::parallel;
 use crate::pose::{Pose, check_bearings, check_pose};
 use crate::sensor::{
     Footprint, KernelTable, RangeModel, ReadingDistribution, SensorModel, StopCoverage,
@@ -40,10 +44,11 @@ pub struct GainEvaluator<'a> {
     pub(super) table: Cow<'a, KernelTable>,
     pub(super) range: RangeModel,
     pub(super) footprint: Footprint,
-    pub(super) stop: Vec<f32>,
+    /// The coverage of every cell that stops a predicted beam.
+    pub(super) stop: Cow<'a, [f32]>,
     pub(super) step_m: f64,
-    /// What the fast evaluator knows of every cell, built on its first use.
-    pub(super) cell_terms: OnceLock<CellTerms>,
+    /// What the fast evaluator knows of every cell.
+    pub(super) cell_terms: Terms<'a>,
     /// The widest arithmetic the processor offers (detected at run time).
     pub(super) arith: Arith,
 }
@@ -61,24 +66,72 @@ impl<'a> GainEvaluator<'a> {
         model: &M,
         options: GainOptions,
     ) -> Result<Self> {
-        model.validate()?;
-        let resolution = map.grid().resolution_m();
-        let step_m = options.range_step_m.unwrap_or(resolution);
-        check_range_step(step_m, Some(resolution))?;
+        let step_m = Self::check(map, model, options)?;
         let range = *model.range_model();
         let table = map.kernel_table(&range)?;
-        let stop = match options.stop_coverage {
-            StopCoverage::MaximumLikelihood => map.ml(),
-            StopCoverage::Mean => map.mean(),
-        };
         Ok(Self {
             map,
             table,
             range,
             footprint: model.footprint(),
-            stop,
+            stop: Cow::Owned(stop_coverage(map, options.stop_coverage)),
             step_m,
-            cell_terms: OnceLock::new(),
+            cell_terms: Terms::Lazy(OnceLock::new()),
+            arith: Arith::detect(),
+        })
+    }
+
+    /// Errors as [`Self::new`] does, in the same order, for `model` and
+    /// `options` on `map`; else the spacing of the predicted readings.
+    pub(crate) fn check<M: SensorModel + ?Sized>(
+        map: &CoverageMap,
+        model: &M,
+        options: GainOptions,
+    ) -> Result<f64> {
+        model.validate()?;
+        let resolution = map.grid().resolution_m();
+        let step_m = options.range_step_m.unwrap_or(resolution);
+        check_range_step(step_m, Some(resolution))?;
+        Ok(step_m)
+    }
+
+    /// An evaluator for `map` and `model` that reads the per-map work from
+    /// `terms` (brought up to date with `map` by [`MapTerms::update`]) and
+    /// multiplies the kernels of `table`, instead of computing them: what
+    /// [`Self::new`] would compute, so that every gain is the same, bit for
+    /// bit.
+    ///
+    /// # Errors
+    /// As [`Self::new`].
+    ///
+    /// # Panics
+    /// If `terms` were not made for a map of `map`'s size with `options`'
+    /// stop coverage, or `table` does not serve `model` on `map`.
+    pub(crate) fn with_terms<M: SensorModel + ?Sized>(
+        map: &'a CoverageMap,
+        model: &M,
+        options: GainOptions,
+        table: &'a KernelTable,
+        terms: &'a MapTerms,
+    ) -> Result<Self> {
+        let step_m = Self::check(map, model, options)?;
+        let range = *model.range_model();
+        assert!(
+            table.serves(&range, map.grid().resolution_m(), map.bins()),
+            "the kernel table is not the model's"
+        );
+        assert!(
+            terms.fits(map, options.stop_coverage),
+            "the terms are not this map's"
+        );
+        Ok(Self {
+            map,
+            table: Cow::Borrowed(table),
+            range,
+            footprint: model.footprint(),
+            stop: Cow::Borrowed(&terms.stop),
+            step_m,
+            cell_terms: Terms::Given(&terms.cells),
             arith: Arith::detect(),
         })
     }
@@ -107,11 +160,7 @@ impl<'a> GainEvaluator<'a> {
         self.validate(poses, bearings)?;
         let evaluator = match method {
             GainMethod::Exact => Evaluator::Exact,
-            // What the fast evaluator knows of every cell, computed once.
-            GainMethod::Fast => Evaluator::Fast(
-                self.cell_terms
-                    .get_or_init(|| CellTerms::new(self.map, &self.table)),
-            ),
+            GainMethod::Fast => Evaluator::Fast(self.cell_terms()),
         };
         let beam = |pose: &Pose, bearing: f64, queue: &mut Queue| -> f64 {
             let origin = [pose.x_m, pose.y_m];
@@ -122,6 +171,42 @@ impl<'a> GainEvaluator<'a> {
             }
         };
         Ok(in_groups(self.map.grid(), poses, bearings, beam))
+    }
+
+    /// The fast evaluator's expected gain (nats) of each beam of `beams`, a
+    /// pose and a bearing relative to its heading: the terms
+    /// [`Self::evaluate`] sums into a candidate's gain
+    /// ([`beam_sum`](super::schedule::beam_sum) sums them as it does). A
+    /// beam's gain depends on its pose and bearing alone, whatever beams it
+    /// is evaluated with. In parallel with the feature `parallel`.
+    ///
+    /// # Errors
+    /// As [`Self::evaluate`], for each beam's pose and bearing.
+    pub(crate) fn beam_gains(&self, beams: &[(Pose, f64)]) -> Result<Vec<f64>> {
+        for (pose, bearing) in beams {
+            self.validate(std::slice::from_ref(pose), std::slice::from_ref(bearing))?;
+        }
+        let terms = self.cell_terms();
+        // Beams evaluated together, in the order of their directions, so
+        // that consecutive ones find much of their data in the cache.
+        const TOGETHER: usize = 64;
+        let chunk = |beams: &[(Pose, f64)]| -> Vec<f64> {
+            let mut order: Vec<(f64, usize)> = beams
+                .iter()
+                .enumerate()
+                .map(|(k, (pose, bearing))| ((pose.theta_rad + bearing).rem_euclid(TAU), k))
+                .collect();
+            order.sort_by(|x, y| x.0.total_cmp(&y.0).then(x.1.cmp(&y.1)));
+            let mut queue = Queue::default();
+            let mut gains = vec![0.0; beams.len()];
+            for (_, k) in order {
+                let (pose, bearing) = beams[k];
+                let angle = pose.theta_rad + bearing;
+                gains[k] = self.fast_beam(terms, [pose.x_m, pose.y_m], angle, &mut queue);
+            }
+            gains
+        };
+        Ok(parallel::map(beams.chunks(TOGETHER).collect(), chunk).concat())
     }
 
     /// How many (beam, cell) pairs the fast evaluator visits for these
@@ -149,15 +234,16 @@ impl<'a> GainEvaluator<'a> {
     /// Errors unless every pose is finite and inside the map, and every
     /// bearing gives a finite direction from each.
     fn validate(&self, poses: &[Pose], bearings: &[f64]) -> Result<()> {
-        if poses.is_empty() {
-            // No direction to form: the bearings themselves.
-            return check_bearings(0.0, bearings);
+        validate_candidates(self.map.grid(), poses, bearings)
+    }
+
+    /// What the fast evaluator knows of every cell: given, or computed on
+    /// first use.
+    pub(super) fn cell_terms(&self) -> &CellTerms {
+        match &self.cell_terms {
+            Terms::Lazy(terms) => terms.get_or_init(|| CellTerms::new(self.map, &self.table)),
+            Terms::Given(terms) => terms,
         }
-        for pose in poses {
-            check_pose(self.map.grid(), pose)?;
-            check_bearings(pose.theta_rad, bearings)?;
-        }
-        Ok(())
     }
 
     /// The predicted readings of the beam from `origin` along `angle`.
@@ -180,6 +266,37 @@ impl<'a> GainEvaluator<'a> {
             .0
             .max(last + self.range.band_m)
     }
+}
+
+/// Errors as [`GainEvaluator::evaluate`] does, in the same order, for
+/// `poses` on `grid` and `bearings`: unless every pose is finite and inside
+/// the grid, and every bearing gives a finite direction from each.
+pub(crate) fn validate_candidates(grid: &Grid, poses: &[Pose], bearings: &[f64]) -> Result<()> {
+    if poses.is_empty() {
+        // No direction to form: the bearings themselves.
+        return check_bearings(0.0, bearings);
+    }
+    for pose in poses {
+        check_pose(grid, pose)?;
+        check_bearings(pose.theta_rad, bearings)?;
+    }
+    Ok(())
+}
+
+/// The coverage of every cell of `map` that stops a predicted beam.
+pub(super) fn stop_coverage(map: &CoverageMap, stop: StopCoverage) -> Vec<f32> {
+    match stop {
+        StopCoverage::MaximumLikelihood => map.ml(),
+        StopCoverage::Mean => map.mean(),
+    }
+}
+
+/// Where an evaluator's [`CellTerms`] come from.
+pub(super) enum Terms<'a> {
+    /// Computed from the map on first use ([`GainEvaluator::new`]).
+    Lazy(OnceLock<CellTerms>),
+    /// Kept up to date by the caller ([`GainEvaluator::with_terms`]).
+    Given(&'a CellTerms),
 }
 
 /// The evaluator a beam's gain is computed by, with what it needs.

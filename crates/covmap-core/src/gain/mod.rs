@@ -39,14 +39,20 @@
 mod evaluator;
 mod exact;
 mod fast;
+mod map_terms;
 mod options;
+mod reads;
 mod schedule;
 #[cfg(test)]
 mod test_maps;
 
 pub use evaluator::GainEvaluator;
+pub(crate) use evaluator::validate_candidates;
 pub use exact::information_gain;
+pub(crate) use map_terms::{MapTerms, stop_coverage_of};
 pub use options::{GainMethod, GainOptions};
+pub(crate) use reads::{TileSet, Tiles};
+pub(crate) use schedule::beam_sum;
 // The forward model of readings lived here before it moved beside the sensor
 // model; its old paths keep working.
 pub use crate::sensor::{

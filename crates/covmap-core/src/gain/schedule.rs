@@ -50,11 +50,7 @@ pub(super) fn in_groups<S: Default>(
         let mut beams: Vec<(f64, usize, f64)> = Vec::with_capacity(members.len() * bearings.len());
         for (slot, &(_, index)) in members.iter().enumerate() {
             for &bearing in bearings {
-                beams.push((
-                    (poses[index].theta_rad + bearing).rem_euclid(std::f64::consts::TAU),
-                    slot,
-                    bearing,
-                ));
+                beams.push((direction(&poses[index], bearing), slot, bearing));
             }
         }
         beams.sort_by(|x, y| x.0.total_cmp(&y.0).then(x.1.cmp(&y.1)));
@@ -74,6 +70,32 @@ pub(super) fn in_groups<S: Default>(
         gains[index] = gain;
     }
     gains
+}
+
+/// The direction of the beam at `bearing` from `pose`, in `[0, 2 pi)`: the
+/// order a candidate's beams are summed in.
+fn direction(pose: &Pose, bearing: f64) -> f64 {
+    (pose.theta_rad + bearing).rem_euclid(std::f64::consts::TAU)
+}
+
+/// The gain of the candidate at `pose` from the gains of its beams
+/// (`beams[j]` of the beam at `bearings[j]`), summed as [`in_groups`] sums
+/// them: from 0, in the order of their directions (beams of one direction in
+/// the order of their bearings). The same bits as the candidate's
+/// [`GainEvaluator::evaluate`](super::GainEvaluator::evaluate).
+pub(crate) fn beam_sum(pose: &Pose, bearings: &[f64], beams: &[f64]) -> f64 {
+    debug_assert_eq!(bearings.len(), beams.len());
+    let mut order: Vec<(f64, usize)> = bearings
+        .iter()
+        .enumerate()
+        .map(|(j, &bearing)| (direction(pose, bearing), j))
+        .collect();
+    order.sort_by(|x, y| x.0.total_cmp(&y.0).then(x.1.cmp(&y.1)));
+    let mut total = 0.0;
+    for (_, j) in order {
+        total += beams[j];
+    }
+    total
 }
 
 #[cfg(test)]

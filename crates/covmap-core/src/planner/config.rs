@@ -33,6 +33,22 @@ pub struct PlannerConfig {
     pub epsilon: f64,
     /// Settings of the gain computation.
     pub gain: GainOptions,
+    /// Headings a candidate position is considered with, 1 to
+    /// [`MAX_CANDIDATE_HEADINGS`]: 1 keeps the robot's heading (a full ring
+    /// of sonars sees much the same from any); `k > 1` tries the `k`
+    /// headings `i * 2 pi / k`, each a candidate of its own (for a sensor
+    /// that does not see all around, such as a 180° laser). Absent from a
+    /// stored configuration: 1.
+    #[serde(default = "one_heading")]
+    pub candidate_headings: usize,
+}
+
+/// The most headings a candidate position may be considered with.
+pub const MAX_CANDIDATE_HEADINGS: usize = 64;
+
+/// The default of [`PlannerConfig::candidate_headings`].
+fn one_heading() -> usize {
+    1
 }
 
 impl Default for PlannerConfig {
@@ -48,6 +64,7 @@ impl Default for PlannerConfig {
             unknown_is_free: false,
             epsilon: 0.65,
             gain: GainOptions::default(),
+            candidate_headings: one_heading(),
         }
     }
 }
@@ -110,6 +127,13 @@ impl PlannerConfig {
         if !(self.epsilon > 0.0 && self.epsilon.is_finite()) {
             return bad("epsilon", self.epsilon, "a positive, finite entropy");
         }
+        if !(1..=MAX_CANDIDATE_HEADINGS).contains(&self.candidate_headings) {
+            return bad(
+                "candidate_headings",
+                self.candidate_headings as f64,
+                "a count of headings from 1 to 64",
+            );
+        }
         // The grid is not known yet: the step's bound by the resolution is
         // checked when the gain is evaluated on a map.
         match self.gain.range_step_m {
@@ -147,6 +171,30 @@ mod tests {
             })
             .is_err()
         );
+        for headings in [0, 65, usize::MAX] {
+            let err = Planner::new(PlannerConfig {
+                candidate_headings: headings,
+                ..PlannerConfig::default()
+            })
+            .unwrap_err();
+            assert!(
+                matches!(
+                    err,
+                    CovmapError::InvalidParameter { name: "candidate_headings", value, .. }
+                        if value == headings as f64
+                ),
+                "{err}"
+            );
+        }
+        for headings in [1, 2, 64] {
+            assert!(
+                Planner::new(PlannerConfig {
+                    candidate_headings: headings,
+                    ..PlannerConfig::default()
+                })
+                .is_ok()
+            );
+        }
         let planner = Planner::new(PlannerConfig::default()).unwrap();
         assert!(matches!(
             planner.utilities(&[2.0, 3.0], &[1.0]),

@@ -22,8 +22,28 @@
 //! expected information gain exceeds `min_gain_nats` (a negligible gain makes no
 //! goal). Of those, the pose maximising
 //! `alpha * gain / max gain - (1 - alpha) * cost / max cost` is chosen (ties to
-//! the lower cell index). Candidates keep the robot's heading: a full sonar ring
-//! sees the same from any heading up to its spacing.
+//! the lower index). With `candidate_headings = 1` (the default) candidates
+//! keep the robot's heading: a full sonar ring sees the same from any heading
+//! up to its spacing. A sensor that does not see all around (a 180° laser)
+//! should set `candidate_headings = k > 1`: every position is then `k`
+//! candidates, at the fixed headings `i * 2 pi / k` (fixed, not turned with
+//! the robot, so that a position's gains can be kept from step to step), and
+//! the pose of best utility wins, heading included.
+//!
+//! # Planning again after a scan
+//! [`Planner::next_viewpoint`] computes everything from the map.
+//! [`Planner::next_viewpoint_cached`] returns the same plan, bit for bit, but
+//! keeps the gain evaluator's per-map work and every candidate's expected
+//! gain in a [`PlanningCache`], and recomputes only what the map's changes can
+//! have changed: the terms of the changed cells and the gains of candidates
+//! whose beams can reach one. It finds the changed cells itself (by comparing
+//! histograms), so a loop passes it the map as it is, however it was
+//! changed. A scan changes the cells within the sensor's reach, and a gain
+//! reads the cells within its beams' reach (up to walls the map holds as
+//! covered with certainty), so after a scan the candidates farther than about
+//! twice the reach, or behind such walls, keep their gains. Free space, paths
+//! and eq. 14's normalisation are computed anew on every call. See
+//! [`cache`] for what is kept.
 //!
 //! # Termination
 //! Exploration is done when every cell the robot could reach, passing through
@@ -32,6 +52,7 @@
 //! less than 0.001 over its last five measurements
 //! ([`CoverageMap::track_history`](crate::CoverageMap::track_history)).
 
+pub mod cache;
 mod config;
 mod path;
 mod termination;
@@ -40,7 +61,8 @@ mod test_maps;
 mod traversability;
 mod viewpoint;
 
-pub use config::PlannerConfig;
+pub use cache::{CacheStats, PlanningCache};
+pub use config::{MAX_CANDIDATE_HEADINGS, PlannerConfig};
 pub use path::{Reachability, shortest_paths};
 pub use termination::ExplorationStatus;
 pub use viewpoint::{Candidates, Plan, Planner};

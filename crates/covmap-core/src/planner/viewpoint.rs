@@ -7,7 +7,9 @@ use serde::{Deserialize, Serialize};
 use crate::coverage_map::CoverageMap;
 use crate::error::{CovmapError, Result};
 use crate::gain::{GainEvaluator, GainMethod};
+use crate::grid::Grid;
 use crate::planner::config::PlannerConfig;
+use crate::planner::path::Reachability;
 use crate::pose::Pose;
 use crate::sensor::SensorModel;
 
@@ -92,28 +94,64 @@ impl Planner {
         model: &M,
     ) -> Result<Plan> {
         let (free, reach) = self.free_and_reachable(map, pose)?;
-        let grid = map.grid();
+        let (cells, poses) = self.candidates(map.grid(), pose, &free, &reach);
+        let evaluator = GainEvaluator::new(map, model, self.config.gain)?;
+        let gains = evaluator.evaluate(&poses, bearings, GainMethod::Fast)?;
+        self.choose(&reach, &cells, poses, gains)
+    }
+
+    /// The candidate poses for a robot at `pose`, with the cell of each: the
+    /// reachable free cells of the lattice at least `min_travel_m` away,
+    /// each with every heading of [`Self::headings`], in that order.
+    pub(super) fn candidates(
+        &self,
+        grid: &Grid,
+        pose: &Pose,
+        free: &[bool],
+        reach: &Reachability,
+    ) -> (Vec<usize>, Vec<Pose>) {
         let stride =
             ((self.config.candidate_stride_m / grid.resolution_m()).round() as usize).max(1);
-        let mut indices = Vec::new();
+        let headings = self.headings(pose);
+        let mut cells = Vec::new();
+        let mut poses = Vec::new();
         for row in (stride / 2..grid.rows()).step_by(stride) {
             for col in (stride / 2..grid.cols()).step_by(stride) {
                 let i = row * grid.cols() + col;
                 if free[i] && reach.reachable(i) && reach.cost(i) >= self.config.min_travel_m {
-                    indices.push(i);
+                    let [x, y] = grid.cell_center(grid.cell(i));
+                    for &heading in &headings {
+                        cells.push(i);
+                        poses.push(Pose::new(x, y, heading));
+                    }
                 }
             }
         }
-        let poses: Vec<Pose> = indices
-            .iter()
-            .map(|&i| {
-                let [x, y] = grid.cell_center(grid.cell(i));
-                Pose::new(x, y, pose.theta_rad)
-            })
-            .collect();
-        let evaluator = GainEvaluator::new(map, model, self.config.gain)?;
-        let gains = evaluator.evaluate(&poses, bearings, GainMethod::Fast)?;
-        let costs: Vec<f64> = indices.iter().map(|&i| reach.cost(i)).collect();
+        (cells, poses)
+    }
+
+    /// The headings every candidate position is considered with: the
+    /// robot's, or `i * 2 pi / k` for `k = candidate_headings > 1`.
+    pub(super) fn headings(&self, pose: &Pose) -> Vec<f64> {
+        let k = self.config.candidate_headings;
+        if k == 1 {
+            return vec![pose.theta_rad];
+        }
+        (0..k)
+            .map(|i| i as f64 * std::f64::consts::TAU / k as f64)
+            .collect()
+    }
+
+    /// The plan that eq. 14 chooses among the candidates at `poses` (in
+    /// cells `cells`) with expected gains `gains`, for paths `reach`.
+    pub(super) fn choose(
+        &self,
+        reach: &Reachability,
+        cells: &[usize],
+        poses: Vec<Pose>,
+        gains: Vec<f64>,
+    ) -> Result<Plan> {
+        let costs: Vec<f64> = cells.iter().map(|&i| reach.cost(i)).collect();
         let utilities = self.utilities(&gains, &costs)?;
         let chosen = (0..utilities.len())
             .filter(|&k| utilities[k] > f64::NEG_INFINITY)
@@ -124,7 +162,7 @@ impl Planner {
             });
         Ok(Plan {
             pose: chosen.map(|k| poses[k]),
-            path: chosen.map_or_else(Vec::new, |k| reach.path_to(indices[k])),
+            path: chosen.map_or_else(Vec::new, |k| reach.path_to(cells[k])),
             chosen,
             candidates: Candidates {
                 poses,

@@ -48,4 +48,4 @@ mod walk;
 
 pub(super) use arith::Arith;
 pub(super) use batch::Queue;
-pub(super) use cell_terms::CellTerms;
+pub(super) use cell_terms::{CellTerms, Piece};

@@ -9,7 +9,7 @@ use crate::coverage_map::CoverageMap;
 use crate::footprint::{CellVisitor, ROW_BLOCK, cells_of_block, visit};
 use crate::gain::GainEvaluator;
 use crate::histogram::with_bins;
-use crate::sensor::{KernelTable, ReadingLookup};
+use crate::sensor::{KernelTable, ReadingDistribution, ReadingLookup};
 
 impl GainEvaluator<'_> {
     /// The expected gain of one beam from `origin` along `angle`, from the
@@ -38,15 +38,8 @@ impl GainEvaluator<'_> {
                 }
             })
             .collect();
-        // The footprint of the farthest reading that can occur: no cell
-        // beyond it is updated by any (behind a wall the ML map marks as
-        // covered, none), and footprints of growing reaches are nested.
-        let echo_reach = possible.last().map_or(0.0, |echo| echo.reach);
-        let reach = if dist.no_echo > 0.0 {
-            echo_reach.max(none_reach)
-        } else {
-            echo_reach
-        };
+        // The reach of `possible`'s last echo, or of no echo if it can occur.
+        let reach = self.walked_reach(&dist);
         let mut suffix = vec![0.0; possible.len() + 1];
         for j in (0..possible.len()).rev() {
             suffix[j] = suffix[j + 1] + possible[j].p;
@@ -76,6 +69,27 @@ impl GainEvaluator<'_> {
         // Fix the bin count at compile time for the common sizes, so that the
         // per-cell gain is straight vector code.
         with_bins!(self.map.bins(), |N| self.run::<N>(&beam, queue))
+    }
+
+    /// How far the fast evaluator walks the footprint of a beam whose
+    /// predicted readings are `dist`: the reach of the farthest reading that
+    /// can occur (of non-zero probability, or no echo). No cell beyond it is
+    /// updated by any (behind a wall the ML map marks as covered, none), and
+    /// footprints of growing reaches are nested. The cells a beam's gain
+    /// reads are its footprint out to here (and the traced axis, see
+    /// [`GainEvaluator::beam_reads`]).
+    pub(in crate::gain) fn walked_reach(&self, dist: &ReadingDistribution) -> f64 {
+        let (none_reach, _) = self.range.reach(self.range.max_range_m);
+        let echo_reach = dist
+            .probabilities
+            .iter()
+            .rposition(|&p| p > 0.0)
+            .map_or(0.0, |j| self.range.reach(j as f64 * dist.step_m).0);
+        if dist.no_echo > 0.0 {
+            echo_reach.max(none_reach)
+        } else {
+            echo_reach
+        }
     }
 
     /// One beam's sum with `N` bins and the arithmetic `A`, which `has`
