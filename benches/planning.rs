@@ -7,10 +7,9 @@
 //! (`covmap::sim::exploration::SimExploration`, `coverage(0.5)`, default
 //! options). At the positions of its scans (every 0.25 m of its paths and at
 //! its goals) a 24-sonar ring (`SonarModel::default()`) is simulated anew,
-//! all with the start's heading: the loop turns the robot to the planned
-//! heading at every goal, which with one candidate heading is the heading it
-//! planned with (a synchro-drive base keeps it throughout), so that the
-//! candidates' headings repeat from plan to plan. Those scans are replayed,
+//! all with the heading 0: the coverage strategy plans a sensor that sees all
+//! around with that one fixed heading and the loop turns the robot to it at
+//! every goal, so that the candidates' headings repeat from plan to plan. Those scans are replayed,
 //! with a plan (default settings) after every scan:
 //! - once, the whole run with the cache (printed: the candidates computed
 //!   again, of all, and the time planning took against the time the robot
@@ -25,6 +24,10 @@
 //! - `window/.../full` and `window/.../incremental`: the 40 scans from half
 //!   way, each integrated and followed by a plan, without and with the cache
 //!   (the map and the cache of half way copied outside the timing).
+//!
+//! - `run/corridor/coverage`: the loop's whole run of the corridor, scans,
+//!   integration and termination included (printed: its speed against real
+//!   time at 0.5 m/s).
 //!
 //! All on the machine's cores (rayon's default pool), as a robot would plan.
 //!
@@ -60,8 +63,8 @@ impl Run {
 
 /// The exploration loop's `coverage(0.5)` run of `world` to its end (default
 /// options: seed 0, its start, the 24-sonar ring), and the scans of a
-/// 24-sonar ring re-simulated at its scan positions, all with the start's
-/// heading (see the module documentation).
+/// 24-sonar ring re-simulated at its scan positions, all with the heading 0
+/// (see the module documentation).
 fn explore(world: &World, sonar: &SonarModel) -> Run {
     let options = ExploreOptions::default();
     let strategy = Strategy::coverage(0.5).expect("valid strategy");
@@ -75,7 +78,7 @@ fn explore(world: &World, sonar: &SonarModel) -> Run {
         exploration.scans(),
         exploration.path_length_m()
     );
-    let heading = exploration.trajectory().poses[0].theta_rad;
+    let heading = 0.0;
     let poses: Vec<Pose> = exploration
         .trajectory()
         .scan_poses()
@@ -239,5 +242,36 @@ fn planning(c: &mut Criterion) {
     }
 }
 
-criterion_group!(benches, planning);
+/// `run/corridor/coverage`: the exploration loop's whole `coverage(0.5)` run
+/// of the built-in corridor (default options, seed 0), from its start to its
+/// end, with everything the loop does: scans, integration into the three
+/// maps, planning with the cache, the termination rule. Printed: the time
+/// the robot would have driven at 0.5 m/s against the run's wall time.
+fn whole_run(c: &mut Criterion) {
+    let world = Arc::new(World::builtin("corridor").expect("built-in world"));
+    let options = ExploreOptions::default();
+    let strategy = Strategy::coverage(0.5).expect("valid strategy");
+    let run = || {
+        let mut run =
+            SimExploration::new(Arc::clone(&world), strategy, &options).expect("valid run");
+        run.run().expect("a run");
+        run
+    };
+    let started = Instant::now();
+    let once = run();
+    let seconds = started.elapsed().as_secs_f64();
+    let path_m = once.exploration().path_length_m();
+    eprintln!(
+        "corridor, coverage(0.5): {path_m:.1} m in {seconds:.2} s of wall time, {:.0} s at \
+         {SPEED_M_S} m/s: {:.0}x real time",
+        path_m / SPEED_M_S,
+        path_m / SPEED_M_S / seconds
+    );
+    let mut group = c.benchmark_group("run/corridor");
+    group.sample_size(10);
+    group.bench_function("coverage", |b| b.iter(|| std::hint::black_box(run())));
+    group.finish();
+}
+
+criterion_group!(benches, planning, whole_run);
 criterion_main!(benches);

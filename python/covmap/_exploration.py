@@ -125,8 +125,11 @@ class ExplorationResult:
     evaluation_cells: npt.NDArray[np.bool_]
     """The cells the run is judged on, from the true world alone and the
     same for every strategy: the reachable free space (cell centres at least
-    the robot's radius from every obstacle, connected to the start) and every
-    cell within the robot's radius plus the sensor model's end band of it."""
+    the robot's radius from every obstacle, connected to the start), every
+    cell within the robot's radius of it, and every cell holding some
+    obstacle within the robot's radius plus the sensor model's end band of
+    it (free cells behind an obstacle, which no reading sees, are left
+    out)."""
     epsilon: float
     """Entropy above which a cell is uncertain, nats."""
     high_entropy_fraction: float

@@ -34,8 +34,8 @@ impl CoverageMap {
     /// footprint only up to `no_echo_reach_m[i]` metres (at most the maximum
     /// range; echo readings ignore it): a no-echo reading that the caller
     /// takes to have missed an obstacle specularly says nothing of what lies
-    /// behind it. (The exploration loop stops each at the first obstacle its
-    /// map holds along the beam.)
+    /// behind it. (The exploration loop stops each before the nearest
+    /// obstacle its map holds in the reading's footprint.)
     ///
     /// # Errors
     /// As [`CoverageMap::integrate`];

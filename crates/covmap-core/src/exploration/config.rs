@@ -31,8 +31,8 @@ pub struct ExplorationConfig {
     /// The run stops after this many steps ([`Termination::Limit`](super::Termination::Limit)).
     pub max_steps: usize,
     /// Whether a reading at the maximum range ("no echo") clears only the
-    /// cells before the first obstacle the coverage map holds along its
-    /// axis (see the [module documentation](super)), rather than its whole
+    /// cells nearer than the nearest obstacle the coverage map holds in its
+    /// footprint (see the [module documentation](super)), rather than its whole
     /// footprint to the maximum range as the sensor model has it.
     pub occlude_no_echo: bool,
 }

@@ -38,7 +38,7 @@ use crate::histogram;
 use crate::histogram::DEFAULT_BINS;
 use crate::occupancy::{OccupancyGrid, OccupancyModel};
 use crate::pose::{Pose, check_bearings, check_pose};
-use crate::sensor::{Footprint, SensorModel};
+use crate::sensor::SensorModel;
 
 /// How far a contact point is moved into the obstacle to find the cell it
 /// lies in, metres (a point on a cell's edge belongs to one of two cells).
@@ -186,7 +186,7 @@ impl<S: ScanSource, M: Motion> Exploration<S, M> {
             _ => ScanCounts::new(grid),
         };
         let occupancy = OccupancyGrid::with_model(OccupancyModel::default(), counts)?;
-        let chooser = Chooser::new(&strategy, &config, &grid, bins)?;
+        let chooser = Chooser::new(&strategy, &config, &grid, bins, &bearings)?;
         let entropy = map.entropy();
         Ok(Self {
             source,
@@ -672,8 +672,8 @@ impl<S, M> Exploration<S, M> {
     }
 }
 
-/// How far each no-echo reading of a scan clears: to the first cell along
-/// its axis that `map` holds as covered (ML coverage above
+/// How far each no-echo reading of a scan clears: to the nearest cell of
+/// its footprint that `map` holds as covered (ML coverage above
 /// [`CONTACT_COVERAGE`]) or that the robot ran into, at most the maximum
 /// range; echo readings get the maximum range (they ignore it).
 fn no_echo_reaches(
@@ -687,6 +687,7 @@ fn no_echo_reaches(
     let grid = map.grid();
     let (bins, histograms) = (map.bins(), map.histograms());
     let max_range_m = model.range_model().max_range_m;
+    let footprint = model.footprint();
     let half = 0.5 * grid.resolution_m();
     let contacts: Vec<usize> = contact_cells
         .iter()
@@ -710,7 +711,7 @@ fn no_echo_reaches(
                     [pose.x_m, pose.y_m],
                     pose.theta_rad + bearing,
                     max_range_m,
-                    Footprint::Ray,
+                    footprint,
                     &mut |i: usize, d_l: f64| {
                         if d_l - half < reach && covered(i) {
                             reach = (d_l - half).max(0.0);

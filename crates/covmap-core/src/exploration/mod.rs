@@ -18,13 +18,18 @@
 //!   coverage map, the occupancy grid and the scan counts, the very same
 //!   beams. Poses are exact: no localisation error.
 //! - **No echo**: a reading at the maximum range clears only the cells
-//!   before the first obstacle the coverage map already holds along its
-//!   axis (ML coverage above 0.5, or a contact), the same in all three maps
-//!   ([`ExplorationConfig::occlude_no_echo`], on by default). A sonar's
-//!   specular miss of a known wall says nothing of what lies behind it;
-//!   integrated to the maximum range, as the sensor model alone has it,
-//!   oblique misses erase the walls the perpendicular echoes found (in the
-//!   built-in corridor the robot then plans through walls on most steps).
+//!   nearer than the nearest obstacle the coverage map already holds
+//!   anywhere in its footprint (ML coverage above 0.5, or a contact), the
+//!   same in all three maps ([`ExplorationConfig::occlude_no_echo`], on by
+//!   default). A sonar's specular miss of a known wall says nothing of what
+//!   lies behind it; integrated to the maximum range, as the sensor model
+//!   alone has it, oblique misses erase the walls the perpendicular echoes
+//!   found (in the built-in corridor the robot then plans through walls on
+//!   most steps). The whole footprint, not the axis alone: a cone grazing a
+//!   wall along its flank, its axis clear of it, would otherwise clear the
+//!   wall's face under its flank (on the corridor, stopping at the axis
+//!   left the wall's face and inner cells of the north wall reading free
+//!   on long stretches, and the robot touched it 50 times in one run).
 //! - **Contacts**: where the world stops the robot short of its target (the
 //!   map showed the way free), the robot stops at its last free point,
 //!   scans, integrates the contact into the coverage map (the cell it ran
@@ -36,8 +41,9 @@
 //!   ([`CoverageMap::with_contacts`](crate::CoverageMap::with_contacts)), so
 //!   a wall the sensor misses cannot lure the robot back. A goal it could
 //!   make no headway towards (less than a centimetre) is never chosen again.
-//! - **Planning radius**: paths are planned for a disc one cell wider than
-//!   the robot, since a cell less than half covered reads free.
+//! - **Planning radius**: paths are planned for a disc a cell (at least 10 cm) wider than
+//!   the robot, since a cell less than half covered reads free and a sonar
+//!   map often holds the face row of a wall as free (see `region`).
 //! - **The reachable region**: the cells the robot can reach through known
 //!   free space (of the coverage map; counting: of the occupancy grid, what
 //!   the beams have seen), plus a shell of the planning radius and the
@@ -120,7 +126,7 @@ mod test_maps;
 pub use config::ExplorationConfig;
 pub use evaluation::{high_entropy_fraction, mean_absolute_error};
 pub use exploration::{Exploration, ExplorationSetup};
-pub use region::dilate;
+pub use region::{FACE_MARGIN_M, dilate};
 pub use result::{ExplorationResult, StepReport, Termination, Timing, Trace, Trajectory};
 pub use sensor::AnySensorModel;
 pub use source::{Motion, ScanSource, Travel};

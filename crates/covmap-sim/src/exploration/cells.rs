@@ -8,10 +8,14 @@
 //! start's cell through such cells, 8-connected without cutting corners, as
 //! the planner's paths are) and every cell whose centre lies within the
 //! robot's radius and the sensor model's end band (`band_m`) of one of them
-//! ([`dilate`]): the cells the robot's disc touches, and the cells behind an
-//! obstacle's face that a reading ending on the face still updates. It is
-//! the rule by which the coverage strategy judges its own map
-//! ([`covmap_core::exploration`]), applied to the truth.
+//! ([`dilate`]) and holds some obstacle (true coverage above 0): the cells
+//! the robot's disc touches, and the obstacle cells behind a face that a
+//! reading ending on the face still updates. Free cells behind an obstacle
+//! (the outside of a building behind its walls, a room behind a glass
+//! front) are not among them, though the end band of a reading on the
+//! obstacle reaches them: no sensor sees them, and the model's end band
+//! holds them as partly covered whatever they are, so no strategy could
+//! make them certain or right.
 //!
 //! # The start
 //! Without a given start, the robot starts at the centre of a cell drawn
@@ -55,16 +59,32 @@ pub fn clearances(world: &World, grid: &Grid, robot: &Robot) -> Vec<f64> {
 pub fn evaluation_cells(
     grid: &Grid,
     clearance_m: &[f64],
+    truth: &[f64],
     start: &Pose,
     robot_radius_m: f64,
     band_m: f64,
 ) -> Result<Vec<bool>> {
+    if truth.len() != grid.len() {
+        return Err(CovmapError::LengthMismatch {
+            what: "true coverage and grid cells",
+            left: truth.len(),
+            right: grid.len(),
+        }
+        .into());
+    }
     let start_cell = cell_of(grid, start)?;
     let mut free: Vec<bool> = clearance_m.iter().map(|&c| c >= 0.0).collect();
     free[grid.index(start_cell)?] = true;
     let reach = shortest_paths(grid, &free, start_cell)?;
     let reachable: Vec<bool> = reach.costs().iter().map(|c| c.is_finite()).collect();
-    Ok(dilate(grid, &reachable, robot_radius_m + band_m))
+    let touched = dilate(grid, &reachable, robot_radius_m);
+    let banded = dilate(grid, &reachable, robot_radius_m + band_m);
+    Ok(touched
+        .iter()
+        .zip(&banded)
+        .zip(truth)
+        .map(|((&touched, &banded), &coverage)| touched || (banded && coverage > 0.0))
+        .collect())
 }
 
 /// A start for a run seeded `seed` (see the module documentation).
@@ -215,10 +235,17 @@ mod tests {
         }
         assert_eq!(starts[0], choose_start(&grid, &clearance, 0.25, 0).unwrap());
         assert_ne!(starts[0], starts[1]);
-        let cells = evaluation_cells(&grid, &clearance, &starts[0], 0.25, 0.2).unwrap();
-        let outside = grid.index(grid.world_to_cell(-0.45, 1.3).unwrap()).unwrap();
-        let inside = grid.index(grid.world_to_cell(8.0, 1.3).unwrap()).unwrap();
+        let truth = world.coverage(&grid);
+        let cells = evaluation_cells(&grid, &clearance, &truth, &starts[0], 0.25, 0.2).unwrap();
+        let at = |x: f64, y: f64| grid.index(grid.world_to_cell(x, y).unwrap()).unwrap();
+        let (inside, outside) = (at(8.0, 1.3), at(-0.45, 1.3));
         assert!(cells[inside] && !cells[outside]);
+        // The west wall (x in [-0.12, 0]) is judged; the free cell just
+        // behind it, within the end band of the free space, is not.
+        let (wall, behind) = (at(-0.06, 1.3), at(-0.17, 1.3));
+        assert!(truth[wall] > 0.9 && truth[behind] == 0.0);
+        assert!(cells[wall] && !cells[behind]);
+        assert!(evaluation_cells(&grid, &clearance, &truth[1..], &starts[0], 0.25, 0.2).is_err());
         assert!(check_start(&world, &grid, &robot, &Pose::new(2.0, 0.1, 0.0)).is_err());
         assert!(check_start(&world, &grid, &robot, &Pose::new(-5.0, 1.3, 0.0)).is_err());
     }

@@ -96,9 +96,9 @@ impl SimExploration {
         };
         let model = options.model();
         let band_m = model.range_model().band_m;
-        let evaluation_cells =
-            evaluation_cells(&grid, &clearance, &start, robot.radius_m(), band_m)?;
         let truth = world.coverage(&grid);
+        let evaluation_cells =
+            evaluation_cells(&grid, &clearance, &truth, &start, robot.radius_m(), band_m)?;
         let setup = ExplorationSetup {
             grid,
             bins: options.bins,

@@ -8,8 +8,8 @@
 //! prior certain is worth, `ln bins - epsilon` (2.12 nats for 16 bins and
 //! epsilon 0.65; at least the planner's default of 1 nat); of those it takes
 //! the one maximising `alpha * gain / max gain - (1 - alpha) * cost / max
-//! cost`. Paths and costs are for the planning radius (the robot's and one
-//! cell, see [`region`](crate::exploration)), with unknown cells blocking.
+//! cost`. Paths and costs are for the planning radius (the robot's and a cell, at
+//! least 10 cm, see [`region`](crate::exploration)), with unknown cells blocking.
 //!
 //! A goal the robot could not make any headway towards (a failed goal, see
 //! [`Exploration`](crate::exploration::Exploration)) is not chosen again,
@@ -21,6 +21,16 @@
 //! through, or cells split between two bins), and eq. 14 would send the
 //! robot back and forth between two such goals for ever. The best candidate
 //! left is taken instead.
+//!
+//! A sensor that sees all around (no two neighbouring bearings more than 45
+//! degrees apart, as the 24-sonar ring) is planned with the fixed heading 0
+//! at every candidate, and the robot turns to it at the goal; one that does
+//! not (a 180-degree laser) considers every candidate with eight headings,
+//! 45 degrees apart, and the robot turns to the chosen one. Fixed headings
+//! let the planning cache keep every candidate's gain across steps where
+//! the scans did not change what its beams read
+//! ([`Planner::next_viewpoint_cached`]: the same plan as a full
+//! recomputation, bit for bit).
 //!
 //! # Termination
 //! Done when every cell of the reachable region is certain (entropy below
@@ -48,7 +58,34 @@ use crate::exploration::ExplorationConfig;
 use crate::exploration::region::{navigator, reachable_region};
 use crate::exploration::result::Termination;
 use crate::grid::Grid;
-use crate::planner::{Plan, Planner, PlannerConfig};
+use crate::planner::{Plan, Planner, PlannerConfig, PlanningCache};
+use crate::pose::Pose;
+
+/// The headings a candidate is considered with when the sensor does not
+/// see all around: every 45 degrees.
+pub(crate) const HEADINGS: usize = 8;
+
+/// The widest gap between neighbouring bearings (radians) of a sensor that
+/// sees all around: 45 degrees (the 24-sonar ring's is 15).
+const ALL_AROUND_GAP_RAD: f64 = std::f64::consts::FRAC_PI_4;
+
+/// Whether no two neighbouring `bearings` (around the circle) are more than
+/// [`ALL_AROUND_GAP_RAD`] apart: a sensor for which the heading of a
+/// viewpoint hardly matters.
+fn sees_all_around(bearings: &[f64]) -> bool {
+    use std::f64::consts::TAU;
+    let mut angles: Vec<f64> = bearings.iter().map(|b| b.rem_euclid(TAU)).collect();
+    angles.sort_by(f64::total_cmp);
+    let (Some(first), Some(last)) = (angles.first(), angles.last()) else {
+        return false;
+    };
+    let wrap = first + TAU - last;
+    angles
+        .windows(2)
+        .map(|w| w[1] - w[0])
+        .chain([wrap])
+        .all(|gap| gap <= ALL_AROUND_GAP_RAD)
+}
 
 /// Steps without a new settled cell after which the run has stagnated.
 pub(crate) const STALL_STEPS: usize = 20;
@@ -68,16 +105,29 @@ pub(crate) struct Coverage {
     exhausted: Vec<usize>,
     /// The last goal's cell, and the map's entropy (nats) when it was chosen.
     last: Option<(usize, f64)>,
+    /// What planning after the next scan can keep of this one's work.
+    cache: PlanningCache,
+    /// Whether the sensor sees all around, so that candidates are planned
+    /// with one fixed heading (see [`sees_all_around`]).
+    all_around: bool,
 }
 
 impl Coverage {
-    pub fn new(alpha: f64, config: &ExplorationConfig, grid: &Grid, bins: usize) -> Result<Self> {
+    pub fn new(
+        alpha: f64,
+        config: &ExplorationConfig,
+        grid: &Grid,
+        bins: usize,
+        bearings: &[f64],
+    ) -> Result<Self> {
         let navigator = navigator(config.robot_radius_m, grid, alpha)?;
+        let all_around = sees_all_around(bearings);
         let planner = Planner::new(PlannerConfig {
             candidate_stride_m: config.candidate_stride_m,
             min_travel_m: config.min_travel_m,
             min_gain_nats: min_gain_nats(bins, config.epsilon),
             epsilon: config.epsilon,
+            candidate_headings: if all_around { 1 } else { HEADINGS },
             ..*navigator.config()
         })?;
         Ok(Self {
@@ -87,6 +137,8 @@ impl Coverage {
             entropy_since_more_settled: Vec::new(),
             exhausted: Vec::new(),
             last: None,
+            cache: PlanningCache::new(),
+            all_around,
         })
     }
 
@@ -122,10 +174,24 @@ impl Coverage {
         })
     }
 
-    /// The one call of the planner's choice (eq. 14).
-    fn plan(&self, view: &View) -> Result<Plan> {
-        self.planner
-            .next_viewpoint(view.planning_map, &view.pose, view.bearings, view.model)
+    /// The one call of the planner's choice (eq. 14), keeping in the cache
+    /// every candidate's gain for the next call. A sensor that sees all
+    /// around plans with the fixed heading 0, so that the gains of the
+    /// candidates the scan did not reach are kept whichever way the robot
+    /// faces; the others consider [`HEADINGS`] fixed headings a candidate.
+    fn plan(&mut self, view: &View) -> Result<Plan> {
+        let pose = if self.all_around {
+            Pose::new(view.pose.x_m, view.pose.y_m, 0.0)
+        } else {
+            view.pose
+        };
+        self.planner.next_viewpoint_cached(
+            &mut self.cache,
+            view.planning_map,
+            &pose,
+            view.bearings,
+            view.model,
+        )
     }
 
     /// Whether every cell of the reachable region is certain or stagnated,
@@ -239,7 +305,8 @@ mod tests {
         };
         let mut goals = Vec::new();
         for alpha in [0.0, 1.0] {
-            let mut strategy = Coverage::new(alpha, &config, map.grid(), map.bins()).unwrap();
+            let mut strategy =
+                Coverage::new(alpha, &config, map.grid(), map.bins(), &bearings).unwrap();
             let Decision::Goal { pose: goal, path } = strategy.decide(&view).unwrap() else {
                 panic!("alpha {alpha}: no goal in a room not yet explored");
             };
@@ -266,5 +333,20 @@ mod tests {
             goals[0].0 < goals[1].0 && goals[0].1 < goals[1].1,
             "{goals:?}"
         );
+    }
+
+    #[test]
+    fn a_ring_sees_all_around_and_a_half_circle_does_not() {
+        use std::f64::consts::{PI, TAU};
+        let ring: Vec<f64> = (0..24).map(|i| i as f64 * TAU / 24.0 - PI).collect();
+        assert!(sees_all_around(&ring));
+        // The same ring, one sonar lost: a 30 degree gap is still all around.
+        assert!(sees_all_around(&ring[1..]));
+        let laser: Vec<f64> = (0..181).map(|i| (i as f64 - 90.0).to_radians()).collect();
+        assert!(!sees_all_around(&laser));
+        let eight = [-90.0f64, -37.5, -22.5, -7.5, 7.5, 22.5, 37.5, 90.0].map(f64::to_radians);
+        assert!(!sees_all_around(&eight));
+        assert!(!sees_all_around(&[]));
+        assert!(!sees_all_around(&[0.0]));
     }
 }

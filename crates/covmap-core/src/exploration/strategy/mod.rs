@@ -218,11 +218,12 @@ impl Chooser {
         config: &ExplorationConfig,
         grid: &Grid,
         bins: usize,
+        bearings: &[f64],
     ) -> Result<Self> {
         strategy.validate()?;
         Ok(match *strategy {
             Strategy::Coverage { alpha } => Self::Coverage(Box::new(coverage::Coverage::new(
-                alpha, config, grid, bins,
+                alpha, config, grid, bins, bearings,
             )?)),
             Strategy::Counting { n, .. } => Self::Counting(counting::Counting::new(n, grid)),
             Strategy::Frontier => Self::Frontier(frontier::Frontier::new(grid)),
