@@ -308,9 +308,9 @@ def test_the_occupancy_grid_pickles(short_run: covmap.ExplorationResult) -> None
 @pytest.mark.parametrize(
     ("options", "error", "match"),
     [
-        ({"resolution": 0.0}, covmap.InvalidParameterError, "`resolution_m` = 0"),
-        ({"resolution": -0.05}, covmap.InvalidParameterError, "`resolution_m` = -0.05"),
-        ({"resolution": math.nan}, covmap.InvalidParameterError, "`resolution_m` = NaN"),
+        ({"resolution": 0.0}, covmap.InvalidParameterError, "`resolution` = 0"),
+        ({"resolution": -0.05}, covmap.InvalidParameterError, "`resolution` = -0.05"),
+        ({"resolution": math.nan}, covmap.InvalidParameterError, "`resolution` = NaN"),
         ({"robot_radius_m": 0.0}, covmap.InvalidParameterError, "`robot_radius_m` = 0"),
         ({"robot_radius_m": -0.25}, covmap.InvalidParameterError, "`robot_radius_m` = -0.25"),
         ({"scan_spacing_m": -1.0}, covmap.InvalidParameterError, "`scan_spacing_m` = -1"),

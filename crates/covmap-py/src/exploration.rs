@@ -41,14 +41,25 @@ struct Keywords<'a, 'py> {
 }
 
 impl Keywords<'_, '_> {
-    /// The simulator's options. Only the conversions are checked here; the
-    /// values are checked by the run before anything starts.
+    /// The simulator's options. Only the conversions (and the resolution,
+    /// under its Python name) are checked here; the values are checked by
+    /// the run before anything starts.
     fn options(&self, py: Python<'_>) -> PyResult<ExploreOptions> {
         let d = ExploreOptions::default();
         let sensor = match self.sensor {
             None => d.sensor,
             Some(s) => sim_sensor(s)?,
         };
+        // Named as Python names it (the simulator's option is `resolution_m`).
+        if !(self.resolution > 0.0 && self.resolution.is_finite()) {
+            return Err(Exception::InvalidParameter.err(
+                py,
+                format!(
+                    "invalid parameter `resolution` = {}: expected a positive, finite resolution (metres)",
+                    self.resolution
+                ),
+            ));
+        }
         let Ok(max_steps) = usize::try_from(self.max_steps) else {
             return Err(Exception::InvalidParameter.err(
                 py,
