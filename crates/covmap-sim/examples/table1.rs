@@ -4,14 +4,16 @@
 //! ```text
 //! cargo run --release -p covmap-sim --example table1 -- [--worlds corridor,office] [--seeds N]
 //!     [--strategies coverage,count1,count50,frontier] [--scan-spacing M] [--clear-no-echo]
-//!     [--laser] [--verbose]
+//!     [--no-multipath] [--laser] [--verbose]
 //! ```
 //!
 //! Prints one row a run: path length, the fraction of evaluation cells whose
 //! entropy is above epsilon at the end, the termination, steps, scans,
 //! contacts, the maps' errors, wall time and the ratio of real time at
 //! 0.5 m/s to wall time. `--clear-no-echo`: no-echo readings clear their
-//! whole footprint, as the sensor model alone has it (`occlude_no_echo` off).
+//! whole footprint, as the sensor model alone has it (`occlude_no_echo` off);
+//! `--no-multipath`: the simulated sonar's specular misses never come back
+//! over a second surface (`multipath_probability` 0).
 
 use std::process::ExitCode;
 use std::sync::Arc;
@@ -40,7 +42,7 @@ fn main() -> ExitCode {
     let mut strategies: Vec<String> = ["coverage", "count1", "count50", "frontier"]
         .map(String::from)
         .to_vec();
-    let (mut verbose, mut laser, mut clear_no_echo) = (false, false, false);
+    let (mut verbose, mut laser, mut clear_no_echo, mut no_multipath) = (false, false, false, false);
     let mut scan_spacing_m = None;
     let mut args = std::env::args().skip(1);
     while let Some(a) = args.next() {
@@ -61,6 +63,7 @@ fn main() -> ExitCode {
             "--verbose" => verbose = true,
             "--laser" => laser = true,
             "--clear-no-echo" => clear_no_echo = true,
+            "--no-multipath" => no_multipath = true,
             _ => return usage(&format!("unexpected argument {a:?}")),
         }
     }
@@ -100,6 +103,9 @@ fn main() -> ExitCode {
                     ..ExploreOptions::default()
                 };
                 options.config.occlude_no_echo = !clear_no_echo;
+                if let (true, SimSensor::Sonar(ring)) = (no_multipath, &mut options.sensor) {
+                    ring.multipath_probability = 0.0;
+                }
                 if let Some(m) = scan_spacing_m {
                     options.config.scan_spacing_m = m;
                 }
@@ -179,7 +185,7 @@ fn run(
 
 fn usage(problem: &str) -> ExitCode {
     eprintln!(
-        "table1: {problem}\nusage: table1 [--worlds corridor,office] [--seeds N] [--strategies coverage,count1,count1d,count50,count50u,frontier] [--scan-spacing M] [--clear-no-echo] [--laser] [--verbose]"
+        "table1: {problem}\nusage: table1 [--worlds corridor,office] [--seeds N] [--strategies coverage,count1,count1d,count50,count50u,frontier] [--scan-spacing M] [--clear-no-echo] [--no-multipath] [--laser] [--verbose]"
     );
     ExitCode::from(2)
 }
