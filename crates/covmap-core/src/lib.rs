@@ -33,6 +33,7 @@ mod footprint;
 pub mod gain;
 mod grid;
 pub mod histogram;
+pub mod log;
 #[doc = include_str!("model.md")]
 pub mod model {}
 mod numeric;
@@ -50,6 +51,7 @@ pub use coverage_map::{
 };
 pub use error::{CovmapError, Result};
 pub use grid::{Cell, Grid, MAX_CELLS, MAX_CELLS_FROM_ZERO, MIN_RESOLUTION_M};
+pub use log::{Bearings, CarmenOptions, Log, SonarTextOptions};
 pub use occupancy::{OccupancyGrid, OccupancyModel};
 pub use pose::Pose;
 pub use sensor::{Footprint, KernelTable, LaserModel, RangeModel, SensorModel, SonarModel};
