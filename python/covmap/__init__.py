@@ -10,7 +10,9 @@ where to look next (paper eq. 11-14).
 The simulator: a :class:`World` of obstacle polygons with its exact
 ground-truth coverage and ray casts, simulated sensors (:class:`SonarRing`,
 :class:`Laser`) whose scans feed ``CoverageMap.integrate`` directly, and a
-disc :class:`Robot`. :mod:`covmap.plot` draws them with matplotlib.
+disc :class:`Robot`. A :class:`Log` is a recorded drive (read from CARMEN or
+plain-text sonar files, built from ROS LaserScan arrays, or recorded by a
+simulated sensor) that ``integrate_log`` maps in one call. :mod:`covmap.plot` draws them with matplotlib.
 
 >>> import numpy as np, covmap
 >>> grid = covmap.Grid(origin=(0.0, 0.0), resolution=0.05, shape=(40, 40))
@@ -45,6 +47,7 @@ from covmap._native import (
     Grid,
     Laser,
     LaserModel,
+    Log,
     OccupancyGrid,
     Plan,
     Planner,
@@ -75,6 +78,7 @@ __all__ = [
     "Grid",
     "Laser",
     "LaserModel",
+    "Log",
     "OccupancyGrid",
     "Plan",
     "Planner",

@@ -127,7 +127,7 @@ impl PyCoverageMap {
 
     /// Integrate one scan taken from ``pose = (x, y, theta)`` (metres, radians):
     /// reading ``ranges[i]`` (metres) along ``theta + bearings[i]`` (radians).
-    /// ``ranges`` and ``bearings`` are 1-D float64 arrays (or sequences of
+    /// ``ranges`` and ``bearings`` are 1-D float64 or float32 arrays (or sequences of
     /// numbers) of equal length; a reading at or beyond the model's maximum
     /// range means "no echo". ``model`` is a ``SonarModel`` or a
     /// ``LaserModel``. Returns the number of cell updates.
@@ -147,6 +147,31 @@ impl PyCoverageMap {
         let map = &mut self.0;
         py.detach(|| map.integrate(&scan.pose, &scan.ranges, &scan.bearings, &scan.model))
             .or_raise(py)
+    }
+
+    /// Integrate every scan of ``log`` (a ``Log``) with ``model``, in order;
+    /// returns the number of cell updates. Each scan is taken from its sensor pose (the robot's
+    /// pose with the log's sensor offset); dropped beams (NaN) are skipped; a
+    /// reading without echo clears up to the lesser of the log's and the
+    /// model's maximum range. Every scan is checked first: a scan whose
+    /// sensor pose lies outside the map raises (``PoseOutsideMapError``, the
+    /// message naming the scan) and leaves the map exactly as it was.
+    /// ``progress``: ``True`` shows a bar (tqdm's if installed), a callable
+    /// is called as ``progress(done, total)``. Runs with the GIL released.
+    #[pyo3(signature = (log, model, *, progress=crate::log::ProgressArg::Flag(false)), text_signature = "($self, log, model, *, progress=False)")]
+    fn integrate_log(
+        &mut self,
+        py: Python<'_>,
+        log: &Bound<'_, crate::log::PyLog>,
+        model: &Bound<'_, PyAny>,
+        progress: crate::log::ProgressArg,
+    ) -> PyResult<usize> {
+        let model = crate::sensor::any_model(model)?;
+        let log = &log.get().0;
+        let map = &mut self.0;
+        crate::log::integrate_log_showing(py, log.len(), progress, |show| {
+            map.integrate_log_with_progress(log, &model, show)
+        })
     }
 
     /// Keep (``True``) or stop keeping (``False``) each cell's entropy after

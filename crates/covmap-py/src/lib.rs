@@ -13,6 +13,7 @@ mod files;
 mod gain;
 mod grid;
 mod keywords;
+mod log;
 mod occupancy;
 mod plan;
 mod planner;
@@ -38,6 +39,7 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<sensor::PyLaserModel>()?;
     m.add_class::<coverage_map::PyCoverageMap>()?;
     m.add_class::<occupancy::PyOccupancyGrid>()?;
+    m.add_class::<log::PyLog>()?;
     m.add("STAGNATION_MEASUREMENTS", covmap::STAGNATION_MEASUREMENTS)?;
     m.add("STAGNATION_NATS", f64::from(covmap::STAGNATION_NATS))?;
     m.add_function(wrap_pyfunction!(gain::expected_information_gain, m)?)?;

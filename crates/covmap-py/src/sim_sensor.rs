@@ -115,6 +115,17 @@ macro_rules! range_sensor_class {
             fn simulate_path<'py>(&self, py: Python<'py>, world: &Bound<'py, PyWorld>, poses: &Bound<'py, PyAny>, seed: Seed) -> PyResult<Bound<'py, PyArray2<f64>>> {
                 scan_many(py, &self.0, world, poses, seed.0)
             }
+            /// ``simulate_path``'s scans as a ``Log``: scan ``i`` from
+            /// ``poses[i]`` at time ``i`` seconds, this sensor's bearings and
+            /// maximum range, ready for ``CoverageMap.integrate_log``.
+            #[pyo3(signature = (world, poses, *, seed=Seed(0)), text_signature = "($self, world, poses, *, seed=0)")]
+            fn record(&self, py: Python<'_>, world: &Bound<'_, PyWorld>, poses: &Bound<'_, PyAny>, seed: Seed) -> PyResult<crate::log::PyLog> {
+                let poses = convert::poses(poses, "poses")?;
+                let world: &World = &world.get().0;
+                py.detach(|| covmap::sim::record(&self.0, world, &poses, seed.0))
+                    .map(crate::log::PyLog)
+                    .or_raise(py)
+            }
         }
     };
 }

@@ -58,6 +58,6 @@ pub use raycast::RayHit;
 pub use rng::{SimRng, sim_rng, sim_rng_stream};
 pub use robot::Robot;
 pub use scan::Scan;
-pub use simulate::{RangeSensor, simulate};
+pub use simulate::{RangeSensor, record, simulate};
 pub use sonar::SonarRing;
 pub use world::World;
