@@ -36,6 +36,7 @@ from covmap._exploration import ExplorationErrors, ExplorationResult, Step, Timi
 from covmap._native import (
     DEFAULT_BINS,
     DEFAULT_DISCOUNT_BEYOND_M,
+    MAP_FILE_VERSION,
     MAX_BINS,
     MIN_BINS,
     STAGNATION_MEASUREMENTS,
@@ -65,6 +66,7 @@ from covmap._native import (
 __all__ = [
     "DEFAULT_BINS",
     "DEFAULT_DISCOUNT_BEYOND_M",
+    "MAP_FILE_VERSION",
     "MAX_BINS",
     "MIN_BINS",
     "STAGNATION_MEASUREMENTS",

@@ -29,6 +29,7 @@ __all__ = [
     "Log",
     "STAGNATION_MEASUREMENTS",
     "STAGNATION_NATS",
+    "MAP_FILE_VERSION",
     "expected_information_gain",
     "Planner",
     "Plan",
@@ -51,6 +52,7 @@ MIN_BINS: int
 MAX_BINS: int
 STAGNATION_MEASUREMENTS: int
 STAGNATION_NATS: float
+MAP_FILE_VERSION: int
 DEFAULT_DISCOUNT_BEYOND_M: float
 _EXPLORE_DEFAULTS: dict[str, Any]
 
@@ -298,6 +300,23 @@ class CoverageMap:
         message naming the scan) and leaves the map exactly as it was.
         ``progress``: ``True`` shows a bar (tqdm's if installed), a callable
         is called as ``progress(done, total)``. Runs with the GIL released.
+        """
+    def save(self, path: str | PathLike[str]) -> None:
+        """Save the whole posterior (grid, bins, histograms, the entropy history
+        if kept) to ``path``: a versioned ``.npz`` archive that
+        ``numpy.load`` opens without covmap (``covmap_version``, ``grid`` =
+        origin x, origin y, resolution, ``histograms`` (rows, cols, bins),
+        ``history_entropies`` and ``history_counts``), each entry with a
+        CRC-32. Written atomically: a reader never sees half a file, and a
+        failed write leaves ``path`` as it was (``FileIOError``). Runs with
+        the GIL released.
+        """
+    @staticmethod
+    def load(path: str | PathLike[str]) -> CoverageMap:
+        """The map ``save`` wrote to ``path``, bit for bit. A file that is not a
+        whole, unchanged map file (empty, cut short, a byte changed, a newer
+        version) raises ``FileFormatError``, one that cannot be read
+        ``FileIOError``; never a wrong map. Runs with the GIL released.
         """
     def track_history(self, on: bool) -> None:
         """Keep (``True``) or stop keeping (``False``) each cell's entropy after

@@ -138,6 +138,10 @@ pub enum CovmapError {
         /// The system's message.
         reason: String,
     },
+    /// Bytes that are not a whole, unchanged covmap map file (see
+    /// `CoverageMap::from_file_bytes`).
+    #[error("not a valid covmap map file: {0}")]
+    InvalidMapFile(String),
     /// A line of a text file does not say what its format requires.
     #[error("{file}:{line}: {reason}")]
     Parse {

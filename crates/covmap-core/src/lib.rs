@@ -34,6 +34,7 @@ pub mod gain;
 mod grid;
 pub mod histogram;
 pub mod log;
+mod map_file;
 #[doc = include_str!("model.md")]
 pub mod model {}
 mod numeric;
@@ -52,6 +53,7 @@ pub use coverage_map::{
 pub use error::{CovmapError, Result};
 pub use grid::{Cell, Grid, MAX_CELLS, MAX_CELLS_FROM_ZERO, MIN_RESOLUTION_M};
 pub use log::{Bearings, CarmenOptions, Log, SonarTextOptions};
+pub use map_file::MAP_FILE_VERSION;
 pub use occupancy::{OccupancyGrid, OccupancyModel};
 pub use pose::Pose;
 pub use sensor::{Footprint, KernelTable, LaserModel, RangeModel, SensorModel, SonarModel};

@@ -208,6 +208,31 @@ impl PyCoverageMap {
             self.0.bins()
         )
     }
+    /// Save the whole posterior (grid, bins, histograms, the entropy history
+    /// if kept) to ``path``: a versioned ``.npz`` archive that
+    /// ``numpy.load`` opens without covmap (``covmap_version``, ``grid`` =
+    /// origin x, origin y, resolution, ``histograms`` (rows, cols, bins),
+    /// ``history_entropies`` and ``history_counts``), each entry with a
+    /// CRC-32. Written atomically: a reader never sees half a file, and a
+    /// failed write leaves ``path`` as it was (``FileIOError``). Runs with
+    /// the GIL released.
+    fn save(&self, py: Python<'_>, path: std::path::PathBuf) -> PyResult<()> {
+        let map = &self.0;
+        let bytes = py.detach(|| map.to_file_bytes()).or_raise(py)?;
+        py.detach(|| covmap::sim::write_atomic(&path, &bytes))
+            .or_raise(py)
+    }
+    /// The map ``save`` wrote to ``path``, bit for bit. A file that is not a
+    /// whole, unchanged map file (empty, cut short, a byte changed, a newer
+    /// version) raises ``FileFormatError``, one that cannot be read
+    /// ``FileIOError``; never a wrong map. Runs with the GIL released.
+    #[staticmethod]
+    fn load(py: Python<'_>, path: std::path::PathBuf) -> PyResult<Self> {
+        let bytes = py.detach(|| covmap::sim::read_bytes(&path)).or_raise(py)?;
+        py.detach(|| CoverageMap::from_file_bytes(&bytes))
+            .map(Self)
+            .map_err(|e| crate::errors::file_to_py(py, &path, e))
+    }
     /// Pickle and copy support: rebuilt from the grid and the histograms, the
     /// entropy history (if kept) restored by ``__setstate__``.
     fn __reduce__<'py>(&self, py: Python<'py>) -> PyResult<Reduce<'py>> {

@@ -91,7 +91,7 @@ impl Exception {
             // A bad scan of a log is the error of what is wrong with it.
             CovmapError::InScan { source, .. } => Self::of(source),
             CovmapError::Io { .. } => Self::FileIO,
-            CovmapError::Parse { .. } => Self::FileFormat,
+            CovmapError::Parse { .. } | CovmapError::InvalidMapFile(_) => Self::FileFormat,
             // The core enum is non-exhaustive: a new variant is still a CovmapError.
             _ => Self::Base,
         }
@@ -155,6 +155,27 @@ pub(crate) fn to_py(py: Python<'_>, err: CovmapError) -> PyErr {
             ],
         ),
         other => Exception::of(&other).err(py, message),
+    }
+}
+
+/// A core error reading the file at `path` as the matching Python
+/// exception: a file that is not a map file raises `FileFormatError` with
+/// `filename`, `place` (`"the archive"`) and `reason`.
+pub(crate) fn file_to_py(py: Python<'_>, path: &std::path::Path, err: CovmapError) -> PyErr {
+    match err {
+        CovmapError::InvalidMapFile(reason) => {
+            let filename = path.display().to_string();
+            Exception::FileFormat.err_with(
+                py,
+                (format!("{filename}: not a valid covmap map file: {reason}"),),
+                &[
+                    ("filename", filename),
+                    ("place", "the archive".to_string()),
+                    ("reason", reason),
+                ],
+            )
+        }
+        other => to_py(py, other),
     }
 }
 

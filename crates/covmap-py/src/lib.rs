@@ -42,6 +42,7 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<log::PyLog>()?;
     m.add("STAGNATION_MEASUREMENTS", covmap::STAGNATION_MEASUREMENTS)?;
     m.add("STAGNATION_NATS", f64::from(covmap::STAGNATION_NATS))?;
+    m.add("MAP_FILE_VERSION", covmap::MAP_FILE_VERSION)?;
     m.add_function(wrap_pyfunction!(gain::expected_information_gain, m)?)?;
     m.add_class::<planner::PyPlanner>()?;
     m.add_class::<plan::PyPlan>()?;

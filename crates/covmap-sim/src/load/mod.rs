@@ -18,14 +18,14 @@ use std::path::{Path, PathBuf};
 
 use crate::error::{Result, SimError};
 
-/// The largest world file read, bytes (1 GiB).
+/// The largest world or map file read, bytes (1 GiB).
 pub const MAX_FILE_BYTES: u64 = 1 << 30;
 
 /// The bytes of the regular file at `path`, at most [`MAX_FILE_BYTES`].
 /// Anything else (a directory, a pipe that may never open or never end, a
 /// device) is refused before it is opened, and a file that grows past the
 /// limit while it is read is refused too.
-pub(crate) fn read_bytes(path: &Path) -> Result<Vec<u8>> {
+pub fn read_bytes(path: &Path) -> Result<Vec<u8>> {
     use std::io::Read;
     let io = |source| SimError::Io {
         path: path.to_path_buf(),
