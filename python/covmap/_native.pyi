@@ -311,6 +311,33 @@ class CoverageMap:
         failed write leaves ``path`` as it was (``FileIOError``). Runs with
         the GIL released.
         """
+    def ros_occupancy(
+        self, *, source: Literal["ml", "mean"] = "ml", unknown_within_nats: float = 0.05
+    ) -> npt.NDArray[np.int8]:
+        """The map as ``nav_msgs/OccupancyGrid`` data: int8 ``(rows, cols)``,
+        ``source``'s coverage (``"ml"`` or ``"mean"``) in percent, ``-1``
+        (unknown) for every cell whose entropy is still within
+        ``unknown_within_nats`` of the prior's ``ln(bins)`` (0: only cells no
+        evidence reached). Row 0 is the grid's row 0, as in the message.
+        """
+    def to_ros_map(
+        self,
+        yaml_path: str | PathLike[str],
+        *,
+        mode: Literal["trinary", "scale"] = "trinary",
+        occupied_thresh: float = 0.65,
+        free_thresh: float = 0.196,
+        source: Literal["ml", "mean"] = "ml",
+        unknown_within_nats: float = 0.05,
+    ) -> None:
+        """Write the map as ROS map_server / nav2 map_saver do: ``yaml_path``
+        and the PGM of the same name beside it, from ``ros_occupancy(source=,
+        unknown_within_nats=)``; ``mode`` ``"trinary"`` (black at or above
+        ``occupied_thresh``, white at or below ``free_thresh``, grey between
+        and unknown) or ``"scale"`` (grey by occupancy, unknown 205).
+        ``World.from_file(yaml_path)`` reads the pair back. Each file is
+        written atomically.
+        """
     @staticmethod
     def load(path: str | PathLike[str]) -> CoverageMap:
         """The map ``save`` wrote to ``path``, bit for bit. A file that is not a
@@ -479,6 +506,24 @@ class OccupancyGrid:
         """Integrate one scan; arguments and checks as ``CoverageMap.integrate``.
         After an error the grid is exactly as it was. The update runs with the
         GIL released.
+        """
+    def ros_occupancy(self) -> npt.NDArray[np.int8]:
+        """The grid as ``nav_msgs/OccupancyGrid`` data: int8 ``(rows, cols)``,
+        the probability of occupancy in percent, ``-1`` (unknown) where no
+        evidence reached.
+        """
+    def to_ros_map(
+        self,
+        yaml_path: str | PathLike[str],
+        *,
+        mode: Literal["trinary", "scale"] = "trinary",
+        occupied_thresh: float = 0.65,
+        free_thresh: float = 0.196,
+    ) -> None:
+        """Write the grid as ROS map_server / nav2 map_saver do: ``yaml_path``
+        and the PGM of the same name beside it, from ``ros_occupancy()``;
+        ``mode`` as ``CoverageMap.to_ros_map``. ``World.from_file(yaml_path)``
+        reads the pair back.
         """
     def integrate_log(self, log: Log, model: _Model, *, progress: _Progress = False) -> int:
         """Integrate every scan of ``log`` (a ``Log``) with ``model``, in order;

@@ -76,3 +76,43 @@ def test_a_failed_save_leaves_nothing_behind(tmp_path: Path) -> None:
     path.write_bytes(b"an older file")
     cmap.save(path)
     assert covmap.CoverageMap.load(path).histograms.tobytes() == cmap.histograms.tobytes()
+
+
+def test_ros_occupancy_marks_unknown_and_known_cells() -> None:
+    cmap = scanned_map(False)
+    data = cmap.ros_occupancy(source="mean", unknown_within_nats=0.0)
+    assert data.dtype == np.int8 and data.shape == cmap.grid.shape
+    observed = cmap.observed()
+    assert (data[~observed] == -1).all()
+    np.testing.assert_array_equal(data[observed], np.round(cmap.mean()[observed] * 100).astype(np.int8))
+    loose = cmap.ros_occupancy(unknown_within_nats=1.0)
+    assert (loose == -1).sum() > (data == -1).sum()
+    with pytest.raises(covmap.InvalidValueError):
+        cmap.ros_occupancy(source="max")  # type: ignore[arg-type]
+    with pytest.raises(covmap.InvalidParameterError):
+        cmap.ros_occupancy(unknown_within_nats=-1.0)
+
+
+@pytest.mark.parametrize("mode", ["trinary", "scale"])
+def test_map_server_pairs_read_back_as_the_map(tmp_path: Path, mode: str) -> None:
+    world = covmap.World.builtin("corridor")
+    (x0, y0, x1, y1) = world.bounds
+    grid = covmap.Grid.covering((x0 - 0.5, y0 - 0.5, x1 + 0.5, y1 + 0.5), resolution=0.1)
+    poses = np.array([[1.0 + 0.5 * i, 1.3, 0.4 * i] for i in range(12)])
+    log = covmap.Laser().record(world, poses, seed=1)
+    maps = [covmap.CoverageMap(grid), covmap.OccupancyGrid(grid)]
+    for m in maps:
+        m.integrate_log(log, covmap.LaserModel())
+        yaml = tmp_path / f"{type(m).__name__}-{mode}.yaml"
+        m.to_ros_map(yaml, mode=mode)  # type: ignore[arg-type]
+        assert f"mode: {mode}" in yaml.read_text()
+        data = m.ros_occupancy()
+        assert (data == -1).any() and (data >= 65).any()
+        back = covmap.World.from_file(yaml)
+        occupied = back.coverage(grid) > 0.5
+        np.testing.assert_array_equal(occupied, data >= 65)
+    with pytest.raises(covmap.InvalidValueError):
+        maps[1].to_ros_map(tmp_path / "x.yaml", mode="raw")  # type: ignore[arg-type]
+    with pytest.raises(covmap.InvalidParameterError):
+        maps[1].to_ros_map(tmp_path / "y.yaml", occupied_thresh=0.1, free_thresh=0.5)
+    assert not (tmp_path / "x.yaml").exists() and not (tmp_path / "y.pgm").exists()

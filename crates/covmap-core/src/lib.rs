@@ -42,6 +42,7 @@ mod occupancy;
 pub mod parallel;
 pub mod planner;
 mod pose;
+mod ros_occupancy;
 pub mod sensor;
 #[cfg(test)]
 mod test_rng;
@@ -56,4 +57,5 @@ pub use log::{Bearings, CarmenOptions, Log, SonarTextOptions};
 pub use map_file::MAP_FILE_VERSION;
 pub use occupancy::{OccupancyGrid, OccupancyModel};
 pub use pose::Pose;
+pub use ros_occupancy::{CoverageValue, ROS_UNKNOWN};
 pub use sensor::{Footprint, KernelTable, LaserModel, RangeModel, SensorModel, SonarModel};

@@ -233,6 +233,63 @@ impl PyCoverageMap {
             .map(Self)
             .map_err(|e| crate::errors::file_to_py(py, &path, e))
     }
+    /// The map as ``nav_msgs/OccupancyGrid`` data: int8 ``(rows, cols)``,
+    /// ``source``'s coverage (``"ml"`` or ``"mean"``) in percent, ``-1``
+    /// (unknown) for every cell whose entropy is still within
+    /// ``unknown_within_nats`` of the prior's ``ln(bins)`` (0: only cells no
+    /// evidence reached). Row 0 is the grid's row 0, as in the message.
+    #[pyo3(signature = (*, source="ml", unknown_within_nats=0.05))]
+    fn ros_occupancy<'py>(
+        &self,
+        py: Python<'py>,
+        source: &str,
+        unknown_within_nats: f64,
+    ) -> PyResult<Bound<'py, PyArray2<i8>>> {
+        let value = crate::ros_map::coverage_value(py, source)?;
+        let data = self
+            .0
+            .ros_occupancy(value, unknown_within_nats)
+            .or_raise(py)?;
+        crate::ros_map::array(py, self.0.grid(), data)
+    }
+    /// Write the map as ROS map_server / nav2 map_saver do: ``yaml_path``
+    /// and the PGM of the same name beside it, from ``ros_occupancy(source=,
+    /// unknown_within_nats=)``; ``mode`` ``"trinary"`` (black at or above
+    /// ``occupied_thresh``, white at or below ``free_thresh``, grey between
+    /// and unknown) or ``"scale"`` (grey by occupancy, unknown 205).
+    /// ``World.from_file(yaml_path)`` reads the pair back. Each file is
+    /// written atomically.
+    #[pyo3(signature = (yaml_path, *, mode="trinary", occupied_thresh=0.65, free_thresh=0.196, source="ml", unknown_within_nats=0.05))]
+    #[allow(
+        clippy::too_many_arguments,
+        reason = "map_saver's settings and the read-out's"
+    )]
+    fn to_ros_map(
+        &self,
+        py: Python<'_>,
+        yaml_path: std::path::PathBuf,
+        mode: &str,
+        occupied_thresh: f64,
+        free_thresh: f64,
+        source: &str,
+        unknown_within_nats: f64,
+    ) -> PyResult<()> {
+        let value = crate::ros_map::coverage_value(py, source)?;
+        let data = self
+            .0
+            .ros_occupancy(value, unknown_within_nats)
+            .or_raise(py)?;
+        let grid = *self.0.grid();
+        crate::ros_map::write(
+            py,
+            &yaml_path,
+            &grid,
+            &data,
+            mode,
+            occupied_thresh,
+            free_thresh,
+        )
+    }
     /// Pickle and copy support: rebuilt from the grid and the histograms, the
     /// entropy history (if kept) restored by ``__setstate__``.
     fn __reduce__<'py>(&self, py: Python<'py>) -> PyResult<Reduce<'py>> {

@@ -18,6 +18,7 @@ mod occupancy;
 mod plan;
 mod planner;
 mod robot;
+mod ros_map;
 mod scan;
 mod sensor;
 mod sim_sensor;

@@ -95,6 +95,38 @@ impl PyOccupancyGrid {
         cell_array(py, self.0.grid(), self.0.observed())
     }
 
+    /// The grid as ``nav_msgs/OccupancyGrid`` data: int8 ``(rows, cols)``,
+    /// the probability of occupancy in percent, ``-1`` (unknown) where no
+    /// evidence reached.
+    fn ros_occupancy<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray2<i8>>> {
+        crate::ros_map::array(py, self.0.grid(), self.0.ros_occupancy())
+    }
+    /// Write the grid as ROS map_server / nav2 map_saver do: ``yaml_path``
+    /// and the PGM of the same name beside it, from ``ros_occupancy()``;
+    /// ``mode`` as ``CoverageMap.to_ros_map``. ``World.from_file(yaml_path)``
+    /// reads the pair back.
+    #[pyo3(signature = (yaml_path, *, mode="trinary", occupied_thresh=0.65, free_thresh=0.196))]
+    fn to_ros_map(
+        &self,
+        py: Python<'_>,
+        yaml_path: std::path::PathBuf,
+        mode: &str,
+        occupied_thresh: f64,
+        free_thresh: f64,
+    ) -> PyResult<()> {
+        let grid = *self.0.grid();
+        let data = self.0.ros_occupancy();
+        crate::ros_map::write(
+            py,
+            &yaml_path,
+            &grid,
+            &data,
+            mode,
+            occupied_thresh,
+            free_thresh,
+        )
+    }
+
     fn __repr__(&self) -> String {
         format!("OccupancyGrid({})", self.grid().__repr__())
     }

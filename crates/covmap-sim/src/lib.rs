@@ -50,6 +50,7 @@ mod world;
 pub use error::{MAX_BEAMS, Result, SimError};
 pub use laser::Laser;
 pub use load::image::ImageOptions;
+pub use load::map_server::{RosMapMode, write_ros_map};
 pub use load::{MAX_FILE_BYTES, read_bytes, write_atomic};
 pub use material::Material;
 pub use picture::write_map_png;

@@ -7,12 +7,17 @@
 //! | PGM / PNG + resolution ([`image`]) | [`World::from_image_file`](crate::World::from_image_file) | every run of dark pixels, as a rectangle |
 //! | ROS map_server YAML ([`image`]) | [`World::from_ros_map_yaml`](crate::World::from_ros_map_yaml) | as above, with the YAML's resolution, origin and thresholds |
 //!
+//!
+//! Written: the map_server pair, PGM + YAML ([`map_server`]:
+//! [`write_ros_map`](crate::write_ros_map)), which the last row reads back.
+//!
 //! Malformed or degenerate input is a [`SimError::Parse`]
 //! naming the file and the place: a line, a feature, a pixel.
 
 pub mod aria;
 pub mod geojson;
 pub mod image;
+pub mod map_server;
 
 use std::path::{Path, PathBuf};
 
