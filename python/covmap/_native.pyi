@@ -674,6 +674,8 @@ class Planner:
         robot's free space, metres: float64, ``(rows, cols)``, ``inf`` where
         unreachable.
         """
+    def __getnewargs_ex__(self) -> tuple[tuple[()], dict[str, Any]]:
+        """Pickle and copy support: the keyword arguments that rebuild the planner."""
 
 @final
 class Plan:
@@ -857,6 +859,13 @@ class World:
         one, infinite in an empty world. A coordinate that is not finite
         raises ``InvalidValueError``.
         """
+    def __reduce__(self) -> tuple[Any, tuple[str]]:
+        """Pickle and copy support: rebuilt by ``World._from_geojson`` from
+        ``to_geojson()``.
+        """
+    @staticmethod
+    def _from_geojson(text: str) -> World:
+        """Unpickling support: the world of a GeoJSON text (``to_geojson``)."""
 
 @type_check_only
 class _RangeSensor:
@@ -977,6 +986,8 @@ class SonarRing(_RangeSensor):
     @property
     def critical_angle_glass_rad(self) -> float:
         """Largest angle of incidence at which glass still echoes, radians."""
+    def __getnewargs_ex__(self) -> tuple[tuple[()], dict[str, Any]]:
+        """Pickle and copy support: the keyword arguments that rebuild the ring."""
 
 @final
 class Laser(_RangeSensor):
@@ -1010,6 +1021,8 @@ class Laser(_RangeSensor):
     @property
     def noise_std_m(self) -> float:
         """Standard deviation of the range noise, metres."""
+    def __getnewargs_ex__(self) -> tuple[tuple[()], dict[str, Any]]:
+        """Pickle and copy support: the keyword arguments that rebuild the laser."""
 
 @final
 class Robot:
@@ -1046,6 +1059,8 @@ class Robot:
         """
     def __eq__(self, value: object, /) -> bool: ...
     def __ne__(self, value: object, /) -> bool: ...
+    def __getnewargs_ex__(self) -> tuple[tuple[()], dict[str, Any]]:
+        """Pickle and copy support: the keyword arguments that rebuild the robot."""
 
 def run_fig3(seed: int = 0) -> Fig3Result:
     """Run the paper's Fig. 3 with ``seed``: 24 simulated sonars driven along a

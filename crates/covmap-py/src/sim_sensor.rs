@@ -199,6 +199,27 @@ range_sensor_class! {
             checked(py, ring).map(Self)
         }
 
+        /// Pickle and copy support: the keyword arguments that rebuild the ring.
+        fn __getnewargs_ex__<'py>(
+            &self,
+            py: Python<'py>,
+        ) -> PyResult<(Bound<'py, pyo3::types::PyTuple>, Bound<'py, pyo3::types::PyDict>)> {
+            let r = &self.0;
+            let kwargs = pyo3::types::PyDict::new(py);
+            kwargs.set_item("bearings_rad", PyArray1::from_slice(py, &r.bearings_rad))?;
+            kwargs.set_item("opening_angle_rad", r.opening_angle_rad)?;
+            kwargs.set_item("max_range_m", r.max_range_m)?;
+            kwargs.set_item("min_range_m", r.min_range_m)?;
+            kwargs.set_item("rays_per_cone", r.rays_per_cone)?;
+            kwargs.set_item("noise_std_m", r.noise_std_m)?;
+            kwargs.set_item("noise_std_per_m", r.noise_std_per_m)?;
+            kwargs.set_item("outlier_probability", r.outlier_probability)?;
+            kwargs.set_item("multipath_probability", r.multipath_probability)?;
+            kwargs.set_item("critical_angle_wall_rad", r.critical_angle_wall_rad)?;
+            kwargs.set_item("critical_angle_glass_rad", r.critical_angle_glass_rad)?;
+            Ok((pyo3::types::PyTuple::empty(py), kwargs))
+        }
+
         /// ``count`` sensors evenly spaced around the robot, the first straight
         /// ahead, with the default error model.
         #[staticmethod]
@@ -315,6 +336,18 @@ range_sensor_class! {
             laser.max_range_m = max_range_m.unwrap_or(laser.max_range_m);
             laser.noise_std_m = noise_std_m.unwrap_or(laser.noise_std_m);
             checked(py, laser).map(Self)
+        }
+
+        /// Pickle and copy support: the keyword arguments that rebuild the laser.
+        fn __getnewargs_ex__<'py>(
+            &self,
+            py: Python<'py>,
+        ) -> PyResult<(Bound<'py, pyo3::types::PyTuple>, Bound<'py, pyo3::types::PyDict>)> {
+            let kwargs = pyo3::types::PyDict::new(py);
+            kwargs.set_item("bearings_rad", PyArray1::from_slice(py, &self.0.bearings_rad))?;
+            kwargs.set_item("max_range_m", self.0.max_range_m)?;
+            kwargs.set_item("noise_std_m", self.0.noise_std_m)?;
+            Ok((pyo3::types::PyTuple::empty(py), kwargs))
         }
 
         /// 180 beams one degree apart from -90 degrees (to +89), the layout of
