@@ -42,6 +42,22 @@ fn bearings_from(obj: &Bound<'_, PyAny>, scans: usize) -> PyResult<Bearings> {
     Ok(Bearings::Fixed(convert::readings(obj, "bearings")?))
 }
 
+/// Poses `(N, 3)` and ranges `(N, B)`, a row of ranges a pose.
+fn scans(
+    py: Python<'_>,
+    poses: &Bound<'_, PyAny>,
+    ranges: &Bound<'_, PyAny>,
+) -> PyResult<(Vec<Pose>, Vec<f64>)> {
+    let poses = convert::poses(poses, "poses")?;
+    let (ranges, [n, _]) = convert::matrix(ranges, "ranges")?;
+    if n != poses.len() {
+        return Err(
+            Exception::ArrayShape.err(py, format!("ranges has {n} rows for {} poses", poses.len()))
+        );
+    }
+    Ok((poses, ranges))
+}
+
 #[pymethods]
 impl PyLog {
     /// A log of ``poses`` ((N, 3)), ``ranges`` ((N, B), metres, float64 or
@@ -62,12 +78,8 @@ impl PyLog {
         timestamps: Option<&Bound<'_, PyAny>>,
         sensor_offset: (f64, f64, f64),
     ) -> PyResult<Self> {
-        let poses = convert::poses(poses, "poses")?;
-        let (ranges, [n, _]) = convert::matrix(ranges, "ranges")?;
-        if n != poses.len() {
-            return Err(Exception::ArrayShape
-                .err(py, format!("ranges has {n} rows for {} poses", poses.len())));
-        }
+        let (poses, ranges) = scans(py, poses, ranges)?;
+        let n = poses.len();
         let bearings = bearings_from(bearings, n)?;
         let timestamps = match timestamps {
             Some(t) => convert::readings(t, "timestamps")?,
@@ -145,12 +157,7 @@ impl PyLog {
         range_max: f64,
         timestamps: Option<&Bound<'_, PyAny>>,
     ) -> PyResult<Self> {
-        let poses = convert::poses(poses, "poses")?;
-        let (ranges, [n, _]) = convert::matrix(ranges, "ranges")?;
-        if n != poses.len() {
-            return Err(Exception::ArrayShape
-                .err(py, format!("ranges has {n} rows for {} poses", poses.len())));
-        }
+        let (poses, ranges) = scans(py, poses, ranges)?;
         let timestamps = timestamps
             .map(|t| convert::readings(t, "timestamps"))
             .transpose()?;

@@ -130,71 +130,45 @@ impl CoverageMap {
     }
 }
 
-impl OccupancyGrid {
-    /// Integrate every scan of `log` and count its beams, as
-    /// [`CoverageMap::integrate_log`]; returns the number of scans.
-    ///
-    /// # Errors
-    /// As [`CoverageMap::integrate_log`]; the grid is unchanged then.
-    pub fn integrate_log<M: SensorModel + ?Sized>(
-        &mut self,
-        log: &Log,
-        model: &M,
-    ) -> Result<usize> {
-        self.integrate_log_with_progress(log, model, &mut |_| {})
-    }
+/// `integrate_log` and `integrate_log_with_progress` of a baseline, whose
+/// `integrate_clipped` returns nothing: they return the number of scans.
+macro_rules! baseline_integrate_log {
+    ($map:ident, $does:literal, $what:literal) => {
+        impl $map {
+            #[doc = concat!($does, " every scan of `log`, as [`CoverageMap::integrate_log`]; returns the number of scans.")]
+            ///
+            /// # Errors
+            #[doc = concat!("As [`CoverageMap::integrate_log`]; the ", $what, " unchanged then.")]
+            pub fn integrate_log<M: SensorModel + ?Sized>(
+                &mut self,
+                log: &Log,
+                model: &M,
+            ) -> Result<usize> {
+                self.integrate_log_with_progress(log, model, &mut |_| {})
+            }
 
-    /// [`OccupancyGrid::integrate_log`], calling `progress` with the number
-    /// of scans integrated so far after each scan.
-    ///
-    /// # Errors
-    /// As [`CoverageMap::integrate_log`].
-    pub fn integrate_log_with_progress<M: SensorModel + ?Sized>(
-        &mut self,
-        log: &Log,
-        model: &M,
-        progress: &mut dyn FnMut(usize),
-    ) -> Result<usize> {
-        let grid = *self.grid();
-        integrate_scans(&grid, log, model, progress, |s| {
-            self.integrate_clipped(&s.pose, &s.ranges, &s.bearings, model, &s.reaches)
-                .map(|()| 1)
-        })
-    }
+            #[doc = concat!("[`", stringify!($map), "::integrate_log`], calling `progress` with the number of scans done so far after each scan.")]
+            ///
+            /// # Errors
+            /// As [`CoverageMap::integrate_log`].
+            pub fn integrate_log_with_progress<M: SensorModel + ?Sized>(
+                &mut self,
+                log: &Log,
+                model: &M,
+                progress: &mut dyn FnMut(usize),
+            ) -> Result<usize> {
+                let grid = *self.grid();
+                integrate_scans(&grid, log, model, progress, |s| {
+                    self.integrate_clipped(&s.pose, &s.ranges, &s.bearings, model, &s.reaches)
+                        .map(|()| 1)
+                })
+            }
+        }
+    };
 }
 
-impl ScanCounts {
-    /// Count the beams of every scan of `log`, as
-    /// [`CoverageMap::integrate_log`]; returns the number of scans.
-    ///
-    /// # Errors
-    /// As [`CoverageMap::integrate_log`]; the counts are unchanged then.
-    pub fn integrate_log<M: SensorModel + ?Sized>(
-        &mut self,
-        log: &Log,
-        model: &M,
-    ) -> Result<usize> {
-        self.integrate_log_with_progress(log, model, &mut |_| {})
-    }
-
-    /// [`ScanCounts::integrate_log`], calling `progress` with the number of
-    /// scans counted so far after each scan.
-    ///
-    /// # Errors
-    /// As [`CoverageMap::integrate_log`].
-    pub fn integrate_log_with_progress<M: SensorModel + ?Sized>(
-        &mut self,
-        log: &Log,
-        model: &M,
-        progress: &mut dyn FnMut(usize),
-    ) -> Result<usize> {
-        let grid = *self.grid();
-        integrate_scans(&grid, log, model, progress, |s| {
-            self.integrate_clipped(&s.pose, &s.ranges, &s.bearings, model, &s.reaches)
-                .map(|()| 1)
-        })
-    }
-}
+baseline_integrate_log!(OccupancyGrid, "Integrate and count the beams of", "grid is");
+baseline_integrate_log!(ScanCounts, "Count the beams of", "counts are");
 
 #[cfg(test)]
 mod tests {
