@@ -10,7 +10,9 @@ where to look next (paper eq. 11-14).
 The simulator: a :class:`World` of obstacle polygons with its exact
 ground-truth coverage and ray casts, simulated sensors (:class:`SonarRing`,
 :class:`Laser`) whose scans feed ``CoverageMap.integrate`` directly, and a
-disc :class:`Robot`. :mod:`covmap.plot` draws them with matplotlib.
+disc :class:`Robot`. A :class:`Log` is a recorded drive (read from CARMEN or
+plain-text sonar files, built from ROS LaserScan arrays, or recorded by a
+simulated sensor) that ``integrate_log`` maps in one call. :mod:`covmap.plot` draws them with matplotlib.
 
 >>> import numpy as np, covmap
 >>> grid = covmap.Grid(origin=(0.0, 0.0), resolution=0.05, shape=(40, 40))
@@ -34,6 +36,7 @@ from covmap._exploration import ExplorationErrors, ExplorationResult, Step, Timi
 from covmap._native import (
     DEFAULT_BINS,
     DEFAULT_DISCOUNT_BEYOND_M,
+    MAP_FILE_VERSION,
     MAX_BINS,
     MIN_BINS,
     STAGNATION_MEASUREMENTS,
@@ -45,6 +48,7 @@ from covmap._native import (
     Grid,
     Laser,
     LaserModel,
+    Log,
     OccupancyGrid,
     Plan,
     Planner,
@@ -62,6 +66,7 @@ from covmap._native import (
 __all__ = [
     "DEFAULT_BINS",
     "DEFAULT_DISCOUNT_BEYOND_M",
+    "MAP_FILE_VERSION",
     "MAX_BINS",
     "MIN_BINS",
     "STAGNATION_MEASUREMENTS",
@@ -75,6 +80,7 @@ __all__ = [
     "Grid",
     "Laser",
     "LaserModel",
+    "Log",
     "OccupancyGrid",
     "Plan",
     "Planner",

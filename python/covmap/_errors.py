@@ -121,7 +121,7 @@ class RobotError(CovmapError, RuntimeError):
 
 
 class FileFormatError(CovmapError, ValueError):
-    """A world file is malformed or degenerate.
+    """A world or log file is malformed or degenerate.
 
     ``filename`` names the file, ``place`` where in it (a line, a feature, a
     pixel) and ``reason`` what is wrong there; the message says all three.

@@ -5,7 +5,7 @@
 from ``covmap`` instead.
 """
 
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from os import PathLike
 from typing import Any, Literal, final, overload, type_check_only
 
@@ -26,8 +26,10 @@ __all__ = [
     "LaserModel",
     "CoverageMap",
     "OccupancyGrid",
+    "Log",
     "STAGNATION_MEASUREMENTS",
     "STAGNATION_NATS",
+    "MAP_FILE_VERSION",
     "expected_information_gain",
     "Planner",
     "Plan",
@@ -50,13 +52,16 @@ MIN_BINS: int
 MAX_BINS: int
 STAGNATION_MEASUREMENTS: int
 STAGNATION_NATS: float
+MAP_FILE_VERSION: int
 DEFAULT_DISCOUNT_BEYOND_M: float
 _EXPLORE_DEFAULTS: dict[str, Any]
 
-_Readings = npt.NDArray[np.float64] | Sequence[float]
+_Readings = npt.NDArray[np.float64] | npt.NDArray[np.float32] | Sequence[float]
+_Ranges = npt.NDArray[np.float64] | npt.NDArray[np.float32]
+_Progress = bool | Callable[[int, int], object]
 _Pose = Sequence[float] | npt.NDArray[np.floating[Any]]
 _Model = SonarModel | LaserModel
-_Poses = npt.NDArray[np.float64] | Sequence[Sequence[float]]
+_Poses = npt.NDArray[np.float64] | npt.NDArray[np.float32] | Sequence[Sequence[float]]
 _Points = npt.NDArray[np.float64] | Sequence[Sequence[float]]
 _Point = Sequence[float] | npt.NDArray[np.floating[Any]]
 _Path = str | PathLike[str]
@@ -276,7 +281,7 @@ class CoverageMap:
     ) -> int:
         """Integrate one scan taken from ``pose = (x, y, theta)`` (metres, radians):
         reading ``ranges[i]`` (metres) along ``theta + bearings[i]`` (radians).
-        ``ranges`` and ``bearings`` are 1-D float64 arrays (or sequences of
+        ``ranges`` and ``bearings`` are 1-D float64 or float32 arrays (or sequences of
         numbers) of equal length; a reading at or beyond the model's maximum
         range means "no echo". ``model`` is a ``SonarModel`` or a
         ``LaserModel``. Returns the number of cell updates.
@@ -284,6 +289,61 @@ class CoverageMap:
         Everything is checked before anything changes: after an error the map
         is exactly as it was. The update runs with the GIL released; touching
         the same map from another thread meanwhile raises ``RuntimeError``.
+        """
+    def integrate_log(self, log: Log, model: _Model, *, progress: _Progress = False) -> int:
+        """Integrate every scan of ``log`` (a ``Log``) with ``model``, in order;
+        returns the number of cell updates. Each scan is taken from its sensor pose (the robot's
+        pose with the log's sensor offset); dropped beams (NaN) are skipped; a
+        reading without echo clears up to the lesser of the log's and the
+        model's maximum range. Every scan is checked first: a scan whose
+        sensor pose lies outside the map raises (``PoseOutsideMapError``, the
+        message naming the scan) and leaves the map exactly as it was.
+        ``progress``: ``True`` shows a bar (tqdm's if installed), a callable
+        is called as ``progress(done, total)``. Runs with the GIL released.
+        """
+    def save(self, path: str | PathLike[str]) -> None:
+        """Save the whole posterior (grid, bins, histograms, the entropy history
+        if kept) to ``path``: a versioned ``.npz`` archive that
+        ``numpy.load`` opens without covmap (``covmap_version``, ``grid`` =
+        origin x, origin y, resolution, ``histograms`` (rows, cols, bins),
+        ``history_entropies`` and ``history_counts``), each entry with a
+        CRC-32. Written atomically: a reader never sees half a file, and a
+        failed write leaves ``path`` as it was (``FileIOError``). Runs with
+        the GIL released.
+        """
+    def ros_occupancy(
+        self, *, source: Literal["ml", "mean"] = "ml", unknown_within_nats: float = 0.05
+    ) -> npt.NDArray[np.int8]:
+        """The map as ``nav_msgs/OccupancyGrid`` data: int8 ``(rows, cols)``,
+        ``source``'s coverage (``"ml"`` or ``"mean"``) in percent, ``-1``
+        (unknown) for every cell whose entropy is still within
+        ``unknown_within_nats`` of the prior's ``ln(bins)`` (0: only cells no
+        evidence reached). Row 0 is the grid's row 0, as in the message.
+        """
+    def to_ros_map(
+        self,
+        yaml_path: str | PathLike[str],
+        *,
+        mode: Literal["trinary", "scale"] = "trinary",
+        occupied_thresh: float = 0.65,
+        free_thresh: float = 0.196,
+        source: Literal["ml", "mean"] = "ml",
+        unknown_within_nats: float = 0.05,
+    ) -> None:
+        """Write the map as ROS map_server / nav2 map_saver do: ``yaml_path``
+        and the PGM of the same name beside it, from ``ros_occupancy(source=,
+        unknown_within_nats=)``; ``mode`` ``"trinary"`` (black at or above
+        ``occupied_thresh``, white at or below ``free_thresh``, grey between
+        and unknown) or ``"scale"`` (grey by occupancy, unknown 205).
+        ``World.from_file(yaml_path)`` reads the pair back. Each file is
+        written atomically.
+        """
+    @staticmethod
+    def load(path: str | PathLike[str]) -> CoverageMap:
+        """The map ``save`` wrote to ``path``, bit for bit. A file that is not a
+        whole, unchanged map file (empty, cut short, a byte changed, a newer
+        version) raises ``FileFormatError``, one that cannot be read
+        ``FileIOError``; never a wrong map. Runs with the GIL released.
         """
     def track_history(self, on: bool) -> None:
         """Keep (``True``) or stop keeping (``False``) each cell's entropy after
@@ -319,6 +379,114 @@ class CoverageMap:
         """
 
 @final
+class Log:
+    """A recorded drive: scan ``i`` taken at ``timestamps[i]`` from robot pose
+    ``poses[i]`` (x, y metres, theta radians), reading ``ranges[i, k]``
+    metres along ``bearings[k]`` (or ``bearings[i, k]``, bearings of each
+    scan), radians from the heading of a sensor mounted at
+    ``sensor_offset`` on the robot.
+
+    A range at or above ``max_range_m`` has no echo; a NaN range is a beam
+    without a reading (``from_laser_scans`` makes them of REP 117's NaN and
+    ``-inf``), which integrating skips. The constructor itself refuses NaN,
+    infinite and negative ranges. ``len(log)`` counts scans; ``log[a:b]`` is
+    a log of those scans. Logs pickle.
+    """
+
+    def __new__(
+        cls,
+        poses: _Poses,
+        ranges: _Ranges,
+        bearings: _Readings | npt.NDArray[np.float64],
+        *,
+        max_range_m: float,
+        timestamps: _Readings | None = None,
+        sensor_offset: tuple[float, float, float] = (0.0, 0.0, 0.0),
+    ) -> Log: ...
+    @staticmethod
+    def from_carmen(path: str | PathLike[str], *, max_range_m: float | None = None) -> Log:
+        """The log in a CARMEN file (plain or gzip): ``FLASER``, ``ROBOTLASER1``
+        or ``RAWLASER1`` scans (poses from ``ODOM`` interpolated for the
+        last). ``max_range_m`` overrides the log's maximum range. A malformed
+        line raises ``FileFormatError`` naming the file and the line. Reads
+        with the GIL released.
+        """
+    @staticmethod
+    def from_sonar_text(
+        poses_path: str | PathLike[str],
+        measurements_path: str | PathLike[str],
+        *,
+        bearings_deg: _Readings,
+        length_unit_m: float = 1.0,
+        angle_unit_rad: float = 1.0,
+        max_range_m: float,
+    ) -> Log:
+        """The sonar log of two text files read in step: ``poses_path`` lines
+        ``timestamp x y theta``, ``measurements_path`` lines ``timestamp r_0
+        … r_{B-1}`` (plain or gzip). Lengths are in units of
+        ``length_unit_m`` metres, the heading in ``angle_unit_rad`` radians;
+        ``bearings_deg`` gives each column's sonar, degrees from the heading.
+        """
+    @staticmethod
+    def from_laser_scans(
+        poses: _Poses,
+        ranges: _Ranges,
+        *,
+        angle_min: float,
+        angle_increment: float,
+        range_min: float,
+        range_max: float,
+        timestamps: _Readings | None = None,
+    ) -> Log:
+        """Scans as ROS ``sensor_msgs/LaserScan`` hands them: ``ranges`` (N, B)
+        float32 or float64, beam ``k`` at ``angle_min + k angle_increment``.
+        REP 117 is converted here: ``+inf`` and readings above ``range_max``
+        have no echo; NaN, ``-inf`` and readings below ``range_min`` are
+        dropped (NaN in ``ranges``). ``range_max`` is the log's maximum range.
+        """
+    @property
+    def poses(self) -> npt.NDArray[np.float64]:
+        """The robot's pose of every scan, float64, ``(N, 3)``."""
+    @property
+    def ranges(self) -> npt.NDArray[np.float64]:
+        """Every range, metres, float64, ``(N, B)`` (NaN: a dropped beam)."""
+    @property
+    def bearings(self) -> npt.NDArray[np.float64]:
+        """The bearings, radians from the sensor's heading, float64: ``(B,)``,
+        or ``(N, B)`` for a log whose scans have bearings of their own.
+        """
+    @property
+    def timestamps(self) -> npt.NDArray[np.float64]:
+        """The time of every scan, seconds, float64, ``(N,)``."""
+    @property
+    def max_range_m(self) -> float:
+        """The sensor's maximum range, metres: a reading at or above it has no echo."""
+    @property
+    def sensor_offset(self) -> tuple[float, float, float]:
+        """Where the sensor sits on the robot, ``(x, y, theta)`` in the robot's frame."""
+    @property
+    def beams(self) -> int:
+        """The number of beams a scan."""
+    def extent(self, reach_m: float) -> tuple[float, float, float, float] | None:
+        """``(x_min, y_min, x_max, y_max)`` covering every pose and every beam's
+        end point, each beam cut at ``reach_m`` metres (no-echo beams end at
+        the maximum range); ``None`` for an empty log.
+        """
+    def with_sensor_offset(self, offset: _Pose) -> Log:
+        """This log with its sensor mounted at ``offset`` ``(x, y, theta)`` on
+        the robot.
+        """
+    def __len__(self) -> int: ...
+    def __getitem__(self, key: slice, /) -> Log: ...
+    def __reduce__(self) -> tuple[Any, tuple[bytes]]:
+        """Pickle support: rebuilt by ``Log._from_state`` from the core's
+        serialised form (JSON bytes, every float64 exact).
+        """
+    @staticmethod
+    def _from_state(state: bytes) -> Log:
+        """Unpickling support: the log saved by ``__reduce__`` (validated)."""
+
+@final
 class OccupancyGrid:
     """A standard log-odds occupancy grid (every cell at p = 0.5 to start), fed by
     the same beams as a ``CoverageMap``, with the scan counts of those beams.
@@ -338,6 +506,35 @@ class OccupancyGrid:
         """Integrate one scan; arguments and checks as ``CoverageMap.integrate``.
         After an error the grid is exactly as it was. The update runs with the
         GIL released.
+        """
+    def ros_occupancy(self) -> npt.NDArray[np.int8]:
+        """The grid as ``nav_msgs/OccupancyGrid`` data: int8 ``(rows, cols)``,
+        the probability of occupancy in percent, ``-1`` (unknown) where no
+        evidence reached.
+        """
+    def to_ros_map(
+        self,
+        yaml_path: str | PathLike[str],
+        *,
+        mode: Literal["trinary", "scale"] = "trinary",
+        occupied_thresh: float = 0.65,
+        free_thresh: float = 0.196,
+    ) -> None:
+        """Write the grid as ROS map_server / nav2 map_saver do: ``yaml_path``
+        and the PGM of the same name beside it, from ``ros_occupancy()``;
+        ``mode`` as ``CoverageMap.to_ros_map``. ``World.from_file(yaml_path)``
+        reads the pair back.
+        """
+    def integrate_log(self, log: Log, model: _Model, *, progress: _Progress = False) -> int:
+        """Integrate every scan of ``log`` (a ``Log``) with ``model``, in order;
+        returns the number of scans. Each scan is taken from its sensor pose (the robot's
+        pose with the log's sensor offset); dropped beams (NaN) are skipped; a
+        reading without echo clears up to the lesser of the log's and the
+        model's maximum range. Every scan is checked first: a scan whose
+        sensor pose lies outside the map raises (``PoseOutsideMapError``, the
+        message naming the scan) and leaves the map exactly as it was.
+        ``progress``: ``True`` shows a bar (tqdm's if installed), a callable
+        is called as ``progress(done, total)``. Runs with the GIL released.
         """
     def probabilities(self) -> npt.NDArray[np.float32]:
         """Probability of occupancy, float32, ``(rows, cols)``."""
@@ -477,6 +674,8 @@ class Planner:
         robot's free space, metres: float64, ``(rows, cols)``, ``inf`` where
         unreachable.
         """
+    def __getnewargs_ex__(self) -> tuple[tuple[()], dict[str, Any]]:
+        """Pickle and copy support: the keyword arguments that rebuild the planner."""
 
 @final
 class Plan:
@@ -660,6 +859,13 @@ class World:
         one, infinite in an empty world. A coordinate that is not finite
         raises ``InvalidValueError``.
         """
+    def __reduce__(self) -> tuple[Any, tuple[str]]:
+        """Pickle and copy support: rebuilt by ``World._from_geojson`` from
+        ``to_geojson()``.
+        """
+    @staticmethod
+    def _from_geojson(text: str) -> World:
+        """Unpickling support: the world of a GeoJSON text (``to_geojson``)."""
 
 @type_check_only
 class _RangeSensor:
@@ -694,6 +900,11 @@ class _RangeSensor:
         as float64 ``(N, n)``. Scan ``i`` draws from its own stream ``i`` of
         ``seed`` (scan 0 equals ``simulate(world, poses[0], seed=seed)``), so
         the result depends on the seed alone; scans run in parallel.
+        """
+    def record(self, world: World, poses: _Poses, *, seed: int = 0) -> Log:
+        """``simulate_path``'s scans as a ``Log``: scan ``i`` from
+        ``poses[i]`` at time ``i`` seconds, this sensor's bearings and
+        maximum range, ready for ``CoverageMap.integrate_log``.
         """
     def __eq__(self, value: object, /) -> bool: ...
     def __ne__(self, value: object, /) -> bool: ...
@@ -775,6 +986,8 @@ class SonarRing(_RangeSensor):
     @property
     def critical_angle_glass_rad(self) -> float:
         """Largest angle of incidence at which glass still echoes, radians."""
+    def __getnewargs_ex__(self) -> tuple[tuple[()], dict[str, Any]]:
+        """Pickle and copy support: the keyword arguments that rebuild the ring."""
 
 @final
 class Laser(_RangeSensor):
@@ -808,6 +1021,8 @@ class Laser(_RangeSensor):
     @property
     def noise_std_m(self) -> float:
         """Standard deviation of the range noise, metres."""
+    def __getnewargs_ex__(self) -> tuple[tuple[()], dict[str, Any]]:
+        """Pickle and copy support: the keyword arguments that rebuild the laser."""
 
 @final
 class Robot:
@@ -844,6 +1059,8 @@ class Robot:
         """
     def __eq__(self, value: object, /) -> bool: ...
     def __ne__(self, value: object, /) -> bool: ...
+    def __getnewargs_ex__(self) -> tuple[tuple[()], dict[str, Any]]:
+        """Pickle and copy support: the keyword arguments that rebuild the robot."""
 
 def run_fig3(seed: int = 0) -> Fig3Result:
     """Run the paper's Fig. 3 with ``seed``: 24 simulated sonars driven along a

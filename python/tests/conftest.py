@@ -88,3 +88,21 @@ def shared_world() -> Callable[[str], Path]:
         return path
 
     return find
+
+
+SHARED_DATA = SHARED_WORLDS.parent
+"""The shared real-data folder (logs in ``carmen/`` and ``sonar-8ring/``)."""
+
+
+@pytest.fixture
+def shared_data() -> Callable[[str], Path]:
+    """``shared_data("carmen/intel-corrected.log.gz")``: the path of a real
+    data file, skipped (outside CI) or failed (``CI=true``) when absent."""
+
+    def find(name: str) -> Path:
+        path = SHARED_DATA / name
+        if not path.is_file():
+            _missing(f"{path} is absent")
+        return path
+
+    return find

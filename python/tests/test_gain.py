@@ -91,11 +91,11 @@ def test_sequences_and_empty_inputs(model: Any) -> None:
         ([(5.0, 0.7, 0.0)], {}, covmap.PoseOutsideMapError),
         (np.zeros((2, 2)), {}, covmap.ArrayShapeError),
         (np.zeros(3), {}, covmap.ArrayShapeError),
-        (np.full((2, 3), 0.5, dtype=np.float32), {}, covmap.ArrayDtypeError),
+        (np.full((2, 3), 0.5, dtype=np.float16), {}, covmap.ArrayDtypeError),
         ([(1.0, 0.7)], {}, covmap.ArrayShapeError),
     ],
     ids=["method", "stop", "coarse step", "negative step", "nan pose", "inf heading", "outside", "2 columns",
-         "1-D", "float32", "pair"],
+         "1-D", "float16", "pair"],
 )
 def test_bad_input_raises_and_leaves_the_map(
     scans: ScanSource, model: Any, poses: Any, kwargs: dict[str, Any], cls: type[Exception]

@@ -129,7 +129,7 @@ def test_laser_layouts_and_readings() -> None:
         (lambda: covmap.SonarRing(outlier_probability=1.5), covmap.InvalidParameterError),
         (lambda: covmap.SonarRing(bearings_rad=[]), covmap.InvalidParameterError),
         (lambda: covmap.SonarRing(bearings_rad=[0.0, math.nan]), covmap.InvalidValueError),
-        (lambda: covmap.SonarRing(bearings_rad=np.zeros(3, dtype=np.float32)), covmap.ArrayDtypeError),
+        (lambda: covmap.SonarRing(bearings_rad=np.zeros(3, dtype=np.float16)), covmap.ArrayDtypeError),
         (lambda: covmap.Laser(1), covmap.InvalidParameterError),
         (lambda: covmap.Laser(10, 0.0), covmap.InvalidParameterError),
         (lambda: covmap.Laser(max_range_m=-1.0), covmap.InvalidParameterError),
@@ -159,7 +159,7 @@ def test_bad_poses_raise(corridor: covmap.World, sensor: covmap.SonarRing | covm
     with pytest.raises(covmap.ArrayShapeError):
         sensor.simulate_path(corridor, np.zeros((2, 2)))
     with pytest.raises(covmap.ArrayDtypeError):
-        sensor.simulate_path(corridor, np.zeros((2, 3), dtype=np.float32))
+        sensor.simulate_path(corridor, np.zeros((2, 3), dtype=np.float16))
     with pytest.raises(TypeError):
         sensor.simulate("corridor", POSE)  # type: ignore[arg-type]
 

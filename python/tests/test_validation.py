@@ -32,7 +32,7 @@ CASES: list[tuple[str, Any, Any, Any, type[Exception], type[Exception]]] = [
     ("pose above map", (1.0, 2.5, 0.0), R, B, covmap.PoseOutsideMapError, ValueError),
     ("short bearings", POSE, R, B[:2], covmap.LengthMismatchError, ValueError),
     ("int ranges", POSE, np.array([1, 2, 3]), B, covmap.ArrayDtypeError, TypeError),
-    ("float32 bearings", POSE, R, B.astype(np.float32), covmap.ArrayDtypeError, TypeError),
+    ("float16 bearings", POSE, R, B.astype(np.float16), covmap.ArrayDtypeError, TypeError),
     ("2-D ranges", POSE, R.reshape(3, 1), B, covmap.ArrayShapeError, ValueError),
     ("0-D ranges", POSE, np.array(1.0), B, covmap.ArrayShapeError, ValueError),
     ("string ranges", POSE, "1.0", B, covmap.ArrayDtypeError, TypeError),

@@ -148,7 +148,7 @@ def test_bad_rays_raise() -> None:
     with pytest.raises(covmap.InvalidParameterError):
         world.cast((0.0, 0.0), np.zeros(2), 0.0)
     with pytest.raises(covmap.ArrayDtypeError):
-        world.cast((0.0, 0.0), np.zeros(2, dtype=np.float32), 5.0)
+        world.cast((0.0, 0.0), np.zeros(2, dtype=np.float16), 5.0)
     with pytest.raises(covmap.ArrayShapeError):
         world.cast(np.zeros(3), np.zeros(2), 5.0)
 

@@ -1,4 +1,5 @@
 mod exploration;
 mod fig1;
 mod gain;
+mod logs;
 mod properties;

@@ -125,6 +125,32 @@ impl ScanCounts {
         Ok(())
     }
 
+    /// [`ScanCounts::integrate`] with no-echo reading `k` counted only up to
+    /// `no_echo_reach_m[k]` metres, as
+    /// [`crate::CoverageMap::integrate_clipped`].
+    ///
+    /// # Errors
+    /// As [`crate::CoverageMap::integrate_clipped`]; the counts are unchanged
+    /// then.
+    pub fn integrate_clipped<M: SensorModel + ?Sized>(
+        &mut self,
+        pose: &Pose,
+        ranges: &[f64],
+        bearings: &[f64],
+        model: &M,
+        no_echo_reach_m: &[f64],
+    ) -> Result<()> {
+        crate::pose::validate_clipped_scan(
+            &self.grid,
+            pose,
+            (ranges, bearings),
+            model,
+            no_echo_reach_m,
+        )?;
+        self.count(pose, ranges, bearings, model, Some(no_echo_reach_m));
+        Ok(())
+    }
+
     /// Count a scan already validated, no-echo reading `k` up to
     /// `no_echo_reach_m[k]` if given (see
     /// [`crate::CoverageMap::integrate_clipped`]).

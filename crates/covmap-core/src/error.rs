@@ -121,6 +121,47 @@ pub enum CovmapError {
     /// simulator).
     #[error("the robot failed: {0}")]
     Robot(String),
+    /// A scan of a log is unusable; `source` says how (its range, bearing,
+    /// pose or length), `scan` which one.
+    #[error("scan {scan} of the log: {source}")]
+    InScan {
+        /// Position of the scan in the log, from 0.
+        scan: usize,
+        /// What is wrong with it.
+        source: Box<CovmapError>,
+    },
+    /// A file could not be opened or read (the operating system's reason).
+    #[error("cannot read {file}: {reason}")]
+    Io {
+        /// The file's path as given.
+        file: String,
+        /// The system's message.
+        reason: String,
+    },
+    /// Bytes that are not a whole, unchanged covmap map file (see
+    /// `CoverageMap::from_file_bytes`).
+    #[error("not a valid covmap map file: {0}")]
+    InvalidMapFile(String),
+    /// A line of a text file does not say what its format requires.
+    #[error("{file}:{line}: {reason}")]
+    Parse {
+        /// The file's path as given.
+        file: String,
+        /// The line, from 1.
+        line: usize,
+        /// What the line should have held.
+        reason: String,
+    },
+}
+
+impl CovmapError {
+    /// This error, as found in scan `scan` of a log.
+    pub(crate) fn in_scan(self, scan: usize) -> Self {
+        Self::InScan {
+            scan,
+            source: Box::new(self),
+        }
+    }
 }
 
 /// Shorthand for results of this crate.

@@ -33,6 +33,8 @@ mod footprint;
 pub mod gain;
 mod grid;
 pub mod histogram;
+pub mod log;
+mod map_file;
 #[doc = include_str!("model.md")]
 pub mod model {}
 mod numeric;
@@ -40,6 +42,7 @@ mod occupancy;
 pub mod parallel;
 pub mod planner;
 mod pose;
+mod ros_occupancy;
 pub mod sensor;
 #[cfg(test)]
 mod test_rng;
@@ -50,6 +53,9 @@ pub use coverage_map::{
 };
 pub use error::{CovmapError, Result};
 pub use grid::{Cell, Grid, MAX_CELLS, MAX_CELLS_FROM_ZERO, MIN_RESOLUTION_M};
+pub use log::{Bearings, CarmenOptions, Log, SonarTextOptions};
+pub use map_file::MAP_FILE_VERSION;
 pub use occupancy::{OccupancyGrid, OccupancyModel};
 pub use pose::Pose;
+pub use ros_occupancy::{CoverageValue, ROS_UNKNOWN};
 pub use sensor::{Footprint, KernelTable, LaserModel, RangeModel, SensorModel, SonarModel};

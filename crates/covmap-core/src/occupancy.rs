@@ -211,8 +211,13 @@ impl OccupancyGrid {
         model: &M,
         no_echo_reach_m: &[f64],
     ) -> Result<()> {
-        crate::coverage_map::check_reaches(ranges, no_echo_reach_m)?;
-        validate_scan(self.grid(), pose, ranges, bearings, model)?;
+        crate::pose::validate_clipped_scan(
+            self.grid(),
+            pose,
+            (ranges, bearings),
+            model,
+            no_echo_reach_m,
+        )?;
         self.apply(pose, ranges, bearings, model, Some(no_echo_reach_m));
         Ok(())
     }

@@ -83,6 +83,20 @@ pub(crate) fn validate_scan<M: SensorModel + ?Sized>(
     check_bearings(pose.theta_rad, bearings)
 }
 
+/// [`validate_scan`] for a scan whose no-echo readings reach
+/// `no_echo_reach_m` (see `CoverageMap::integrate_clipped`): one reach a
+/// reading, none NaN or negative, checked first.
+pub(crate) fn validate_clipped_scan<M: SensorModel + ?Sized>(
+    grid: &Grid,
+    pose: &Pose,
+    (ranges, bearings): (&[f64], &[f64]),
+    model: &M,
+    no_echo_reach_m: &[f64],
+) -> Result<()> {
+    crate::coverage_map::check_reaches(ranges, no_echo_reach_m)?;
+    validate_scan(grid, pose, ranges, bearings, model)
+}
+
 /// The cell of `pose` on `grid`: an error if a component is not finite
 /// ([`CovmapError::InvalidPose`]) or the position lies in no cell
 /// ([`CovmapError::PoseOutsideMap`]).
@@ -101,5 +115,67 @@ pub(crate) fn check_bearings(theta_rad: f64, bearings: &[f64]) -> Result<()> {
     {
         Some((index, &value)) => Err(CovmapError::InvalidBearing { index, value }),
         None => Ok(()),
+    }
+}
+
+impl Pose {
+    /// This pose followed by `offset`, given in this pose's frame: the world
+    /// pose of a sensor mounted at `offset` on a robot at `self`.
+    ///
+    /// ```
+    /// use covmap_core::Pose;
+    /// let robot = Pose::new(1.0, 2.0, std::f64::consts::FRAC_PI_2);
+    /// let sensor = robot.compose(&Pose::new(0.5, 0.0, 0.0));
+    /// assert!((sensor.x_m - 1.0).abs() < 1e-12 && (sensor.y_m - 2.5).abs() < 1e-12);
+    /// ```
+    pub fn compose(&self, offset: &Pose) -> Pose {
+        let (sin, cos) = self.theta_rad.sin_cos();
+        Pose {
+            x_m: self.x_m + cos * offset.x_m - sin * offset.y_m,
+            y_m: self.y_m + sin * offset.x_m + cos * offset.y_m,
+            theta_rad: self.theta_rad + offset.theta_rad,
+        }
+    }
+}
+
+/// The pose as nalgebra's rigid motion (`world_from_robot`): translation
+/// `(x_m, y_m)`, rotation by `theta_rad`.
+impl From<Pose> for nalgebra::Isometry2<f64> {
+    fn from(p: Pose) -> Self {
+        nalgebra::Isometry2::new(nalgebra::Vector2::new(p.x_m, p.y_m), p.theta_rad)
+    }
+}
+
+/// The pose of nalgebra's rigid motion; the heading in `(-pi, pi]`.
+impl From<nalgebra::Isometry2<f64>> for Pose {
+    fn from(iso: nalgebra::Isometry2<f64>) -> Self {
+        Pose {
+            x_m: iso.translation.x,
+            y_m: iso.translation.y,
+            theta_rad: iso.rotation.angle(),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn isometry_round_trip_and_composition_agree() {
+        let a = Pose::new(1.5, -2.0, 0.7);
+        let b = Pose::new(0.3, 0.1, -2.9);
+        let iso: nalgebra::Isometry2<f64> = a.into();
+        let back = Pose::from(iso);
+        assert!((back.x_m - a.x_m).abs() < 1e-15 && (back.y_m - a.y_m).abs() < 1e-15);
+        assert!((back.theta_rad - a.theta_rad).abs() < 1e-15);
+        let product = Pose::from(iso * nalgebra::Isometry2::from(b));
+        let composed = a.compose(&b);
+        assert!((product.x_m - composed.x_m).abs() < 1e-12);
+        assert!((product.y_m - composed.y_m).abs() < 1e-12);
+        // The composed heading is not wrapped; nalgebra's is.
+        let wrapped = (composed.theta_rad + std::f64::consts::PI).rem_euclid(std::f64::consts::TAU)
+            - std::f64::consts::PI;
+        assert!((product.theta_rad - wrapped).abs() < 1e-12);
     }
 }

@@ -64,6 +64,38 @@ fn numpy_values<T: Element + Copy>(
     Ok((values, shape))
 }
 
+/// The values of a float64 or float32 numpy array of `ndim` dimensions as
+/// float64 (each float32 exactly), with its shape; other dtypes as
+/// [`numpy_values`] refuses them.
+fn float_values(
+    array: &Bound<'_, PyUntypedArray>,
+    name: &str,
+    ndim: usize,
+    expected: &str,
+) -> PyResult<(Vec<f64>, Vec<usize>)> {
+    if array.cast::<PyArrayDyn<f32>>().is_ok() {
+        let (values, shape) = numpy_values::<f32>(array, name, ndim, expected)?;
+        return Ok((values.into_iter().map(f64::from).collect(), shape));
+    }
+    numpy_values::<f64>(array, name, ndim, expected)
+}
+
+/// A 2-D float64 or float32 numpy array as float64 values, row-major, and
+/// its shape.
+pub(crate) fn matrix(obj: &Bound<'_, PyAny>, name: &str) -> PyResult<(Vec<f64>, [usize; 2])> {
+    let Ok(array) = obj.cast::<PyUntypedArray>() else {
+        return Err(Exception::ArrayDtype.err(
+            obj.py(),
+            format!(
+                "{name} must be a 2-D float64 or float32 numpy array, got {}",
+                obj.get_type()
+            ),
+        ));
+    };
+    let (values, shape) = float_values(array, name, 2, "float64 or float32")?;
+    Ok((values, [shape[0], shape[1]]))
+}
+
 /// A pose: any sequence of three numbers `(x, y, theta)`, metres and radians.
 /// Another length raises `ArrayShapeError`, anything else `ArrayDtypeError`.
 pub(crate) fn pose(obj: &Bound<'_, PyAny>) -> PyResult<Pose> {
@@ -88,17 +120,17 @@ fn sequence_error(py: Python<'_>, cause: &PyErr, message: String) -> PyErr {
     }
 }
 
-/// A scan's ranges or bearings: a 1-D float64 numpy array, or a sequence of
-/// numbers.
+/// A scan's ranges or bearings: a 1-D float64 or float32 numpy array (a ROS
+/// `LaserScan`'s ranges are float32), or a sequence of numbers.
 pub(crate) fn readings(obj: &Bound<'_, PyAny>, name: &str) -> PyResult<Vec<f64>> {
     if let Ok(array) = obj.cast::<PyUntypedArray>() {
-        return Ok(numpy_values::<f64>(array, name, 1, "float64")?.0);
+        return Ok(float_values(array, name, 1, "float64 or float32")?.0);
     }
     obj.extract::<Vec<f64>>().map_err(|_| {
         Exception::ArrayDtype.err(
             obj.py(),
             format!(
-                "{name} must be a 1-D float64 numpy array or a sequence of numbers, got {}",
+                "{name} must be a 1-D float64 or float32 numpy array or a sequence of numbers, got {}",
                 obj.get_type()
             ),
         )
@@ -234,9 +266,9 @@ pub(crate) fn rows<const K: usize>(
     what: &str,
 ) -> PyResult<Vec<[f64; K]>> {
     let py = obj.py();
-    let expected = format!("float64 with shape (N, {K}), one {what} a row");
+    let expected = format!("float64 or float32 with shape (N, {K}), one {what} a row");
     if let Ok(array) = obj.cast::<PyUntypedArray>() {
-        let (values, shape) = numpy_values::<f64>(array, name, 2, &expected)?;
+        let (values, shape) = float_values(array, name, 2, &expected)?;
         if shape[1] != K {
             return Err(Exception::ArrayShape.err(
                 py,

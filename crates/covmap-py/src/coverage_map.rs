@@ -127,7 +127,7 @@ impl PyCoverageMap {
 
     /// Integrate one scan taken from ``pose = (x, y, theta)`` (metres, radians):
     /// reading ``ranges[i]`` (metres) along ``theta + bearings[i]`` (radians).
-    /// ``ranges`` and ``bearings`` are 1-D float64 arrays (or sequences of
+    /// ``ranges`` and ``bearings`` are 1-D float64 or float32 arrays (or sequences of
     /// numbers) of equal length; a reading at or beyond the model's maximum
     /// range means "no echo". ``model`` is a ``SonarModel`` or a
     /// ``LaserModel``. Returns the number of cell updates.
@@ -147,6 +147,31 @@ impl PyCoverageMap {
         let map = &mut self.0;
         py.detach(|| map.integrate(&scan.pose, &scan.ranges, &scan.bearings, &scan.model))
             .or_raise(py)
+    }
+
+    /// Integrate every scan of ``log`` (a ``Log``) with ``model``, in order;
+    /// returns the number of cell updates. Each scan is taken from its sensor pose (the robot's
+    /// pose with the log's sensor offset); dropped beams (NaN) are skipped; a
+    /// reading without echo clears up to the lesser of the log's and the
+    /// model's maximum range. Every scan is checked first: a scan whose
+    /// sensor pose lies outside the map raises (``PoseOutsideMapError``, the
+    /// message naming the scan) and leaves the map exactly as it was.
+    /// ``progress``: ``True`` shows a bar (tqdm's if installed), a callable
+    /// is called as ``progress(done, total)``. Runs with the GIL released.
+    #[pyo3(signature = (log, model, *, progress=crate::log::ProgressArg::Flag(false)), text_signature = "($self, log, model, *, progress=False)")]
+    fn integrate_log(
+        &mut self,
+        py: Python<'_>,
+        log: &Bound<'_, crate::log::PyLog>,
+        model: &Bound<'_, PyAny>,
+        progress: crate::log::ProgressArg,
+    ) -> PyResult<usize> {
+        let model = crate::sensor::any_model(model)?;
+        let log = &log.get().0;
+        let map = &mut self.0;
+        crate::log::integrate_log_showing(py, log.len(), progress, |show| {
+            map.integrate_log_with_progress(log, &model, show)
+        })
     }
 
     /// Keep (``True``) or stop keeping (``False``) each cell's entropy after
@@ -181,6 +206,88 @@ impl PyCoverageMap {
             "CoverageMap({}, bins={})",
             self.grid().__repr__(),
             self.0.bins()
+        )
+    }
+    /// Save the whole posterior (grid, bins, histograms, the entropy history
+    /// if kept) to ``path``: a versioned ``.npz`` archive that
+    /// ``numpy.load`` opens without covmap (``covmap_version``, ``grid`` =
+    /// origin x, origin y, resolution, ``histograms`` (rows, cols, bins),
+    /// ``history_entropies`` and ``history_counts``), each entry with a
+    /// CRC-32. Written atomically: a reader never sees half a file, and a
+    /// failed write leaves ``path`` as it was (``FileIOError``). Runs with
+    /// the GIL released.
+    fn save(&self, py: Python<'_>, path: std::path::PathBuf) -> PyResult<()> {
+        let map = &self.0;
+        let bytes = py.detach(|| map.to_file_bytes()).or_raise(py)?;
+        py.detach(|| covmap::sim::write_atomic(&path, &bytes))
+            .or_raise(py)
+    }
+    /// The map ``save`` wrote to ``path``, bit for bit. A file that is not a
+    /// whole, unchanged map file (empty, cut short, a byte changed, a newer
+    /// version) raises ``FileFormatError``, one that cannot be read
+    /// ``FileIOError``; never a wrong map. Runs with the GIL released.
+    #[staticmethod]
+    fn load(py: Python<'_>, path: std::path::PathBuf) -> PyResult<Self> {
+        let bytes = py.detach(|| covmap::sim::read_bytes(&path)).or_raise(py)?;
+        py.detach(|| CoverageMap::from_file_bytes(&bytes))
+            .map(Self)
+            .map_err(|e| crate::errors::file_to_py(py, &path, e))
+    }
+    /// The map as ``nav_msgs/OccupancyGrid`` data: int8 ``(rows, cols)``,
+    /// ``source``'s coverage (``"ml"`` or ``"mean"``) in percent, ``-1``
+    /// (unknown) for every cell whose entropy is still within
+    /// ``unknown_within_nats`` of the prior's ``ln(bins)`` (0: only cells no
+    /// evidence reached). Row 0 is the grid's row 0, as in the message.
+    #[pyo3(signature = (*, source="ml", unknown_within_nats=0.05))]
+    fn ros_occupancy<'py>(
+        &self,
+        py: Python<'py>,
+        source: &str,
+        unknown_within_nats: f64,
+    ) -> PyResult<Bound<'py, PyArray2<i8>>> {
+        let value = crate::ros_map::coverage_value(py, source)?;
+        let data = self
+            .0
+            .ros_occupancy(value, unknown_within_nats)
+            .or_raise(py)?;
+        crate::ros_map::array(py, self.0.grid(), data)
+    }
+    /// Write the map as ROS map_server / nav2 map_saver do: ``yaml_path``
+    /// and the PGM of the same name beside it, from ``ros_occupancy(source=,
+    /// unknown_within_nats=)``; ``mode`` ``"trinary"`` (black at or above
+    /// ``occupied_thresh``, white at or below ``free_thresh``, grey between
+    /// and unknown) or ``"scale"`` (grey by occupancy, unknown 205).
+    /// ``World.from_file(yaml_path)`` reads the pair back. Each file is
+    /// written atomically.
+    #[pyo3(signature = (yaml_path, *, mode="trinary", occupied_thresh=0.65, free_thresh=0.196, source="ml", unknown_within_nats=0.05))]
+    #[allow(
+        clippy::too_many_arguments,
+        reason = "map_saver's settings and the read-out's"
+    )]
+    fn to_ros_map(
+        &self,
+        py: Python<'_>,
+        yaml_path: std::path::PathBuf,
+        mode: &str,
+        occupied_thresh: f64,
+        free_thresh: f64,
+        source: &str,
+        unknown_within_nats: f64,
+    ) -> PyResult<()> {
+        let value = crate::ros_map::coverage_value(py, source)?;
+        let data = self
+            .0
+            .ros_occupancy(value, unknown_within_nats)
+            .or_raise(py)?;
+        let grid = *self.0.grid();
+        crate::ros_map::write(
+            py,
+            &yaml_path,
+            &grid,
+            &data,
+            mode,
+            occupied_thresh,
+            free_thresh,
         )
     }
     /// Pickle and copy support: rebuilt from the grid and the histograms, the

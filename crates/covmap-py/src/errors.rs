@@ -88,6 +88,10 @@ impl Exception {
             CovmapError::InvalidHistory { .. } => Self::InvalidHistory,
             CovmapError::InvalidStart { .. } => Self::InvalidStart,
             CovmapError::Robot(_) => Self::Robot,
+            // A bad scan of a log is the error of what is wrong with it.
+            CovmapError::InScan { source, .. } => Self::of(source),
+            CovmapError::Io { .. } => Self::FileIO,
+            CovmapError::Parse { .. } | CovmapError::InvalidMapFile(_) => Self::FileFormat,
             // The core enum is non-exhaustive: a new variant is still a CovmapError.
             _ => Self::Base,
         }
@@ -131,8 +135,48 @@ impl Exception {
 }
 
 /// A core error as the matching Python exception.
+///
+/// A file that cannot be read raises `FileIOError` with `filename`; a
+/// malformed line `FileFormatError` with `filename`, `place` (`"line N"`)
+/// and `reason`, as the simulator's file errors do.
 pub(crate) fn to_py(py: Python<'_>, err: CovmapError) -> PyErr {
-    Exception::of(&err).err(py, err.to_string())
+    let message = err.to_string();
+    match err {
+        CovmapError::Io { file, .. } => {
+            Exception::FileIO.err_with(py, (message,), &[("filename", file)])
+        }
+        CovmapError::Parse { file, line, reason } => Exception::FileFormat.err_with(
+            py,
+            (message,),
+            &[
+                ("filename", file),
+                ("place", format!("line {line}")),
+                ("reason", reason),
+            ],
+        ),
+        other => Exception::of(&other).err(py, message),
+    }
+}
+
+/// A core error reading the file at `path` as the matching Python
+/// exception: a file that is not a map file raises `FileFormatError` with
+/// `filename`, `place` (`"the archive"`) and `reason`.
+pub(crate) fn file_to_py(py: Python<'_>, path: &std::path::Path, err: CovmapError) -> PyErr {
+    match err {
+        CovmapError::InvalidMapFile(reason) => {
+            let filename = path.display().to_string();
+            Exception::FileFormat.err_with(
+                py,
+                (format!("{filename}: not a valid covmap map file: {reason}"),),
+                &[
+                    ("filename", filename),
+                    ("place", "the archive".to_string()),
+                    ("reason", reason),
+                ],
+            )
+        }
+        other => to_py(py, other),
+    }
 }
 
 /// `?` for core results inside Python methods.

@@ -49,6 +49,31 @@ impl PyOccupancyGrid {
             .or_raise(py)
     }
 
+    /// Integrate every scan of ``log`` (a ``Log``) with ``model``, in order;
+    /// returns the number of scans. Each scan is taken from its sensor pose (the robot's
+    /// pose with the log's sensor offset); dropped beams (NaN) are skipped; a
+    /// reading without echo clears up to the lesser of the log's and the
+    /// model's maximum range. Every scan is checked first: a scan whose
+    /// sensor pose lies outside the map raises (``PoseOutsideMapError``, the
+    /// message naming the scan) and leaves the map exactly as it was.
+    /// ``progress``: ``True`` shows a bar (tqdm's if installed), a callable
+    /// is called as ``progress(done, total)``. Runs with the GIL released.
+    #[pyo3(signature = (log, model, *, progress=crate::log::ProgressArg::Flag(false)), text_signature = "($self, log, model, *, progress=False)")]
+    fn integrate_log(
+        &mut self,
+        py: Python<'_>,
+        log: &Bound<'_, crate::log::PyLog>,
+        model: &Bound<'_, PyAny>,
+        progress: crate::log::ProgressArg,
+    ) -> PyResult<usize> {
+        let model = crate::sensor::any_model(model)?;
+        let log = &log.get().0;
+        let map = &mut self.0;
+        crate::log::integrate_log_showing(py, log.len(), progress, |show| {
+            map.integrate_log_with_progress(log, &model, show)
+        })
+    }
+
     /// Probability of occupancy, float32, ``(rows, cols)``.
     fn probabilities<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray2<f32>>> {
         cell_array(py, self.0.grid(), self.0.probabilities())
@@ -68,6 +93,38 @@ impl PyOccupancyGrid {
     /// unknown, whatever ``probabilities()`` reads there (0.5).
     fn observed<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray2<bool>>> {
         cell_array(py, self.0.grid(), self.0.observed())
+    }
+
+    /// The grid as ``nav_msgs/OccupancyGrid`` data: int8 ``(rows, cols)``,
+    /// the probability of occupancy in percent, ``-1`` (unknown) where no
+    /// evidence reached.
+    fn ros_occupancy<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray2<i8>>> {
+        crate::ros_map::array(py, self.0.grid(), self.0.ros_occupancy())
+    }
+    /// Write the grid as ROS map_server / nav2 map_saver do: ``yaml_path``
+    /// and the PGM of the same name beside it, from ``ros_occupancy()``;
+    /// ``mode`` as ``CoverageMap.to_ros_map``. ``World.from_file(yaml_path)``
+    /// reads the pair back.
+    #[pyo3(signature = (yaml_path, *, mode="trinary", occupied_thresh=0.65, free_thresh=0.196))]
+    fn to_ros_map(
+        &self,
+        py: Python<'_>,
+        yaml_path: std::path::PathBuf,
+        mode: &str,
+        occupied_thresh: f64,
+        free_thresh: f64,
+    ) -> PyResult<()> {
+        let grid = *self.0.grid();
+        let data = self.0.ros_occupancy();
+        crate::ros_map::write(
+            py,
+            &yaml_path,
+            &grid,
+            &data,
+            mode,
+            occupied_thresh,
+            free_thresh,
+        )
     }
 
     fn __repr__(&self) -> String {

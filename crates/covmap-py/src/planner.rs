@@ -103,6 +103,25 @@ keyword_class! {
             }
         }
         methods {
+            /// Pickle and copy support: the keyword arguments that rebuild the planner.
+            fn __getnewargs_ex__<'py>(
+                &self,
+                py: Python<'py>,
+            ) -> PyResult<(Bound<'py, pyo3::types::PyTuple>, Bound<'py, pyo3::types::PyDict>)> {
+                let kwargs = pyo3::types::PyDict::new(py);
+                kwargs.set_item("alpha", self.alpha())?;
+                kwargs.set_item("robot_radius_m", self.robot_radius_m())?;
+                kwargs.set_item("candidate_stride_m", self.candidate_stride_m())?;
+                kwargs.set_item("min_travel_m", self.min_travel_m())?;
+                kwargs.set_item("min_gain_nats", self.min_gain_nats())?;
+                kwargs.set_item("blocked_coverage", self.blocked_coverage())?;
+                kwargs.set_item("unknown_entropy_fraction", self.unknown_entropy_fraction())?;
+                kwargs.set_item("unknown_is_free", self.unknown_is_free())?;
+                kwargs.set_item("epsilon", self.epsilon())?;
+                kwargs.set_item("range_step_m", self.range_step_m())?;
+                kwargs.set_item("stop_coverage", self.stop_coverage())?;
+                Ok((pyo3::types::PyTuple::empty(py), kwargs))
+            }
             /// Choose the next viewpoint for a robot at ``pose = (x, y, theta)`` on
             /// ``map``, scanning with beams at ``bearings`` through ``model``. Runs
             /// with the GIL released; the map is not changed.

@@ -40,6 +40,19 @@ impl PyRobot {
         self.0.radius_m()
     }
 
+    /// Pickle and copy support: the keyword arguments that rebuild the robot.
+    fn __getnewargs_ex__<'py>(
+        &self,
+        py: Python<'py>,
+    ) -> PyResult<(
+        Bound<'py, pyo3::types::PyTuple>,
+        Bound<'py, pyo3::types::PyDict>,
+    )> {
+        let kwargs = pyo3::types::PyDict::new(py);
+        kwargs.set_item("radius_m", self.0.radius_m())?;
+        Ok((pyo3::types::PyTuple::empty(py), kwargs))
+    }
+
     /// Whether the disc at ``pose`` overlaps or touches an obstacle of
     /// ``world``. A pose with a non-finite position collides.
     fn collides(&self, world: &Bound<'_, PyWorld>, pose: &Bound<'_, PyAny>) -> PyResult<bool> {

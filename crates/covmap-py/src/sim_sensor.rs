@@ -115,6 +115,17 @@ macro_rules! range_sensor_class {
             fn simulate_path<'py>(&self, py: Python<'py>, world: &Bound<'py, PyWorld>, poses: &Bound<'py, PyAny>, seed: Seed) -> PyResult<Bound<'py, PyArray2<f64>>> {
                 scan_many(py, &self.0, world, poses, seed.0)
             }
+            /// ``simulate_path``'s scans as a ``Log``: scan ``i`` from
+            /// ``poses[i]`` at time ``i`` seconds, this sensor's bearings and
+            /// maximum range, ready for ``CoverageMap.integrate_log``.
+            #[pyo3(signature = (world, poses, *, seed=Seed(0)), text_signature = "($self, world, poses, *, seed=0)")]
+            fn record(&self, py: Python<'_>, world: &Bound<'_, PyWorld>, poses: &Bound<'_, PyAny>, seed: Seed) -> PyResult<crate::log::PyLog> {
+                let poses = convert::poses(poses, "poses")?;
+                let world: &World = &world.get().0;
+                py.detach(|| covmap::sim::record(&self.0, world, &poses, seed.0))
+                    .map(crate::log::PyLog)
+                    .or_raise(py)
+            }
         }
     };
 }
@@ -186,6 +197,27 @@ range_sensor_class! {
                     .unwrap_or(d.critical_angle_glass_rad),
             };
             checked(py, ring).map(Self)
+        }
+
+        /// Pickle and copy support: the keyword arguments that rebuild the ring.
+        fn __getnewargs_ex__<'py>(
+            &self,
+            py: Python<'py>,
+        ) -> PyResult<(Bound<'py, pyo3::types::PyTuple>, Bound<'py, pyo3::types::PyDict>)> {
+            let r = &self.0;
+            let kwargs = pyo3::types::PyDict::new(py);
+            kwargs.set_item("bearings_rad", PyArray1::from_slice(py, &r.bearings_rad))?;
+            kwargs.set_item("opening_angle_rad", r.opening_angle_rad)?;
+            kwargs.set_item("max_range_m", r.max_range_m)?;
+            kwargs.set_item("min_range_m", r.min_range_m)?;
+            kwargs.set_item("rays_per_cone", r.rays_per_cone)?;
+            kwargs.set_item("noise_std_m", r.noise_std_m)?;
+            kwargs.set_item("noise_std_per_m", r.noise_std_per_m)?;
+            kwargs.set_item("outlier_probability", r.outlier_probability)?;
+            kwargs.set_item("multipath_probability", r.multipath_probability)?;
+            kwargs.set_item("critical_angle_wall_rad", r.critical_angle_wall_rad)?;
+            kwargs.set_item("critical_angle_glass_rad", r.critical_angle_glass_rad)?;
+            Ok((pyo3::types::PyTuple::empty(py), kwargs))
         }
 
         /// ``count`` sensors evenly spaced around the robot, the first straight
@@ -304,6 +336,18 @@ range_sensor_class! {
             laser.max_range_m = max_range_m.unwrap_or(laser.max_range_m);
             laser.noise_std_m = noise_std_m.unwrap_or(laser.noise_std_m);
             checked(py, laser).map(Self)
+        }
+
+        /// Pickle and copy support: the keyword arguments that rebuild the laser.
+        fn __getnewargs_ex__<'py>(
+            &self,
+            py: Python<'py>,
+        ) -> PyResult<(Bound<'py, pyo3::types::PyTuple>, Bound<'py, pyo3::types::PyDict>)> {
+            let kwargs = pyo3::types::PyDict::new(py);
+            kwargs.set_item("bearings_rad", PyArray1::from_slice(py, &self.0.bearings_rad))?;
+            kwargs.set_item("max_range_m", self.0.max_range_m)?;
+            kwargs.set_item("noise_std_m", self.0.noise_std_m)?;
+            Ok((pyo3::types::PyTuple::empty(py), kwargs))
         }
 
         /// 180 beams one degree apart from -90 degrees (to +89), the layout of

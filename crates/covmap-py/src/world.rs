@@ -190,6 +190,20 @@ impl PyWorld {
         loaded.map(Self).or_raise(py)
     }
 
+    /// Pickle and copy support: rebuilt by ``World._from_geojson`` from
+    /// ``to_geojson()``.
+    fn __reduce__<'py>(&self, py: Python<'py>) -> PyResult<(Bound<'py, PyAny>, (String,))> {
+        let rebuild = py.get_type::<Self>().getattr("_from_geojson")?;
+        Ok((rebuild, (self.0.to_geojson(),)))
+    }
+    /// Unpickling support: the world of a GeoJSON text (``to_geojson``).
+    #[staticmethod]
+    fn _from_geojson(py: Python<'_>, text: &str) -> PyResult<Self> {
+        World::from_geojson_str(text, "pickled world")
+            .map(Self)
+            .or_raise(py)
+    }
+
     /// The world as GeoJSON text (``World.from_file`` reads it back from a
     /// ``.geojson`` file).
     fn to_geojson(&self) -> String {

@@ -1,6 +1,6 @@
 //! Simulating scans along a path.
 
-use covmap_core::Pose;
+use covmap_core::{Bearings, Log, Pose};
 use rand::Rng;
 
 use crate::error::Result;
@@ -81,6 +81,36 @@ pub fn simulate<S: RangeSensor + Sync>(
         .collect()
 }
 
+/// [`simulate`]'s scans as a [`Log`]: scan `i` from `poses[i]` at time
+/// `i` seconds, the sensor's bearings and maximum range, the sensor at the
+/// robot's pose; the same seed gives the same log.
+///
+/// # Example
+/// ```
+/// use covmap_core::Pose;
+/// use covmap_sim::{record, Laser, World};
+/// let world = World::builtin("corridor").unwrap();
+/// let poses: Vec<Pose> = (0..5).map(|i| Pose::new(1.0 + 0.2 * i as f64, 1.3, 0.0)).collect();
+/// let log = record(&Laser::sick_180(), &world, &poses, 7).unwrap();
+/// assert_eq!((log.len(), log.beams()), (5, Laser::sick_180().bearings_rad.len()));
+/// ```
+pub fn record<S: RangeSensor + Sync>(
+    sensor: &S,
+    world: &World,
+    poses: &[Pose],
+    seed: u64,
+) -> Result<Log> {
+    let scans = simulate(sensor, world, poses, seed)?;
+    let ranges = scans.into_iter().flat_map(|s| s.ranges_m).collect();
+    Ok(Log::new(
+        poses.to_vec(),
+        (0..poses.len()).map(|i| i as f64).collect(),
+        ranges,
+        Bearings::Fixed(sensor.bearings_rad().to_vec()),
+        sensor.max_range_m(),
+    )?)
+}
+
 /// Errors unless every component of the pose is finite.
 pub(crate) fn check_pose(pose: &Pose) -> Result<()> {
     Ok(pose.check_finite()?)
@@ -117,6 +147,12 @@ mod tests {
             );
         }
         assert_ne!(scans, simulate(&sonar, &world, &poses, 12).unwrap());
+        let log = record(&laser, &world, &poses, 11).unwrap();
+        for (i, scan) in lasers.iter().enumerate() {
+            assert_eq!(log.scan_ranges(i), &scan.ranges_m[..]);
+            assert_eq!(log.poses()[i], poses[i]);
+        }
+        assert_eq!(log.max_range_m(), laser.max_range_m());
         let bad = [Pose::new(1.0, f64::INFINITY, 0.0)];
         assert!(simulate(&sonar, &world, &bad, 1).is_err());
     }

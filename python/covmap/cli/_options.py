@@ -89,9 +89,12 @@ path_limit = _within(
 )
 """An exploration's limit on its path length, metres."""
 
-discount = _within(
+distance = _within(
     _number, lambda v: 0.0 < v <= MAX_LENGTH_M, f"a distance in metres, more than 0 and at most {MAX_LENGTH_M:g}"
 )
+"""A distance, metres: a reach, a range."""
+
+discount = distance
 """The range beyond which scan counting discounts a beam, metres."""
 
 frame_count = _within(_integer, lambda v: 2 <= v <= MAX_FRAMES, f"an integer from 2 to {MAX_FRAMES}")

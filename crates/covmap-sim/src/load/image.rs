@@ -20,7 +20,8 @@
 //! A ROS YAML file gives `image` (a path relative to the YAML file),
 //! `resolution`, `origin: [x, y, yaw]`, and optionally `negate` (0/1, default
 //! 0) and `occupied_thresh` (default 0.65); `free_thresh` and `mode: trinary`
-//! are accepted and ignored.
+//! or `mode: scale` (whose obstacles are the same pixels) are accepted and
+//! ignored.
 
 use std::io::Cursor;
 use std::path::Path;
@@ -218,11 +219,13 @@ fn parse_ros_yaml(text: &str, path: &Path) -> Result<(String, ImageOptions)> {
             "free_thresh" => {
                 number(value)?;
             }
-            "mode" if value != "trinary" => {
+            // Both modes make an obstacle of the same pixels: those more
+            // likely occupied than `occupied_thresh`.
+            "mode" if !matches!(value, "trinary" | "scale") => {
                 return Err(parse_error(
                     path,
                     &place,
-                    format!("only `mode: trinary` is supported, found {value:?}"),
+                    format!("only `mode: trinary` or `mode: scale` is supported, found {value:?}"),
                 ));
             }
             _ => {}

@@ -7,25 +7,30 @@
 //! | PGM / PNG + resolution ([`image`]) | [`World::from_image_file`](crate::World::from_image_file) | every run of dark pixels, as a rectangle |
 //! | ROS map_server YAML ([`image`]) | [`World::from_ros_map_yaml`](crate::World::from_ros_map_yaml) | as above, with the YAML's resolution, origin and thresholds |
 //!
+//!
+//! Written: the map_server pair, PGM + YAML ([`map_server`]:
+//! [`write_ros_map`](crate::write_ros_map)), which the last row reads back.
+//!
 //! Malformed or degenerate input is a [`SimError::Parse`]
 //! naming the file and the place: a line, a feature, a pixel.
 
 pub mod aria;
 pub mod geojson;
 pub mod image;
+pub mod map_server;
 
 use std::path::{Path, PathBuf};
 
 use crate::error::{Result, SimError};
 
-/// The largest world file read, bytes (1 GiB).
+/// The largest world or map file read, bytes (1 GiB).
 pub const MAX_FILE_BYTES: u64 = 1 << 30;
 
 /// The bytes of the regular file at `path`, at most [`MAX_FILE_BYTES`].
 /// Anything else (a directory, a pipe that may never open or never end, a
 /// device) is refused before it is opened, and a file that grows past the
 /// limit while it is read is refused too.
-pub(crate) fn read_bytes(path: &Path) -> Result<Vec<u8>> {
+pub fn read_bytes(path: &Path) -> Result<Vec<u8>> {
     use std::io::Read;
     let io = |source| SimError::Io {
         path: path.to_path_buf(),

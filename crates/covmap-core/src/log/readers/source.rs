@@ -1,0 +1,214 @@
+//! Text files line by line, plain or gzip (told apart by gzip's magic
+//! bytes, not by the file's name), each error naming the file and the line.
+
+use std::fs::File;
+use std::io::{BufRead, BufReader, Read};
+use std::path::Path;
+
+use flate2::read::MultiGzDecoder;
+
+use crate::error::{CovmapError, Result};
+
+/// The longest line a reader takes, bytes: far above any real log's
+/// (a CARMEN line of 1000 beams is some 10 kB), and a bound on what a file
+/// without line breaks can make the reader allocate.
+pub const MAX_LINE_BYTES: usize = 1 << 20;
+
+/// The lines of one text file, numbered from 1.
+pub(crate) struct Lines {
+    reader: Box<dyn BufRead>,
+    file: String,
+    line: usize,
+    buf: Vec<u8>,
+}
+
+/// The lines of the file at `path`, gunzipped if it starts with gzip's
+/// magic bytes.
+pub(crate) fn open(path: &Path) -> Result<Lines> {
+    let file = File::open(path).map_err(|e| CovmapError::Io {
+        file: path.display().to_string(),
+        reason: e.to_string(),
+    })?;
+    lines(file, &path.display().to_string())
+}
+
+/// The lines `reader` yields, gunzipped if they start with gzip's magic
+/// bytes; `name` is the file's name in errors.
+pub(crate) fn lines<R: Read + 'static>(reader: R, name: &str) -> Result<Lines> {
+    let mut buffered = BufReader::new(reader);
+    let head = buffered.fill_buf().map_err(|e| CovmapError::Io {
+        file: name.to_string(),
+        reason: e.to_string(),
+    })?;
+    let reader: Box<dyn BufRead> = if head.starts_with(&[0x1f, 0x8b]) {
+        Box::new(BufReader::new(MultiGzDecoder::new(buffered)))
+    } else {
+        Box::new(buffered)
+    };
+    Ok(Lines {
+        reader,
+        file: name.to_string(),
+        line: 0,
+        buf: Vec::new(),
+    })
+}
+
+impl Lines {
+    /// The next line without its line break, or `None` at the end.
+    ///
+    /// # Errors
+    /// [`CovmapError::Parse`] for a line that is not UTF-8 or longer than
+    /// [`MAX_LINE_BYTES`], or a read that fails (a corrupt gzip stream).
+    pub(crate) fn next_line(&mut self) -> Result<Option<&str>> {
+        self.buf.clear();
+        self.line += 1;
+        let limit = MAX_LINE_BYTES as u64 + 1;
+        let read = (&mut self.reader)
+            .take(limit)
+            .read_until(b'\n', &mut self.buf)
+            .map_err(|e| self.error(format!("read failed: {e}")))?;
+        if read == 0 {
+            return Ok(None);
+        }
+        if self.buf.len() > MAX_LINE_BYTES {
+            return Err(self.error(format!("line longer than {MAX_LINE_BYTES} bytes")));
+        }
+        while matches!(self.buf.last(), Some(b'\n' | b'\r')) {
+            self.buf.pop();
+        }
+        match std::str::from_utf8(&self.buf) {
+            Ok(text) => Ok(Some(text)),
+            Err(_) => Err(CovmapError::Parse {
+                file: self.file.clone(),
+                line: self.line,
+                reason: "not UTF-8 text".into(),
+            }),
+        }
+    }
+
+    /// [`CovmapError::Parse`] at the current line.
+    pub(crate) fn error(&self, reason: String) -> CovmapError {
+        CovmapError::Parse {
+            file: self.file.clone(),
+            line: self.line,
+            reason,
+        }
+    }
+
+    /// The file's name as given.
+    pub(crate) fn file(&self) -> &str {
+        &self.file
+    }
+
+    /// The current line's number, from 1.
+    pub(crate) fn line(&self) -> usize {
+        self.line
+    }
+}
+
+/// The whitespace-separated fields of one line, read in order, each error
+/// naming the field.
+pub(crate) struct Fields<'a> {
+    tokens: std::str::SplitAsciiWhitespace<'a>,
+}
+
+impl<'a> Fields<'a> {
+    /// The fields of `line`.
+    pub(crate) fn new(line: &'a str) -> Self {
+        Self {
+            tokens: line.split_ascii_whitespace(),
+        }
+    }
+
+    /// The next field as text.
+    pub(crate) fn word(&mut self, what: &str) -> std::result::Result<&'a str, String> {
+        self.tokens
+            .next()
+            .ok_or_else(|| format!("the line ends before its {what}"))
+    }
+
+    /// The next field as a finite number.
+    pub(crate) fn number(&mut self, what: &str) -> std::result::Result<f64, String> {
+        let word = self.word(what)?;
+        match word.parse::<f64>() {
+            Ok(v) if v.is_finite() => Ok(v),
+            _ => Err(format!("{what} `{word}` is not a finite number")),
+        }
+    }
+
+    /// The next field as a count of at most `max`.
+    pub(crate) fn count(&mut self, what: &str, max: usize) -> std::result::Result<usize, String> {
+        let word = self.word(what)?;
+        match word.parse::<usize>() {
+            Ok(v) if v <= max => Ok(v),
+            _ => Err(format!("{what} `{word}` is not a count from 0 to {max}")),
+        }
+    }
+
+    /// The fields left, counted.
+    pub(crate) fn remaining(&self) -> usize {
+        self.tokens.clone().count()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::io::Write;
+
+    fn gzip(text: &[u8]) -> Vec<u8> {
+        let mut e = flate2::write::GzEncoder::new(Vec::new(), flate2::Compression::fast());
+        e.write_all(text).unwrap();
+        e.finish().unwrap()
+    }
+
+    fn all(mut l: Lines) -> Result<Vec<String>> {
+        let mut out = Vec::new();
+        while let Some(s) = l.next_line()? {
+            out.push(s.to_string());
+        }
+        Ok(out)
+    }
+
+    #[test]
+    fn plain_and_gzip_read_the_same_lines() {
+        let text = b"a 1\r\nb 2\n\nc";
+        let plain = all(lines(std::io::Cursor::new(text.to_vec()), "t").unwrap()).unwrap();
+        let zipped = all(lines(std::io::Cursor::new(gzip(text)), "t.gz").unwrap()).unwrap();
+        assert_eq!(plain, ["a 1", "b 2", "", "c"]);
+        assert_eq!(zipped, plain);
+    }
+
+    #[test]
+    fn a_truncated_gzip_stream_names_its_file_and_line() {
+        let text: Vec<u8> = (0..2000)
+            .flat_map(|i| format!("line {i}\n").into_bytes())
+            .collect();
+        let mut z = gzip(&text);
+        z.truncate(z.len() / 2);
+        let err = all(lines(std::io::Cursor::new(z), "cut.gz").unwrap()).unwrap_err();
+        assert!(
+            matches!(&err, CovmapError::Parse { file, line, .. } if file == "cut.gz" && *line > 1),
+            "{err}"
+        );
+    }
+
+    #[test]
+    fn an_endless_line_is_refused_not_held() {
+        let long = vec![b'x'; MAX_LINE_BYTES + 10];
+        let err = all(lines(std::io::Cursor::new(long), "long").unwrap()).unwrap_err();
+        assert!(err.to_string().contains("longer than"), "{err}");
+        let bad = all(lines(std::io::Cursor::new(vec![b'a', 0xff, b'\n']), "bin").unwrap());
+        assert!(matches!(bad, Err(CovmapError::Parse { line: 1, .. })));
+    }
+
+    #[test]
+    fn fields_name_what_is_missing_or_wrong() {
+        let mut f = Fields::new("3 x nan");
+        assert_eq!(f.count("count", 10), Ok(3));
+        assert!(f.number("x").unwrap_err().contains("`x`"));
+        assert!(f.number("y").unwrap_err().contains("finite"));
+        assert!(f.word("z").unwrap_err().contains("ends before its z"));
+        assert!(Fields::new("11").count("n", 10).is_err());
+    }
+}

@@ -1,0 +1,301 @@
+//! numpy's `.npz` files as far as the map file needs them: a zip archive of
+//! stored (uncompressed) entries, each a little-endian, C-ordered `.npy`
+//! array. The reader takes any archive numpy writes with `np.savez` and
+//! refuses, with a reason, whatever it cannot check: compressed entries,
+//! zip64, a CRC-32 that does not match, lengths that run past the end.
+
+/// One array: its `.npy` type (`<f4`, `<f8`, `<u4`), its shape and its
+/// bytes, little-endian, row-major.
+#[derive(Debug)]
+pub(crate) struct Array<'a> {
+    pub(crate) descr: String,
+    pub(crate) shape: Vec<usize>,
+    pub(crate) data: &'a [u8],
+}
+
+const LOCAL: u32 = 0x0403_4b50;
+const CENTRAL: u32 = 0x0201_4b50;
+const END: u32 = 0x0605_4b50;
+/// 1980-01-01, the earliest date zip has: the archive is the same bytes
+/// whenever it is written.
+const DOS_DATE: u16 = 0x21;
+
+/// The `.npy` encoding of an array of `descr` and `shape` holding `data`.
+pub(crate) fn npy(descr: &str, shape: &[usize], data: &[u8]) -> Vec<u8> {
+    let dims: Vec<String> = shape.iter().map(usize::to_string).collect();
+    let shape = match dims.len() {
+        1 => format!("({},)", dims[0]),
+        _ => format!("({})", dims.join(", ")),
+    };
+    let mut header = format!("{{'descr': '{descr}', 'fortran_order': False, 'shape': {shape}, }}");
+    // Magic, version and length take 10 bytes; the header ends in a line
+    // break, and the whole is a multiple of 64 bytes.
+    while (10 + header.len() + 1) % 64 != 0 {
+        header.push(' ');
+    }
+    header.push('\n');
+    let mut out = Vec::with_capacity(10 + header.len() + data.len());
+    out.extend_from_slice(b"\x93NUMPY\x01\x00");
+    out.extend_from_slice(&(header.len() as u16).to_le_bytes());
+    out.extend_from_slice(header.as_bytes());
+    out.extend_from_slice(data);
+    out
+}
+
+/// The array a `.npy` entry holds.
+pub(crate) fn parse_npy(bytes: &[u8]) -> Result<Array<'_>, String> {
+    if bytes.len() < 10 || &bytes[..6] != b"\x93NUMPY" {
+        return Err("not a .npy array (no magic string)".into());
+    }
+    let (len, start) = match bytes[6] {
+        1 => (u16::from_le_bytes([bytes[8], bytes[9]]) as usize, 10),
+        2 | 3 if bytes.len() >= 12 => (
+            u32::from_le_bytes([bytes[8], bytes[9], bytes[10], bytes[11]]) as usize,
+            12,
+        ),
+        v => return Err(format!(".npy version {v} is not one numpy writes")),
+    };
+    let header = bytes
+        .get(start..start + len)
+        .and_then(|h| std::str::from_utf8(h).ok())
+        .ok_or("the .npy header runs past the end or is not text")?;
+    let descr = quoted_after(header, "'descr':").ok_or("the .npy header has no descr")?;
+    if !header.contains("'fortran_order': False") {
+        return Err("a Fortran-ordered array (covmap writes C order)".into());
+    }
+    let shape = shape_after(header).ok_or("the .npy header has no readable shape")?;
+    let item = match descr.as_str() {
+        "<f4" | "<u4" => 4,
+        "<f8" => 8,
+        other => return Err(format!("dtype {other} where covmap writes <f4, <f8 or <u4")),
+    };
+    let size = shape
+        .iter()
+        .try_fold(item, |n: usize, &d| n.checked_mul(d))
+        .ok_or("the shape's size overflows")?;
+    let data = &bytes[start + len..];
+    if data.len() != size {
+        return Err(format!(
+            "shape {shape:?} of {descr} needs {size} bytes, the entry holds {}",
+            data.len()
+        ));
+    }
+    Ok(Array { descr, shape, data })
+}
+
+fn quoted_after(header: &str, key: &str) -> Option<String> {
+    let rest = &header[header.find(key)? + key.len()..];
+    let rest = rest.trim_start().strip_prefix('\'')?;
+    Some(rest[..rest.find('\'')?].to_string())
+}
+
+fn shape_after(header: &str) -> Option<Vec<usize>> {
+    let rest = &header[header.find("'shape':")? + 8..];
+    let rest = rest.trim_start().strip_prefix('(')?;
+    let inner = &rest[..rest.find(')')?];
+    inner
+        .split(',')
+        .map(str::trim)
+        .filter(|s| !s.is_empty())
+        .map(|s| s.parse().ok())
+        .collect()
+}
+
+/// A zip archive of `entries`, each stored as it is.
+///
+/// # Errors
+/// If an entry or the archive would pass 4 GiB (zip64 is not written).
+pub(crate) fn zip(entries: &[(&str, Vec<u8>)]) -> Result<Vec<u8>, String> {
+    let too_big = || "the archive would pass 4 GiB, more than a zip file without zip64 holds";
+    let mut out = Vec::new();
+    let mut central = Vec::new();
+    for (name, data) in entries {
+        let offset = u32::try_from(out.len()).map_err(|_| too_big())?;
+        let size = u32::try_from(data.len()).map_err(|_| too_big())?;
+        let crc = crc32fast::hash(data);
+        let head = |sig: u32, out: &mut Vec<u8>, central_entry: bool| {
+            out.extend_from_slice(&sig.to_le_bytes());
+            if central_entry {
+                out.extend_from_slice(&20u16.to_le_bytes()); // made by
+            }
+            for v in [20u16, 0, 0, 0, DOS_DATE] {
+                out.extend_from_slice(&v.to_le_bytes());
+            }
+            for v in [crc, size, size] {
+                out.extend_from_slice(&v.to_le_bytes());
+            }
+            out.extend_from_slice(&(name.len() as u16).to_le_bytes());
+            out.extend_from_slice(&0u16.to_le_bytes()); // extra
+        };
+        head(LOCAL, &mut out, false);
+        out.extend_from_slice(name.as_bytes());
+        out.extend_from_slice(data);
+        head(CENTRAL, &mut central, true);
+        for v in [0u16, 0, 0] {
+            central.extend_from_slice(&v.to_le_bytes()); // comment, disk, internal
+        }
+        central.extend_from_slice(&0u32.to_le_bytes()); // external attributes
+        central.extend_from_slice(&offset.to_le_bytes());
+        central.extend_from_slice(name.as_bytes());
+    }
+    let cd_offset = u32::try_from(out.len()).map_err(|_| too_big())?;
+    let cd_size = u32::try_from(central.len()).map_err(|_| too_big())?;
+    out.extend_from_slice(&central);
+    let n = entries.len() as u16;
+    out.extend_from_slice(&END.to_le_bytes());
+    for v in [0u16, 0, n, n] {
+        out.extend_from_slice(&v.to_le_bytes());
+    }
+    out.extend_from_slice(&cd_size.to_le_bytes());
+    out.extend_from_slice(&cd_offset.to_le_bytes());
+    out.extend_from_slice(&0u16.to_le_bytes());
+    u32::try_from(out.len()).map_err(|_| too_big())?;
+    Ok(out)
+}
+
+fn u16_at(b: &[u8], at: usize) -> Result<u16, String> {
+    b.get(at..at + 2)
+        .map(|s| u16::from_le_bytes([s[0], s[1]]))
+        .ok_or_else(|| format!("the archive ends at byte {} inside a record", b.len()))
+}
+
+fn u32_at(b: &[u8], at: usize) -> Result<u32, String> {
+    b.get(at..at + 4)
+        .map(|s| u32::from_le_bytes([s[0], s[1], s[2], s[3]]))
+        .ok_or_else(|| format!("the archive ends at byte {} inside a record", b.len()))
+}
+
+/// The entries of a zip archive, in the order of its central directory,
+/// each checked against its CRC-32.
+pub(crate) fn unzip(b: &[u8]) -> Result<Vec<(String, &[u8])>, String> {
+    if b.is_empty() {
+        return Err("the file is empty".into());
+    }
+    // No archive comment: the end record is the last 22 bytes.
+    let end = b
+        .len()
+        .checked_sub(22)
+        .filter(|&e| u32_at(b, e) == Ok(END))
+        .ok_or("not a zip archive, or one cut short (no end record)")?;
+    let count = usize::from(u16_at(b, end + 10)?);
+    let cd_size = u32_at(b, end + 12)? as usize;
+    let cd_offset = u32_at(b, end + 16)? as usize;
+    if cd_offset.checked_add(cd_size) != Some(end) {
+        return Err("the central directory does not end where the end record begins".into());
+    }
+    let mut entries: Vec<(String, &[u8])> = Vec::with_capacity(count.min(16));
+    let mut at = cd_offset;
+    for _ in 0..count {
+        if u32_at(b, at)? != CENTRAL {
+            return Err(format!("no central directory entry at byte {at}"));
+        }
+        let method = u16_at(b, at + 10)?;
+        let crc = u32_at(b, at + 16)?;
+        let (csize, usize_) = (u32_at(b, at + 20)?, u32_at(b, at + 24)?);
+        let name_len = usize::from(u16_at(b, at + 28)?);
+        let skip = usize::from(u16_at(b, at + 30)?) + usize::from(u16_at(b, at + 32)?);
+        let local = u32_at(b, at + 42)? as usize;
+        let name = b
+            .get(at + 46..at + 46 + name_len)
+            .and_then(|n| std::str::from_utf8(n).ok())
+            .ok_or("an entry's name runs past the end or is not text")?
+            .to_string();
+        if method != 0 || csize != usize_ {
+            return Err(format!(
+                "entry {name} is compressed (covmap writes stored entries)"
+            ));
+        }
+        if u32_at(b, local)? != LOCAL {
+            return Err(format!("entry {name}: no local header at byte {local}"));
+        }
+        let local_name = usize::from(u16_at(b, local + 26)?);
+        let local_extra = usize::from(u16_at(b, local + 28)?);
+        let start = local + 30 + local_name + local_extra;
+        let data = b
+            .get(start..start + csize as usize)
+            .filter(|_| start + csize as usize <= cd_offset)
+            .ok_or_else(|| format!("entry {name} runs past the archive's data"))?;
+        if b.get(local + 30..local + 30 + local_name) != Some(name.as_bytes()) {
+            return Err(format!(
+                "entry {name}: its local header names another entry"
+            ));
+        }
+        if crc32fast::hash(data) != crc {
+            return Err(format!("entry {name}: CRC-32 mismatch, the bytes changed"));
+        }
+        if entries.iter().any(|(n, _)| *n == name) {
+            return Err(format!("entry {name} appears twice"));
+        }
+        entries.push((name, data));
+        at += 46 + name_len + skip;
+    }
+    if at != end {
+        return Err("the central directory holds more than its entries".into());
+    }
+    Ok(entries)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn arrays_round_trip_through_an_archive() {
+        let values: Vec<u8> = [1.5f32, -2.0, 3.25]
+            .iter()
+            .flat_map(|v| v.to_le_bytes())
+            .collect();
+        let entries = vec![
+            ("a.npy", npy("<f4", &[3], &values)),
+            ("b.npy", npy("<u4", &[1, 1], &7u32.to_le_bytes())),
+        ];
+        let archive = zip(&entries).unwrap();
+        let back = unzip(&archive).unwrap();
+        assert_eq!(back.len(), 2);
+        let a = parse_npy(back[0].1).unwrap();
+        assert_eq!(
+            (a.descr.as_str(), &a.shape[..], a.data),
+            ("<f4", &[3][..], &values[..])
+        );
+        assert_eq!(parse_npy(back[1].1).unwrap().shape, vec![1, 1]);
+        assert_eq!(
+            entries[0].1.len() % 64,
+            values.len() % 64,
+            "the header is a multiple of 64 bytes"
+        );
+    }
+
+    #[test]
+    fn every_flipped_byte_and_every_cut_is_refused() {
+        let data: Vec<u8> = (0..40u8).collect();
+        let archive = zip(&[("x.npy", npy("<f4", &[10], &data))]).unwrap();
+        for i in 0..archive.len() {
+            let mut bad = archive.clone();
+            bad[i] ^= 0x10;
+            let ok = unzip(&bad).and_then(|e| parse_npy(e[0].1).map(|a| a.data.to_vec()));
+            // A flip may land where zip keeps nothing checked (the version a
+            // tool needs, a date): the data then still read intact.
+            if let Ok(read) = ok {
+                assert_eq!(read, data, "byte {i} flipped, wrong data read");
+            }
+        }
+        for cut in 0..archive.len() {
+            assert!(unzip(&archive[..cut]).is_err(), "cut at {cut}");
+        }
+    }
+
+    #[test]
+    fn bad_npy_headers_say_why() {
+        assert!(parse_npy(b"").unwrap_err().contains("magic"));
+        let f = npy("<f4", &[2], &[0; 8]).into_iter().collect::<Vec<_>>();
+        assert!(
+            parse_npy(&f[..f.len() - 1])
+                .unwrap_err()
+                .contains("needs 8 bytes")
+        );
+        let huge = npy("<f8", &[usize::MAX / 2, 4], &[]);
+        assert!(parse_npy(&huge).unwrap_err().contains("overflows"));
+        let other = npy("<i8", &[1], &[0; 8]);
+        assert!(parse_npy(&other).unwrap_err().contains("<i8"));
+    }
+}

@@ -1,0 +1,410 @@
+//! `covmap.Log`: a recorded drive, from numpy arrays or a log file, and its
+//! contents as numpy arrays.
+
+use std::path::PathBuf;
+
+use covmap::log::laser_scan::LaserScanFan;
+use covmap::{Bearings, CarmenOptions, Log, Pose, SonarTextOptions};
+use numpy::ndarray::Array2;
+use numpy::{IntoPyArray, PyArray1, PyArray2};
+use pyo3::prelude::*;
+use pyo3::types::{PyBytes, PySlice};
+
+use crate::convert;
+use crate::errors::{Exception, OrRaise};
+
+/// A recorded drive: scan ``i`` taken at ``timestamps[i]`` from robot pose
+/// ``poses[i]`` (x, y metres, theta radians), reading ``ranges[i, k]``
+/// metres along ``bearings[k]`` (or ``bearings[i, k]``, bearings of each
+/// scan), radians from the heading of a sensor mounted at
+/// ``sensor_offset`` on the robot.
+///
+/// A range at or above ``max_range_m`` has no echo; a NaN range is a beam
+/// without a reading (``from_laser_scans`` makes them of REP 117's NaN and
+/// ``-inf``), which integrating skips. The constructor itself refuses NaN,
+/// infinite and negative ranges. ``len(log)`` counts scans; ``log[a:b]`` is
+/// a log of those scans. Logs pickle.
+#[pyclass(name = "Log", module = "covmap._native", frozen)]
+pub(crate) struct PyLog(pub(crate) Log);
+
+fn bearings_from(obj: &Bound<'_, PyAny>, scans: usize) -> PyResult<Bearings> {
+    if let Ok((values, [n, _])) = convert::matrix(obj, "bearings") {
+        if n != scans {
+            return Err(Exception::ArrayShape.err(
+                obj.py(),
+                format!(
+                    "bearings of shape (N, B) must have a row a scan: {n} rows for {scans} scans"
+                ),
+            ));
+        }
+        return Ok(Bearings::PerScan(values));
+    }
+    Ok(Bearings::Fixed(convert::readings(obj, "bearings")?))
+}
+
+/// Poses `(N, 3)` and ranges `(N, B)`, a row of ranges a pose.
+fn scans(
+    py: Python<'_>,
+    poses: &Bound<'_, PyAny>,
+    ranges: &Bound<'_, PyAny>,
+) -> PyResult<(Vec<Pose>, Vec<f64>)> {
+    let poses = convert::poses(poses, "poses")?;
+    let (ranges, [n, _]) = convert::matrix(ranges, "ranges")?;
+    if n != poses.len() {
+        return Err(
+            Exception::ArrayShape.err(py, format!("ranges has {n} rows for {} poses", poses.len()))
+        );
+    }
+    Ok((poses, ranges))
+}
+
+#[pymethods]
+impl PyLog {
+    /// A log of ``poses`` ((N, 3)), ``ranges`` ((N, B), metres, float64 or
+    /// float32), ``bearings`` ((B,) or (N, B), radians), ``max_range_m``;
+    /// ``timestamps`` ((N,), seconds) default to each scan's index,
+    /// ``sensor_offset`` to the robot's own pose.
+    #[new]
+    #[pyo3(
+        signature = (poses, ranges, bearings, *, max_range_m, timestamps=None, sensor_offset=(0.0, 0.0, 0.0)),
+        text_signature = "(poses, ranges, bearings, *, max_range_m, timestamps=None, sensor_offset=(0.0, 0.0, 0.0))"
+    )]
+    fn new(
+        py: Python<'_>,
+        poses: &Bound<'_, PyAny>,
+        ranges: &Bound<'_, PyAny>,
+        bearings: &Bound<'_, PyAny>,
+        max_range_m: f64,
+        timestamps: Option<&Bound<'_, PyAny>>,
+        sensor_offset: (f64, f64, f64),
+    ) -> PyResult<Self> {
+        let (poses, ranges) = scans(py, poses, ranges)?;
+        let n = poses.len();
+        let bearings = bearings_from(bearings, n)?;
+        let timestamps = match timestamps {
+            Some(t) => convert::readings(t, "timestamps")?,
+            None => (0..n).map(|i| i as f64).collect(),
+        };
+        let offset = Pose::from([sensor_offset.0, sensor_offset.1, sensor_offset.2]);
+        Log::new(poses, timestamps, ranges, bearings, max_range_m)
+            .and_then(|log| log.with_sensor_offset(offset))
+            .map(Self)
+            .or_raise(py)
+    }
+
+    /// The log in a CARMEN file (plain or gzip): ``FLASER``, ``ROBOTLASER1``
+    /// or ``RAWLASER1`` scans (poses from ``ODOM`` interpolated for the
+    /// last). ``max_range_m`` overrides the log's maximum range. A malformed
+    /// line raises ``FileFormatError`` naming the file and the line. Reads
+    /// with the GIL released.
+    #[staticmethod]
+    #[pyo3(signature = (path, *, max_range_m=None))]
+    fn from_carmen(py: Python<'_>, path: PathBuf, max_range_m: Option<f64>) -> PyResult<Self> {
+        let options = CarmenOptions {
+            max_range_m,
+            ..Default::default()
+        };
+        py.detach(|| Log::from_carmen_with(&path, &options))
+            .map(Self)
+            .or_raise(py)
+    }
+
+    /// The sonar log of two text files read in step: ``poses_path`` lines
+    /// ``timestamp x y theta``, ``measurements_path`` lines ``timestamp r_0
+    /// … r_{B-1}`` (plain or gzip). Lengths are in units of
+    /// ``length_unit_m`` metres, the heading in ``angle_unit_rad`` radians;
+    /// ``bearings_deg`` gives each column's sonar, degrees from the heading.
+    #[staticmethod]
+    #[pyo3(signature = (poses_path, measurements_path, *, bearings_deg, length_unit_m=1.0, angle_unit_rad=1.0, max_range_m))]
+    fn from_sonar_text(
+        py: Python<'_>,
+        poses_path: PathBuf,
+        measurements_path: PathBuf,
+        bearings_deg: &Bound<'_, PyAny>,
+        length_unit_m: f64,
+        angle_unit_rad: f64,
+        max_range_m: f64,
+    ) -> PyResult<Self> {
+        let options = SonarTextOptions {
+            bearings_rad: convert::readings(bearings_deg, "bearings_deg")?
+                .into_iter()
+                .map(f64::to_radians)
+                .collect(),
+            length_unit_m,
+            angle_unit_rad,
+            max_range_m,
+        };
+        py.detach(|| Log::from_sonar_text(&poses_path, &measurements_path, &options))
+            .map(Self)
+            .or_raise(py)
+    }
+
+    /// Scans as ROS ``sensor_msgs/LaserScan`` hands them: ``ranges`` (N, B)
+    /// float32 or float64, beam ``k`` at ``angle_min + k angle_increment``.
+    /// REP 117 is converted here: ``+inf`` and readings above ``range_max``
+    /// have no echo; NaN, ``-inf`` and readings below ``range_min`` are
+    /// dropped (NaN in ``ranges``). ``range_max`` is the log's maximum range.
+    #[staticmethod]
+    #[pyo3(signature = (poses, ranges, *, angle_min, angle_increment, range_min, range_max, timestamps=None))]
+    #[allow(clippy::too_many_arguments)]
+    fn from_laser_scans(
+        py: Python<'_>,
+        poses: &Bound<'_, PyAny>,
+        ranges: &Bound<'_, PyAny>,
+        angle_min: f64,
+        angle_increment: f64,
+        range_min: f64,
+        range_max: f64,
+        timestamps: Option<&Bound<'_, PyAny>>,
+    ) -> PyResult<Self> {
+        let (poses, ranges) = scans(py, poses, ranges)?;
+        let timestamps = timestamps
+            .map(|t| convert::readings(t, "timestamps"))
+            .transpose()?;
+        let fan = LaserScanFan {
+            angle_min_rad: angle_min,
+            angle_increment_rad: angle_increment,
+            range_min_m: range_min,
+            range_max_m: range_max,
+        };
+        Log::from_laser_scans(poses, &ranges, &fan, timestamps)
+            .map(Self)
+            .or_raise(py)
+    }
+
+    /// The robot's pose of every scan, float64, ``(N, 3)``.
+    #[getter]
+    fn poses<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f64>> {
+        convert::poses_array(py, self.0.poses())
+    }
+    /// Every range, metres, float64, ``(N, B)`` (NaN: a dropped beam).
+    #[getter]
+    fn ranges<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray2<f64>>> {
+        let shape = (self.0.len(), self.0.beams());
+        Array2::from_shape_vec(shape, self.0.ranges_m().to_vec())
+            .map(|a| a.into_pyarray(py))
+            .map_err(|e| Exception::Base.err(py, e.to_string()))
+    }
+    /// The bearings, radians from the sensor's heading, float64: ``(B,)``,
+    /// or ``(N, B)`` for a log whose scans have bearings of their own.
+    #[getter]
+    fn bearings<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        match self.0.bearings() {
+            Bearings::Fixed(b) => Ok(PyArray1::from_slice(py, b).into_any()),
+            Bearings::PerScan(b) => {
+                Array2::from_shape_vec((self.0.len(), self.0.beams()), b.clone())
+                    .map(|a| a.into_pyarray(py).into_any())
+                    .map_err(|e| Exception::Base.err(py, e.to_string()))
+            }
+        }
+    }
+    /// The time of every scan, seconds, float64, ``(N,)``.
+    #[getter]
+    fn timestamps<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
+        PyArray1::from_slice(py, self.0.timestamps_s())
+    }
+    /// The sensor's maximum range, metres: a reading at or above it has no echo.
+    #[getter]
+    fn max_range_m(&self) -> f64 {
+        self.0.max_range_m()
+    }
+    /// Where the sensor sits on the robot, ``(x, y, theta)`` in the robot's frame.
+    #[getter]
+    fn sensor_offset(&self) -> (f64, f64, f64) {
+        let o = self.0.sensor_offset();
+        (o.x_m, o.y_m, o.theta_rad)
+    }
+    /// The number of beams a scan.
+    #[getter]
+    fn beams(&self) -> usize {
+        self.0.beams()
+    }
+
+    /// ``(x_min, y_min, x_max, y_max)`` covering every pose and every beam's
+    /// end point, each beam cut at ``reach_m`` metres (no-echo beams end at
+    /// the maximum range); ``None`` for an empty log.
+    fn extent(&self, py: Python<'_>, reach_m: f64) -> PyResult<Option<(f64, f64, f64, f64)>> {
+        let bounds = self.0.extent(reach_m).or_raise(py)?;
+        Ok(bounds.map(|[a, b, c, d]| (a, b, c, d)))
+    }
+
+    /// This log with its sensor mounted at ``offset`` ``(x, y, theta)`` on
+    /// the robot.
+    fn with_sensor_offset(&self, py: Python<'_>, offset: &Bound<'_, PyAny>) -> PyResult<Self> {
+        let offset = convert::pose(offset)?;
+        self.0
+            .clone()
+            .with_sensor_offset(offset)
+            .map(Self)
+            .or_raise(py)
+    }
+
+    fn __len__(&self) -> usize {
+        self.0.len()
+    }
+
+    /// ``log[a:b]``: the scans ``a`` to ``b`` as a log (a step other than 1
+    /// raises ``InvalidValueError``, an index that is no slice
+    /// ``InvalidTypeError``).
+    fn __getitem__(&self, py: Python<'_>, key: &Bound<'_, PyAny>) -> PyResult<Self> {
+        let Ok(slice) = key.cast::<PySlice>() else {
+            return Err(Exception::InvalidType.err(
+                py,
+                format!(
+                    "a log is sliced (log[a:b]), not indexed by {}",
+                    key.get_type()
+                ),
+            ));
+        };
+        let indices = slice.indices(self.0.len() as isize)?;
+        if indices.step != 1 {
+            return Err(Exception::InvalidValue.err(
+                py,
+                format!(
+                    "a log's slice takes consecutive scans, not step {}",
+                    indices.step
+                ),
+            ));
+        }
+        let (start, stop) = (
+            indices.start as usize,
+            (indices.stop.max(indices.start)) as usize,
+        );
+        self.0.slice(start..stop).map(Self).or_raise(py)
+    }
+
+    fn __repr__(&self) -> String {
+        format!(
+            "Log({} scans of {} beams, max_range_m={})",
+            self.0.len(),
+            self.0.beams(),
+            self.0.max_range_m()
+        )
+    }
+
+    /// Pickle support: rebuilt by ``Log._from_state`` from the core's
+    /// serialised form (JSON bytes, every float64 exact).
+    fn __reduce__<'py>(
+        &self,
+        py: Python<'py>,
+    ) -> PyResult<(Bound<'py, PyAny>, (Bound<'py, PyBytes>,))> {
+        let state = serde_json::to_vec(&self.0)
+            .map_err(|e| Exception::Base.err(py, format!("cannot save the log: {e}")))?;
+        let restore = py.get_type::<Self>().getattr("_from_state")?;
+        Ok((restore, (PyBytes::new(py, &state),)))
+    }
+
+    /// Unpickling support: the log saved by ``__reduce__`` (validated).
+    #[staticmethod]
+    fn _from_state(py: Python<'_>, state: &Bound<'_, PyBytes>) -> PyResult<Self> {
+        serde_json::from_slice(state.as_bytes())
+            .map(Self)
+            .map_err(|e| Exception::InvalidValue.err(py, format!("not a saved log: {e}")))
+    }
+}
+
+/// How `integrate_log` shows its progress: nothing, a bar (tqdm's if it is
+/// installed, else a line on standard error that rewrites itself), or the
+/// caller's `progress(done, total)`.
+enum Progress {
+    Bar(Option<Py<PyAny>>),
+    Call(Py<PyAny>),
+}
+
+/// The `progress` argument of `integrate_log`: a flag or a callable.
+#[derive(FromPyObject)]
+pub(crate) enum ProgressArg {
+    /// `True`: a bar; `False`: nothing.
+    Flag(bool),
+    /// Called as `progress(done, total)`.
+    Call(Py<PyAny>),
+}
+
+impl Progress {
+    fn new(py: Python<'_>, progress: ProgressArg, total: usize) -> PyResult<Option<Self>> {
+        match progress {
+            ProgressArg::Flag(false) => Ok(None),
+            ProgressArg::Call(f) if f.bind(py).is_callable() => Ok(Some(Self::Call(f))),
+            ProgressArg::Call(f) => Err(Exception::InvalidType.err(
+                py,
+                format!(
+                    "progress must be a bool or a callable (done, total), got {}",
+                    f.bind(py).get_type()
+                ),
+            )),
+            ProgressArg::Flag(true) => {
+                let bar = match py.import("tqdm") {
+                    Ok(tqdm) => {
+                        let kwargs = pyo3::types::PyDict::new(py);
+                        kwargs.set_item("total", total)?;
+                        kwargs.set_item("unit", " scans")?;
+                        Some(tqdm.getattr("tqdm")?.call((), Some(&kwargs))?.unbind())
+                    }
+                    Err(_) => None,
+                };
+                Ok(Some(Self::Bar(bar)))
+            }
+        }
+    }
+
+    fn show(&self, py: Python<'_>, done: usize, step: usize, total: usize) -> PyResult<()> {
+        match self {
+            Self::Call(f) => f.call1(py, (done, total)).map(drop),
+            Self::Bar(Some(bar)) => bar.call_method1(py, "update", (step,)).map(drop),
+            Self::Bar(None) => py
+                .import("sys")?
+                .getattr("stderr")?
+                .call_method1("write", (format!("\rscans {done}/{total}"),))
+                .map(drop),
+        }
+    }
+
+    fn close(&self, py: Python<'_>) -> PyResult<()> {
+        match self {
+            Self::Bar(Some(bar)) => bar.call_method0(py, "close").map(drop),
+            Self::Bar(None) => py
+                .import("sys")?
+                .getattr("stderr")?
+                .call_method1("write", ("\n",))
+                .map(drop),
+            Self::Call(_) => Ok(()),
+        }
+    }
+}
+
+/// Run `integrate(progress)` (a map's `integrate_log_with_progress`) with
+/// the GIL released, showing progress as `progress` asks about once a
+/// percent of the log's `total` scans; an exception the display raises is
+/// raised after the log is integrated.
+pub(crate) fn integrate_log_showing<T: Send>(
+    py: Python<'_>,
+    total: usize,
+    progress: ProgressArg,
+    integrate: impl FnOnce(&mut dyn FnMut(usize)) -> covmap::Result<T> + Send,
+) -> PyResult<T> {
+    let display = Progress::new(py, progress, total)?;
+    let every = (total / 100).max(1);
+    let mut shown = 0;
+    let mut failed: Option<PyErr> = None;
+    let result = py.detach(|| {
+        integrate(&mut |done| {
+            if let Some(d) = &display
+                && failed.is_none()
+                && (done % every == 0 || done == total)
+            {
+                let step = done - shown;
+                shown = done;
+                if let Err(e) = Python::attach(|py| d.show(py, done, step, total)) {
+                    failed = Some(e);
+                }
+            }
+        })
+    });
+    if let Some(d) = &display {
+        d.close(py)?;
+    }
+    if let Some(e) = failed {
+        return Err(e);
+    }
+    result.or_raise(py)
+}
