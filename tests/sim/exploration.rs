@@ -6,7 +6,9 @@
 use std::sync::Arc;
 
 use covmap::exploration::{DEFAULT_DISCOUNT_BEYOND_M, Strategy, Termination};
-use covmap::sim::exploration::{ExplorationRun, ExploreOptions, SimExploration, explore};
+use covmap::sim::exploration::{
+    ExplorationRun, ExploreOptions, SimExploration, SimSensor, explore,
+};
 use covmap::sim::{Robot, SimError, World};
 use covmap::{CovmapError, Pose};
 
@@ -250,11 +252,18 @@ fn room() -> World {
 }
 
 /// Every strategy explores a small room to its end, by its rule, on coarse
-/// cells, for a few seeds.
+/// cells, for a few seeds, with the sonar ring and with a 180-degree laser
+/// (which must turn to see what lies behind it).
 #[test]
 fn every_strategy_explores_a_room_to_its_end_by_rule() {
     let world = room();
-    for seed in 0..3 {
+    for (seed, sensor) in [
+        (0, SimSensor::default()),
+        (1, SimSensor::default()),
+        (2, SimSensor::default()),
+        (0, SimSensor::laser()),
+        (1, SimSensor::laser()),
+    ] {
         for strategy in [
             Strategy::coverage(0.5).unwrap(),
             Strategy::counting(1, None).unwrap(),
@@ -264,12 +273,18 @@ fn every_strategy_explores_a_room_to_its_end_by_rule() {
             let options = ExploreOptions {
                 seed,
                 resolution_m: 0.1,
+                sensor: sensor.clone(),
                 ..ExploreOptions::default()
             };
             let run = explore(&world, strategy, &options).unwrap();
             let termination = run.result.termination.unwrap();
             let figures = format!(
-                "seed {seed}, {strategy:?}: {termination} after {} steps, {:.1} m, {:.1} % uncertain, {} contacts",
+                "seed {seed}, {strategy:?}, {}: {termination} after {} steps, {:.1} m, {:.1} % uncertain, {} contacts",
+                if matches!(sensor, SimSensor::Laser(_)) {
+                    "laser"
+                } else {
+                    "sonar"
+                },
                 run.result.steps,
                 run.result.path_length_m,
                 100.0 * run.high_entropy_fraction,

@@ -42,7 +42,8 @@ fn main() -> ExitCode {
     let mut strategies: Vec<String> = ["coverage", "count1", "count50", "frontier"]
         .map(String::from)
         .to_vec();
-    let (mut verbose, mut laser, mut clear_no_echo, mut no_multipath) = (false, false, false, false);
+    let (mut verbose, mut laser, mut clear_no_echo, mut no_multipath) =
+        (false, false, false, false);
     let mut scan_spacing_m = None;
     let mut args = std::env::args().skip(1);
     while let Some(a) = args.next() {

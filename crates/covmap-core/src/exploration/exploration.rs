@@ -1,6 +1,9 @@
 //! The exploration loop, from scan to decision to motion.
 //!
-//! One step of [`Exploration::step`]:
+//! The run starts with a scan where the robot stands; a sensor that does
+//! not see all around (a 180-degree laser) turns on the spot and scans
+//! again until it has faced every way once. Then, one step of
+//! [`Exploration::step`]:
 //!
 //! 1. **Decide** on the maps: the strategy picks a goal and a path to it on
 //!    what the robot has built (never on the world), or says it is done.
@@ -27,7 +30,9 @@ use super::region;
 use super::result::{ExplorationResult, StepReport, Termination, Timing, Trace, Trajectory};
 use super::sensor::AnySensorModel;
 use super::source::{Motion, ScanSource, Travel};
-use super::strategy::{Chooser, Decision, Outcome, Strategy, View};
+use super::strategy::{
+    Chooser, Decision, Outcome, Strategy, View, sees_all_around, widest_gap_rad,
+};
 use crate::counting::ScanCounts;
 use crate::coverage_map::CONTACT_COVERAGE;
 use crate::coverage_map::CoverageMap;
@@ -229,7 +234,7 @@ impl<S: ScanSource, M: Motion> Exploration<S, M> {
             return Ok(None);
         }
         if self.scans == 0 {
-            self.scan_here()?;
+            self.look_around()?;
             self.refresh_entropy();
         }
         if self.path_length_m >= self.config.max_path_m || self.steps >= self.config.max_steps {
@@ -382,6 +387,32 @@ impl<S: ScanSource, M: Motion> Exploration<S, M> {
         drive.headway_m = drive.travelled_m;
         drive.scans = self.scans - drive.scans;
         Ok(drive)
+    }
+
+    /// The first scans: one at the start and, for a sensor that does not see
+    /// all around, one after each turn on the spot by the arc its bearings
+    /// span, until the turns have come full circle (a 180-degree laser scans
+    /// twice, facing both ways): a robot knows nothing of what lies behind
+    /// it, and planning on cells still unknown around its own disc would
+    /// find no way out.
+    fn look_around(&mut self) -> Result<()> {
+        use std::f64::consts::TAU;
+        self.scan_here()?;
+        if sees_all_around(&self.bearings) {
+            return Ok(());
+        }
+        // The arc the bearings span (at least one beam's worth: a single
+        // bearing turns by 45 degrees).
+        let arc_rad = (TAU - widest_gap_rad(&self.bearings)).max(TAU / 8.0);
+        let turns = (TAU / arc_rad).ceil() as usize - 1;
+        let start = self.pose.theta_rad;
+        for k in 1..=turns {
+            let theta = (start + k as f64 * arc_rad + std::f64::consts::PI).rem_euclid(TAU)
+                - std::f64::consts::PI;
+            self.pose = Pose::new(self.pose.x_m, self.pose.y_m, theta);
+            self.scan_here()?;
+        }
+        Ok(())
     }
 
     /// Scan from the robot's pose and integrate the scan into every map.

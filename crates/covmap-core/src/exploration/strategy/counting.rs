@@ -25,7 +25,11 @@
 //! radius) fits and which it can reach, at least `min_travel_m` away along
 //! the path. The robot goes to the nearest one (by path length; ties to the
 //! lower cell index) from which its sensor would intercept at least one
-//! unexplored cell of the reachable region. Interceptions are predicted by
+//! unexplored cell of the reachable region (with the robot's heading for a
+//! sensor that sees all around, else with the first of eight headings 45
+//! degrees apart that would: the robot turns to it at the goal, and a
+//! 180-degree laser facing the way it came would intercept nothing new).
+//! Interceptions are predicted by
 //! tracing every beam in the current ML coverage map (the sensor's forward
 //! model, [`reading_distribution`](crate::sensor::reading_distribution)):
 //! a beam is taken to read its median predicted reading and to intercept
@@ -41,7 +45,7 @@
 //! # Termination
 //! [`Termination::NoGoal`]: no candidate would intercept an unexplored cell.
 
-use super::{Decision, Outcome, View};
+use super::{Decision, Outcome, View, viewpoint_headings};
 use crate::error::Result;
 use crate::exploration::region::{blocked_on_occupancy, dilate, paths_from, planning_radius_m};
 use crate::exploration::result::Termination;
@@ -104,16 +108,19 @@ impl Counting {
         }
         candidates.sort_by(|&a, &b| reach.cost(a).total_cmp(&reach.cost(b)).then(a.cmp(&b)));
         let ml = view.planning_map.ml();
+        let headings = viewpoint_headings(view.bearings, view.pose.theta_rad);
         for &i in &candidates {
             let [x, y] = grid.cell_center(grid.cell(i));
-            let pose = Pose::new(x, y, view.pose.theta_rad);
-            let targets = intercepted(grid, &ml, &pose, view.bearings, model, &unexplored);
-            if !targets.is_empty() {
-                self.targets = targets.into_iter().map(|t| (t, counts[t])).collect();
-                return Ok(Decision::Goal {
-                    pose,
-                    path: reach.path_to(i),
-                });
+            for &heading in &headings {
+                let pose = Pose::new(x, y, heading);
+                let targets = intercepted(grid, &ml, &pose, view.bearings, model, &unexplored);
+                if !targets.is_empty() {
+                    self.targets = targets.into_iter().map(|t| (t, counts[t])).collect();
+                    return Ok(Decision::Goal {
+                        pose,
+                        path: reach.path_to(i),
+                    });
+                }
             }
         }
         Ok(Decision::Done(Termination::NoGoal))

@@ -52,7 +52,7 @@
 //! walls would keep the run going forever, the robot collecting fractions
 //! of a nat from them.
 
-use super::{Decision, Outcome, View};
+use super::{Decision, HEADINGS, Outcome, View, sees_all_around};
 use crate::error::Result;
 use crate::exploration::ExplorationConfig;
 use crate::exploration::region::{navigator, reachable_region};
@@ -60,32 +60,6 @@ use crate::exploration::result::Termination;
 use crate::grid::Grid;
 use crate::planner::{Plan, Planner, PlannerConfig, PlanningCache};
 use crate::pose::Pose;
-
-/// The headings a candidate is considered with when the sensor does not
-/// see all around: every 45 degrees.
-pub(crate) const HEADINGS: usize = 8;
-
-/// The widest gap between neighbouring bearings (radians) of a sensor that
-/// sees all around: 45 degrees (the 24-sonar ring's is 15).
-const ALL_AROUND_GAP_RAD: f64 = std::f64::consts::FRAC_PI_4;
-
-/// Whether no two neighbouring `bearings` (around the circle) are more than
-/// [`ALL_AROUND_GAP_RAD`] apart: a sensor for which the heading of a
-/// viewpoint hardly matters.
-fn sees_all_around(bearings: &[f64]) -> bool {
-    use std::f64::consts::TAU;
-    let mut angles: Vec<f64> = bearings.iter().map(|b| b.rem_euclid(TAU)).collect();
-    angles.sort_by(f64::total_cmp);
-    let (Some(first), Some(last)) = (angles.first(), angles.last()) else {
-        return false;
-    };
-    let wrap = first + TAU - last;
-    angles
-        .windows(2)
-        .map(|w| w[1] - w[0])
-        .chain([wrap])
-        .all(|gap| gap <= ALL_AROUND_GAP_RAD)
-}
 
 /// Steps without a new settled cell after which the run has stagnated.
 pub(crate) const STALL_STEPS: usize = 20;
@@ -333,20 +307,5 @@ mod tests {
             goals[0].0 < goals[1].0 && goals[0].1 < goals[1].1,
             "{goals:?}"
         );
-    }
-
-    #[test]
-    fn a_ring_sees_all_around_and_a_half_circle_does_not() {
-        use std::f64::consts::{PI, TAU};
-        let ring: Vec<f64> = (0..24).map(|i| i as f64 * TAU / 24.0 - PI).collect();
-        assert!(sees_all_around(&ring));
-        // The same ring, one sonar lost: a 30 degree gap is still all around.
-        assert!(sees_all_around(&ring[1..]));
-        let laser: Vec<f64> = (0..181).map(|i| (i as f64 - 90.0).to_radians()).collect();
-        assert!(!sees_all_around(&laser));
-        let eight = [-90.0f64, -37.5, -22.5, -7.5, 7.5, 22.5, 37.5, 90.0].map(f64::to_radians);
-        assert!(!sees_all_around(&eight));
-        assert!(!sees_all_around(&[]));
-        assert!(!sees_all_around(&[0.0]));
     }
 }

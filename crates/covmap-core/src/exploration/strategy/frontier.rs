@@ -18,7 +18,9 @@
 //! cell within the planning radius and two cells of one of its cells (the
 //! robot cannot stand on the frontier itself: the unknown cells next to it
 //! block). The goal is the nearest such cell of the nearest group (by path
-//! length, at least `min_travel_m`; ties to the lower cell index).
+//! length, at least `min_travel_m`; ties to the lower cell index). A robot
+//! whose sensor does not see all around (a 180-degree laser) faces the
+//! frontier cell the goal was chosen for when it scans there.
 //!
 //! When the robot has reached the goal and scanned there and not one cell
 //! of the group stopped being a frontier, the group cannot be explored from
@@ -27,7 +29,7 @@
 //! # Termination
 //! [`Termination::NoGoal`]: no reachable frontier group is left.
 
-use super::{Decision, Outcome, View};
+use super::{Decision, Outcome, View, sees_all_around};
 use crate::error::Result;
 use crate::exploration::region::{
     blocked_on_occupancy, known_cells, paths_from, planning_radius_m,
@@ -65,13 +67,13 @@ impl Frontier {
         let min_cells = (2.0 * view.config.robot_radius_m / grid.resolution_m()).ceil() as usize;
         let approach = radius_m + 2.0 * grid.resolution_m();
         let span = (approach / grid.resolution_m()).ceil() as i64;
-        let mut best: Option<(f64, usize, Vec<usize>)> = None;
+        let mut best: Option<(f64, usize, [f64; 2], Vec<usize>)> = None;
         for group in groups(grid, &frontier) {
             if group.len() < min_cells {
                 continue;
             }
             // The nearest cell the robot may stand on to look at the group.
-            let mut nearest: Option<(f64, usize)> = None;
+            let mut nearest: Option<(f64, usize, [f64; 2])> = None;
             for &cell in &group {
                 let [fx, fy] = grid.cell_center(grid.cell(cell));
                 for goal in cells_near(grid, cell, span) {
@@ -82,26 +84,33 @@ impl Frontier {
                         && cost >= view.config.min_travel_m
                         && !view.failed_goals.contains(&goal)
                         && (x - fx).hypot(y - fy) <= approach;
-                    if usable && nearest.is_none_or(|n| (cost, goal) < n) {
-                        nearest = Some((cost, goal));
+                    if usable && nearest.is_none_or(|(c, g, _)| (cost, goal) < (c, g)) {
+                        nearest = Some((cost, goal, [fx, fy]));
                     }
                 }
             }
-            if let Some((cost, goal)) = nearest
+            if let Some((cost, goal, seen_from)) = nearest
                 && best
                     .as_ref()
-                    .is_none_or(|(c, g, _)| (cost, goal) < (*c, *g))
+                    .is_none_or(|(c, g, _, _)| (cost, goal) < (*c, *g))
             {
-                best = Some((cost, goal, group));
+                best = Some((cost, goal, seen_from, group));
             }
         }
-        let Some((_, goal, group)) = best else {
+        let Some((_, goal, [fx, fy], group)) = best else {
             return Ok(Decision::Done(Termination::NoGoal));
         };
         self.group = group;
         let [x, y] = grid.cell_center(grid.cell(goal));
+        // Facing the frontier cell the goal was chosen for, for a sensor
+        // that does not see all around; a ring keeps the robot's heading.
+        let heading = if sees_all_around(view.bearings) || (fx == x && fy == y) {
+            view.pose.theta_rad
+        } else {
+            (fy - y).atan2(fx - x)
+        };
         Ok(Decision::Goal {
-            pose: Pose::new(x, y, view.pose.theta_rad),
+            pose: Pose::new(x, y, heading),
             path: reach.path_to(goal),
         })
     }

@@ -189,6 +189,52 @@ impl View<'_> {
     }
 }
 
+/// The headings a candidate is considered with when the sensor does not
+/// see all around: every 45 degrees.
+pub(super) const HEADINGS: usize = 8;
+
+/// The widest gap between neighbouring bearings (radians) of a sensor that
+/// sees all around: 45 degrees (the 24-sonar ring's is 15).
+const ALL_AROUND_GAP_RAD: f64 = std::f64::consts::FRAC_PI_4;
+
+/// Whether no two neighbouring `bearings` (around the circle) are more than
+/// [`ALL_AROUND_GAP_RAD`] apart: a sensor for which the heading of a
+/// viewpoint hardly matters.
+pub(super) fn sees_all_around(bearings: &[f64]) -> bool {
+    widest_gap_rad(bearings) <= ALL_AROUND_GAP_RAD
+}
+
+/// The widest gap between neighbouring `bearings` around the circle,
+/// radians: `2 pi` for one bearing or none.
+pub(super) fn widest_gap_rad(bearings: &[f64]) -> f64 {
+    use std::f64::consts::TAU;
+    let mut angles: Vec<f64> = bearings.iter().map(|b| b.rem_euclid(TAU)).collect();
+    angles.sort_by(f64::total_cmp);
+    let (Some(first), Some(last)) = (angles.first(), angles.last()) else {
+        return TAU;
+    };
+    let wrap = first + TAU - last;
+    angles
+        .windows(2)
+        .map(|w| w[1] - w[0])
+        .chain([wrap])
+        .fold(0.0, f64::max)
+}
+
+/// The headings a viewpoint is considered with by a sensor seeing through
+/// `bearings`: `robot_heading` alone for one that sees all around, else
+/// [`HEADINGS`] fixed headings, `i * 2 pi / HEADINGS` (the robot turns on
+/// the spot to the one chosen).
+pub(super) fn viewpoint_headings(bearings: &[f64], robot_heading: f64) -> Vec<f64> {
+    if sees_all_around(bearings) {
+        vec![robot_heading]
+    } else {
+        (0..HEADINGS)
+            .map(|i| i as f64 * std::f64::consts::TAU / HEADINGS as f64)
+            .collect()
+    }
+}
+
 /// A strategy's answer.
 pub(super) enum Decision {
     /// Drive along `path` (cell centres, from the robot's cell) to `pose`.
@@ -247,5 +293,25 @@ impl Chooser {
             Self::Counting(s) => s.learn(view, outcome),
             Self::Frontier(s) => s.learn(view, outcome),
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_ring_sees_all_around_and_a_half_circle_does_not() {
+        use std::f64::consts::{PI, TAU};
+        let ring: Vec<f64> = (0..24).map(|i| i as f64 * TAU / 24.0 - PI).collect();
+        assert!(sees_all_around(&ring));
+        // The same ring, one sonar lost: a 30 degree gap is still all around.
+        assert!(sees_all_around(&ring[1..]));
+        let laser: Vec<f64> = (0..181).map(|i| (i as f64 - 90.0).to_radians()).collect();
+        assert!(!sees_all_around(&laser));
+        let eight = [-90.0f64, -37.5, -22.5, -7.5, 7.5, 22.5, 37.5, 90.0].map(f64::to_radians);
+        assert!(!sees_all_around(&eight));
+        assert!(!sees_all_around(&[]));
+        assert!(!sees_all_around(&[0.0]));
     }
 }
