@@ -107,6 +107,9 @@ pub struct Exploration<S, M> {
     occupancy: OccupancyGrid,
     /// The coverage map's entropy after the last scan.
     entropy: Vec<f32>,
+    /// The histograms `entropy` was computed from: a refresh recomputes the
+    /// entropy of the cells whose histogram differs, and only those.
+    entropy_of: Vec<f32>,
     report_cells: Option<Vec<bool>>,
     pose: Pose,
     trajectory: Trajectory,
@@ -193,6 +196,7 @@ impl<S: ScanSource, M: Motion> Exploration<S, M> {
         let occupancy = OccupancyGrid::with_model(OccupancyModel::default(), counts)?;
         let chooser = Chooser::new(&strategy, &config, &grid, bins, &bearings)?;
         let entropy = map.entropy();
+        let entropy_of = map.histograms().to_vec();
         Ok(Self {
             source,
             motion,
@@ -203,6 +207,7 @@ impl<S: ScanSource, M: Motion> Exploration<S, M> {
             chooser,
             map,
             occupancy,
+            entropy_of,
             entropy,
             report_cells,
             pose: start,
@@ -544,10 +549,27 @@ impl<S: ScanSource, M: Motion> Exploration<S, M> {
         })
     }
 
-    /// Recompute the entropy map after the scans of a step.
+    /// Bring the entropy map up to date after the scans of a step: the
+    /// entropy of every cell whose histogram changed since, computed as
+    /// [`CoverageMap::entropy`] computes it (the same bits; most of a large
+    /// map is untouched by a step's scans).
     fn refresh_entropy(&mut self) {
         let started = Instant::now();
-        self.entropy = self.map.entropy();
+        let bins = self.map.bins();
+        let now = self.map.histograms();
+        for ((entropy, seen), h) in self
+            .entropy
+            .iter_mut()
+            .zip(self.entropy_of.chunks_exact_mut(bins))
+            .zip(now.chunks_exact(bins))
+        {
+            // Compared bit for bit, as the planning cache compares them.
+            if seen.iter().zip(h).any(|(a, b)| a.to_bits() != b.to_bits()) {
+                seen.copy_from_slice(h);
+                *entropy = histogram::entropy(h);
+            }
+        }
+        debug_assert_eq!(self.entropy, self.map.entropy());
         self.timing.integration_s += started.elapsed().as_secs_f64();
     }
 
