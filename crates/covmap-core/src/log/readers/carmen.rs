@@ -42,7 +42,7 @@ use std::io::Read;
 use std::path::Path;
 
 use super::source::{self, Fields, Lines};
-use crate::error::{CovmapError, Result};
+use crate::error::{CovmapError, Result, check_parameter};
 use crate::log::{Bearings, Log};
 use crate::pose::Pose;
 
@@ -95,7 +95,8 @@ impl Log {
     /// [`CarmenOptions::default`] says.
     ///
     /// # Errors
-    /// [`CovmapError::Io`] if the file cannot be opened;
+    /// [`CovmapError::InvalidParameter`] for an option that is not positive
+    /// and finite; [`CovmapError::Io`] if the file cannot be opened;
     /// [`CovmapError::Parse`] naming the file and the line of the first
     /// message that does not read (a missing or non-numeric field, a
     /// negative range, a beam count unlike the earlier scans'), or of the
@@ -127,6 +128,14 @@ impl Log {
 }
 
 fn read(mut lines: Lines, options: &CarmenOptions) -> Result<Log> {
+    for (name, value) in [
+        ("max_range_m", options.max_range_m),
+        ("flaser_step_rad", options.flaser_step_rad),
+    ] {
+        if let Some(v) = value {
+            check_parameter(v.is_finite() && v > 0.0, name, v, "positive and finite")?;
+        }
+    }
     let mut state = State::default();
     loop {
         let number = lines.line() + 1;

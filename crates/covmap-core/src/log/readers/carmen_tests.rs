@@ -118,3 +118,23 @@ fn bad_lines_are_errors_naming_their_line() {
     let (line, _) = parse_error("RAWLASER1 0 -1 2 0.5 20 0.01 0 1 1 0 5.0 h 5\n");
     assert_eq!(line, 1, "a raw scan without odometry");
 }
+
+#[test]
+fn bad_options_are_parameter_errors() {
+    let options = CarmenOptions {
+        max_range_m: Some(-1.0),
+        ..Default::default()
+    };
+    let text = b"FLASER 1 1 0 0 0 0 0 0 1.0 h 1\n".to_vec();
+    let err = Log::read_carmen(std::io::Cursor::new(text), "t", &options).unwrap_err();
+    assert!(
+        matches!(
+            err,
+            CovmapError::InvalidParameter {
+                name: "max_range_m",
+                ..
+            }
+        ),
+        "{err}"
+    );
+}

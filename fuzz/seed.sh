@@ -1,0 +1,33 @@
+#!/usr/bin/env bash
+# Seed each fuzz target's corpus (fuzz/corpus/<target>/, not tracked) from the
+# real files in ../shared/data, and from a map file and a map_server YAML that
+# covmap writes itself. Run from the repository: bash fuzz/seed.sh
+set -euo pipefail
+cd "$(dirname "$0")"
+data=../../shared/data
+for t in carmen sonar_text map_file image ros_map_yaml geojson aria; do mkdir -p "corpus/$t"; done
+if [ -d "$data" ]; then
+    for f in "$data"/carmen/*.log.gz; do
+        # The gzip file whole, and its first lines as plain text.
+        cp -f "$f" corpus/carmen/
+        # zcat stops early when head has enough: its broken pipe is no error.
+        { zcat "$f" || true; } | head -c 60000 > "corpus/carmen/$(basename "$f" .gz).head"
+    done
+    { head -c 4000 "$data/sonar-8ring/poses.txt"; printf '\0'; head -c 8000 "$data/sonar-8ring/measurement.txt"; } > corpus/sonar_text/sonar-8ring
+    cp -f "$data/worlds/stata_basement.yaml" corpus/ros_map_yaml/
+    head -c 20000 "$data/worlds/AMROffice.map" > corpus/aria/AMROffice.head
+    head -c 30000 "$data/worlds/willow-full.pgm" > corpus/image/willow.head
+    cp -f "$data/worlds/stata_basement.png" corpus/image/
+else
+    echo "seed.sh: $data is absent: the corpora start from covmap's own files only" >&2
+fi
+printf 'image: map.pgm\nresolution: 0.05\norigin: [0.0, 0.0, 0.0]\nnegate: 0\noccupied_thresh: 0.65\nfree_thresh: 0.196\nmode: trinary\n' > corpus/ros_map_yaml/written.yaml
+printf '{"type":"FeatureCollection","features":[{"type":"Feature","properties":{"material":"glass"},"geometry":{"type":"Polygon","coordinates":[[[0,0],[1,0],[1,1],[0,0]]]}}]}' > corpus/geojson/square.geojson
+# A map file with a history, as CoverageMap.save writes it (needs covmap in Python).
+python3 - <<'PY' || echo "seed.sh: covmap is not importable in python3: no map file seed" >&2
+import covmap
+m = covmap.CoverageMap(covmap.Grid(origin=(0.0, 0.0), resolution=0.1, shape=(8, 10)), bins=4)
+m.track_history(True)
+m.integrate((0.3, 0.4, 0.0), [0.5, 0.7], [0.0, 0.3], covmap.LaserModel())
+m.save("corpus/map_file/small.npz")
+PY
