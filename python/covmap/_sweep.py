@@ -54,6 +54,7 @@ import difflib
 import os
 import pickle
 import queue
+from collections import abc
 from contextlib import contextmanager
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any, Callable, Union
@@ -312,7 +313,7 @@ def prepare(specs: Sequence[Mapping[str, Any]]) -> list[_Run]:
     checked: set[tuple[int, str]] = set()
     worlds: dict[str, World] = {}
     for index, spec in enumerate(specs):
-        if not isinstance(spec, dict):
+        if not isinstance(spec, abc.Mapping):
             raise InvalidSpecError(index, f"expected a dict of covmap.explore arguments, got {type(spec).__name__}")
         for key in spec:
             if key not in allowed:
@@ -337,10 +338,10 @@ def prepare(specs: Sequence[Mapping[str, Any]]) -> list[_Run]:
             options = {k: v for k, v in spec.items() if k not in (*SPEC_KEYS, "seed")}
             if options.get("start") is not None:
                 options["start"] = tuple(float(x) for x in np.asarray(options["start"], dtype=np.float64).ravel())
-            key = (id(world), repr(sorted(options.items())))
-            if key not in checked:
+            same_check = (id(world), repr(sorted(options.items())))
+            if same_check not in checked:
                 Exploration(world, strategy, seed=seed, **options)
-                checked.add(key)
+                checked.add(same_check)
         except (CovmapError, TypeError, ValueError) as e:
             raise InvalidSpecError(index, f"{type(e).__name__}: {e}") from e
         runs.append(_Run(index, world, label, strategy, seed, options))
@@ -459,6 +460,10 @@ def sweep(
     run has ended, :class:`~covmap.SweepError` carries the summaries of the
     others and the failures with their specs' indexes.
     """
+    if not (isinstance(progress, bool) or callable(progress)):
+        from covmap._errors import InvalidTypeError
+
+        raise InvalidTypeError(f"progress must be True, False or a callable, got {type(progress).__name__}")
     runs = prepare(specs)
     if executor is not None:
         _check_executor(executor)

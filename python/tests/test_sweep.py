@@ -25,7 +25,7 @@ from test_exploration import room
 ORIGINAL_RUN = sweep_module._run_pickled
 """The sweep's own worker function, before any test replaces it."""
 
-SHORT = {"resolution": 0.1, "max_steps": 4}
+SHORT: dict[str, Any] = {"resolution": 0.1, "max_steps": 4}
 """Short runs: a few steps of a small room at 10 cm cells."""
 
 
@@ -161,7 +161,7 @@ def test_a_bad_spec_is_refused_by_its_index_before_anything_runs(
 
 def test_specs_that_are_no_dicts_or_miss_a_key_are_refused(specs: list[dict[str, Any]]) -> None:
     with pytest.raises(covmap.InvalidSpecError, match="spec 1: expected a dict"):
-        covmap.sweep([specs[0], ["corridor"]], progress=False)
+        covmap.sweep([specs[0], ["corridor"]], progress=False)  # type: ignore[list-item]
     with pytest.raises(covmap.InvalidSpecError, match="spec 0: no 'strategy'"):
         covmap.sweep([{"world": "corridor"}], progress=False)
     assert covmap.sweep([], progress=False) == []
