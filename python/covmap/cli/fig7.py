@@ -20,8 +20,7 @@ DEFAULT_SEEDS = 4
 
 DEFAULT_RESOLUTION_M = 0.1
 """The maps' cell size of the default sweep, metres: ``covmap.explore``'s
-0.05 makes each run about four times as long (the whole default sweep takes
-most of an hour on two cores, against minutes at 0.1)."""
+0.05 makes a run of the corridor two to eight times as long (BENCHMARKS.md)."""
 
 DESCRIPTION = (
     "Explore a built-in world with 24 simulated sonars by scan counting forced to each count n "
@@ -33,7 +32,7 @@ DESCRIPTION = (
     "at 85, 90 and 95 % certain cells (read off the counting curve by linear interpolation), "
     "and writes fig7.png and fig7.csv (one row per run). The default sweep (11 values of n, "
     f"{DEFAULT_SEEDS} seeds, {DEFAULT_RESOLUTION_M:g} m cells) is smaller than covmap explore's "
-    "(0.05 m cells), whose runs take about four times as long: pass --resolution 0.05 for those."
+    "(0.05 m cells), whose runs take two to eight times as long: pass --resolution 0.05 for those."
 )
 """What ``covmap fig7 --help`` says the command does."""
 

@@ -19,8 +19,8 @@ HELP = "run the explorations of a sweep file (JSON or TOML) and write their figu
 DESCRIPTION = (
     "Read SPECS (a .json or .toml file: runs, a list of specs, each a table of covmap.explore "
     "arguments with world a built-in name and strategy a name or a table such as "
-    "{ name = \"counting\", n = 50 }; defaults, keys every run takes; seeds, a list, for one run "
-    "a seed), check every spec, run them all on this machine's cores (one run a core) or on "
+    "{ name = \"counting\", n = 50 }; defaults, keys every run takes unless it gives them; seeds, a list in place of seed, "
+    "for one spec a seed), check every spec, run them all on this machine's cores (one run a core) or on "
     "the Dask scheduler at --dask, with a progress bar, and write one CSV row per spec to "
     "--out, atomically. Runs that fail are listed in the CSV and on standard error, and the "
     "command exits 1; a bad spec is named by its index before anything runs (exit 2)."
@@ -31,7 +31,9 @@ DESCRIPTION = (
 def add_arguments(command: argparse.ArgumentParser) -> None:
     """The command's arguments."""
     command.add_argument("specs", type=Path, metavar="SPECS", help="the sweep file, .json or .toml")
-    command.add_argument("--out", type=Path, required=True, help="the CSV file to write, one row per spec")
+    command.add_argument(
+        "--out", type=Path, required=True, metavar="FILE", help="the CSV file to write, one row per spec"
+    )
     _options.add_dask(command, local=False)
 
 
