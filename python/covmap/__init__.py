@@ -12,7 +12,9 @@ ground-truth coverage and ray casts, simulated sensors (:class:`SonarRing`,
 :class:`Laser`) whose scans feed ``CoverageMap.integrate`` directly, and a
 disc :class:`Robot`. A :class:`Log` is a recorded drive (read from CARMEN or
 plain-text sonar files, built from ROS LaserScan arrays, or recorded by a
-simulated sensor) that ``integrate_log`` maps in one call. :mod:`covmap.plot` draws them with matplotlib.
+simulated sensor) that ``integrate_log`` maps in one call. :func:`sweep` runs
+many explorations at once, on the local cores or on a Dask cluster, and
+returns a :class:`RunSummary` of each. :mod:`covmap.plot` draws them with matplotlib.
 
 >>> import numpy as np, covmap
 >>> grid = covmap.Grid(origin=(0.0, 0.0), resolution=0.05, shape=(40, 40))
@@ -33,6 +35,7 @@ from covmap import plot
 from covmap import _errors
 from covmap._errors import *  # noqa: F403 (the error classes, listed in _errors.__all__)
 from covmap._exploration import ExplorationErrors, ExplorationResult, Step, Timing
+from covmap._sweep import RunSummary, SweepFailure, dask_client, sweep
 from covmap._native import (
     DEFAULT_BINS,
     DEFAULT_DISCOUNT_BEYOND_M,
@@ -85,16 +88,20 @@ __all__ = [
     "Plan",
     "Planner",
     "Robot",
+    "RunSummary",
     "SonarModel",
     "SonarRing",
     "Step",
     "Strategy",
+    "SweepFailure",
     "Timing",
     "World",
     "__version__",
+    "dask_client",
     "expected_information_gain",
     "explore",
     "plot",
     "run_fig3",
+    "sweep",
 ]
 __all__ += _errors.__all__

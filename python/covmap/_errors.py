@@ -5,10 +5,13 @@ by a bad value are also a :class:`ValueError` (a cell index out of range is an
 :class:`IndexError`, an array of the wrong dtype a :class:`TypeError`, a file
 that cannot be read an :class:`OSError`), so code that catches the builtin
 keeps working. A robot that fails during an exploration run raises
-:class:`RobotError`, a :class:`RuntimeError`. The native module raises these classes.
+:class:`RobotError`, a :class:`RuntimeError`; a sweep whose runs raised,
+:class:`SweepError`, one too. The native module raises these classes.
 """
 
 from __future__ import annotations
+
+from typing import Any
 
 __all__ = [
     "ArrayDtypeError",
@@ -24,13 +27,18 @@ __all__ = [
     "InvalidParameterError",
     "InvalidPolygonError",
     "InvalidPoseError",
+    "InvalidExecutorError",
     "InvalidRangeError",
+    "InvalidSpecError",
     "InvalidStartError",
     "InvalidTypeError",
     "InvalidValueError",
     "LengthMismatchError",
+    "MissingDependencyError",
     "PoseOutsideMapError",
     "RobotError",
+    "SchedulerError",
+    "SweepError",
     "UnknownWorldError",
 ]
 
@@ -135,3 +143,53 @@ class FileFormatError(CovmapError, ValueError):
 class FileIOError(CovmapError, OSError):
     """A file could not be read or written (``errno``, ``strerror`` and
     ``filename`` as for any :class:`OSError`)."""
+
+
+class InvalidSpecError(CovmapError, ValueError):
+    """A spec of :func:`covmap.sweep` cannot run (an unknown key, a value of
+    the wrong type or out of range, a world that does not pickle). ``index``
+    is the spec's position in the list, ``reason`` what is wrong with it;
+    the message says both."""
+
+    def __init__(self, index: int, reason: str) -> None:
+        super().__init__(f"spec {index}: {reason}")
+        self.index = index
+        self.reason = reason
+
+    def __reduce__(self) -> tuple[type[InvalidSpecError], tuple[int, str]]:
+        return type(self), (self.index, self.reason)
+
+
+class InvalidExecutorError(CovmapError, ValueError):
+    """An executor handed to :func:`covmap.sweep` cannot run its runs (no
+    ``submit``, or a process pool that forks: covmap's thread pool does not
+    survive a fork, and the children would wait for it forever)."""
+
+
+class SchedulerError(CovmapError, OSError):
+    """A Dask scheduler could not be reached at the address given (nothing
+    listens there, or it did not answer in time)."""
+
+
+class MissingDependencyError(CovmapError, ImportError):
+    """An optional dependency a feature needs is not installed; the message
+    says what to install (``pip install covmap[dask]`` for Dask)."""
+
+
+class SweepError(CovmapError, RuntimeError):
+    """Some runs of a sweep raised. Raised by :func:`covmap.sweep` after
+    every run has ended, so that no result is lost: ``results`` holds one
+    entry per spec in the specs' order (a ``RunSummary``, or ``None`` where
+    the run failed), ``failures`` a ``SweepFailure`` per failed run (its
+    spec's index, the exception's type name and message, and the exception
+    itself)."""
+
+    def __init__(self, results: list[Any], failures: list[Any]) -> None:
+        shown = "; ".join(f"spec {f.index}: {f.error_type}: {f.message}" for f in failures[:5])
+        more = f"; and {len(failures) - 5} more" if len(failures) > 5 else ""
+        super().__init__(f"{len(failures)} of {len(results)} runs failed: {shown}{more}")
+        self.results = results
+        self.failures = failures
+
+    def __reduce__(self) -> tuple[type[SweepError], tuple[list[Any], list[Any]]]:
+        return type(self), (self.results, self.failures)

@@ -119,13 +119,17 @@ def test_wrong_argument_types_are_type_errors(grid: covmap.Grid, model: Any) -> 
 
 def test_every_error_class_derives_from_covmap_error() -> None:
     classes = [getattr(covmap, name) for name in covmap.__all__ if name.endswith("Error")]
-    assert len(classes) == 21
+    assert len(classes) == 26
     for cls in classes:
         assert issubclass(cls, covmap.CovmapError)
-        # RobotError is no bad input: a robot's sensor or drive failed during a run.
-        assert cls in (covmap.CovmapError, covmap.RobotError) or issubclass(
-            cls, (ValueError, IndexError, TypeError, OSError)
+        # RobotError is no bad input: a robot's sensor or drive failed during a
+        # run; SweepError, that some runs of a sweep raised.
+        assert cls in (covmap.CovmapError, covmap.RobotError, covmap.SweepError) or issubclass(
+            cls, (ValueError, IndexError, TypeError, OSError, ImportError)
         )
+    assert issubclass(covmap.SweepError, RuntimeError) and not issubclass(covmap.SweepError, ValueError)
+    assert issubclass(covmap.InvalidSpecError, ValueError) and issubclass(covmap.InvalidExecutorError, ValueError)
+    assert issubclass(covmap.SchedulerError, OSError) and issubclass(covmap.MissingDependencyError, ImportError)
     assert issubclass(covmap.RobotError, RuntimeError) and not issubclass(covmap.RobotError, ValueError)
     assert issubclass(covmap.InvalidStartError, ValueError)
     assert issubclass(covmap.CellOutOfBoundsError, IndexError)

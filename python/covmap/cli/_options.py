@@ -4,6 +4,8 @@ and the options several commands share."""
 from __future__ import annotations
 
 import argparse
+from collections.abc import Iterator
+from contextlib import contextmanager
 from pathlib import Path
 from typing import Any, Callable, TypeVar
 
@@ -143,3 +145,39 @@ def run_limits(args: argparse.Namespace) -> dict[str, Any]:
     :func:`covmap.explore`."""
     limits = {"max_steps": args.max_steps, "max_path_m": args.max_path_m}
     return {name: value for name, value in limits.items() if value is not None}
+
+
+def add_dask(command: argparse.ArgumentParser, *, local: bool = True) -> None:
+    """The ``--dask ADDRESS`` option (and, with ``local``, ``--dask-local
+    WORKERS``, excluding it): where a sweep's runs go; neither: the local
+    cores."""
+    group = command.add_mutually_exclusive_group()
+    group.add_argument(
+        "--dask",
+        metavar="ADDRESS",
+        help="run on the Dask scheduler at ADDRESS (tcp://host:8786; needs covmap[dask]) "
+        "instead of this machine's cores",
+    )
+    if local:
+        group.add_argument(
+            "--dask-local",
+            type=positive_int,
+            metavar="WORKERS",
+            help="run on a Dask cluster of WORKERS worker processes started on this machine (needs covmap[dask])",
+        )
+
+
+@contextmanager
+def executor(args: argparse.Namespace) -> Iterator[Any]:
+    """The executor :func:`add_dask`'s options ask for (``None``: the local
+    cores), closed when the block ends."""
+    from covmap._sweep import dask_client
+
+    if args.dask is not None:
+        with dask_client(args.dask) as client:
+            yield client
+    elif getattr(args, "dask_local", None) is not None:
+        with dask_client(workers=args.dask_local) as client:
+            yield client
+    else:
+        yield None

@@ -10,9 +10,11 @@ drawing them to :mod:`covmap.plot` and running them to the ``covmap`` command.
 - :mod:`~covmap.experiments.exploration`: a whole exploration run watched step
   by step (``covmap explore``), with snapshots for its animation;
 - :mod:`~covmap.experiments.table1`: the paper's Table I, coverage maps against
-  scan counting (and nearest frontiers) over several seeds.
+  scan counting (and nearest frontiers) over several seeds;
+- :mod:`~covmap.experiments.fig7`: the paper's Fig. 7, scan counting forced
+  to each count ``n`` against coverage maps, a sweep (:func:`covmap.sweep`).
 """
 
-from covmap.experiments import exploration, fig1, fig3, planning_step, table1
+from covmap.experiments import exploration, fig1, fig3, fig7, planning_step, table1
 
-__all__ = ["exploration", "fig1", "fig3", "planning_step", "table1"]
+__all__ = ["exploration", "fig1", "fig3", "fig7", "planning_step", "table1"]

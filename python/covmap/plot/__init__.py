@@ -10,7 +10,7 @@ of its own: ``plot_map`` draws the cells no evidence reached (``observed=``,
 e.g. ``CoverageMap.observed()``, or masked values) in ``UNKNOWN_COLOR``,
 never as free. The figures of the experiments (``plot_fig1``, ``plot_fig3``,
 ``plot_planning_step``, ``plot_world_and_coverage``, ``plot_exploration``
-with its GIF ``save_animation``, ``plot_table1``, ``plot_mapping``) are drawn and written to
+with its GIF ``save_animation``, ``plot_table1``, ``plot_mapping``, ``plot_fig7``) are drawn and written to
 files whole, as the ``covmap`` command writes them.
 
 >>> import matplotlib
@@ -36,6 +36,7 @@ from covmap.plot.drawing import (
 )
 from covmap.plot.exploration import plot_exploration, plot_table1, save_animation
 from covmap.plot.mapping import plot_mapping
+from covmap.plot.sweeps import plot_fig7
 from covmap.plot.figures import (
     plot_fig1,
     plot_fig3,
@@ -50,6 +51,7 @@ __all__ = [
     "plot_exploration",
     "plot_fig1",
     "plot_fig3",
+    "plot_fig7",
     "plot_map",
     "plot_mapping",
     "plot_planning_step",

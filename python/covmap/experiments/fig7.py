@@ -1,0 +1,253 @@
+"""The paper's Fig. 7: scan counting forced to a count ``n`` against the
+decision-theoretic strategy, as path length over the fraction of evaluation
+cells explored well enough (entropy below epsilon, 1 - Table I's measure).
+
+Each counting run is a point; the mean per ``n`` makes the counting curve
+(in the order of ``n``); the coverage runs' mean is a cross with its spread.
+The paper's finding: if 85 % or more of the cells must be certain, coverage
+maps travel less. :func:`path_at` reads the counting curve at a fraction
+(linear interpolation between the means of consecutive ``n`` where the
+curve first reaches it), :func:`crossings` where the counting curve reaches
+the coverage runs' mean path length.
+"""
+
+from __future__ import annotations
+
+import csv
+import io
+from dataclasses import dataclass
+from typing import TYPE_CHECKING, Any, Callable
+
+from covmap._native import DEFAULT_DISCOUNT_BEYOND_M, Strategy
+from covmap._sweep import RunSummary, SweepFailure, sweep
+from covmap.experiments.table1 import mean_and_spread
+
+if TYPE_CHECKING:
+    from collections.abc import Sequence
+    from pathlib import Path
+
+DEFAULT_NS = (1, 2, 5, 10, 20, 35, 50, 70, 90, 110, 130)
+"""The paper's counts ``n`` of scan counting."""
+
+FRACTIONS = (0.85, 0.90, 0.95)
+"""The fractions of certain cells the comparison is read at."""
+
+CSV_FIELDS = (
+    "strategy",
+    "n",
+    "alpha",
+    "seed",
+    "termination",
+    "path_length_m",
+    "certain_fraction",
+    "high_entropy_fraction",
+    "scans",
+    "steps",
+    "contacts",
+    "seconds",
+)
+"""The columns of :func:`csv_text`, one row per run."""
+
+
+@dataclass(frozen=True)
+class Point:
+    """A point of a curve: the mean certain fraction and path length of some runs."""
+
+    label: str
+    """What the runs were (``n = 5``, ``coverage``)."""
+    certain: float
+    """Mean fraction of the evaluation cells certain at the end."""
+    certain_spread: float
+    """Its sample standard deviation over the runs."""
+    path_m: float
+    """Mean path length, metres."""
+    path_spread_m: float
+    """Its sample standard deviation over the runs."""
+
+
+def _point(label: str, runs: Sequence[RunSummary]) -> Point:
+    certain, certain_spread = mean_and_spread([r.certain_fraction for r in runs])
+    path, path_spread = mean_and_spread([r.path_length_m for r in runs])
+    return Point(label, certain, certain_spread, path, path_spread)
+
+
+@dataclass(frozen=True)
+class Fig7:
+    """The sweep of Fig. 7 in world ``world_name``."""
+
+    world_name: str
+    ns: list[int]
+    seeds: list[int]
+    alpha: float
+    options: dict[str, Any]
+    """The keywords every run was given beyond world, strategy and seed."""
+    counting: list[RunSummary]
+    """The counting runs, ``n`` by ``n``, the seeds within."""
+    coverage: list[RunSummary]
+    """The coverage runs, one a seed."""
+
+    def counting_runs(self, n: int) -> list[RunSummary]:
+        """The counting runs with count ``n``."""
+        return [r for r in self.counting if r.strategy.n == n]
+
+    @property
+    def curve(self) -> list[Point]:
+        """The counting curve: the mean of each ``n``'s runs, in the order of ``n``."""
+        return [_point(f"n = {n}", self.counting_runs(n)) for n in self.ns]
+
+    @property
+    def cross(self) -> Point:
+        """The coverage runs' mean and spread."""
+        return _point(f"coverage, alpha {self.alpha:g}", self.coverage)
+
+
+def specs(
+    world_name: str, *, ns: Sequence[int], seeds: Sequence[int], alpha: float, **options: Any
+) -> list[dict[str, Any]]:
+    """The sweep's specs: counting (discounted beyond
+    :data:`~covmap.DEFAULT_DISCOUNT_BEYOND_M`) for each ``n`` and seed, then
+    coverage with ``alpha`` for each seed."""
+    counting = [
+        {"world": world_name, "strategy": Strategy.counting(n, DEFAULT_DISCOUNT_BEYOND_M), "seed": s, **options}
+        for n in ns
+        for s in seeds
+    ]
+    coverage = [{"world": world_name, "strategy": Strategy.coverage(alpha), "seed": s, **options} for s in seeds]
+    return counting + coverage
+
+
+def run(
+    world_name: str = "corridor",
+    *,
+    ns: Sequence[int] = DEFAULT_NS,
+    seeds: Sequence[int] = (0, 1, 2, 3),
+    alpha: float = 0.5,
+    executor: Any = None,
+    progress: bool | Callable[[int, RunSummary | SweepFailure], None] = True,
+    **options: Any,
+) -> Fig7:
+    """Run the sweep of Fig. 7 (:func:`specs`) with :func:`covmap.sweep` on
+    ``executor`` (``None``: the local cores)."""
+    all_specs = specs(world_name, ns=ns, seeds=seeds, alpha=alpha, **options)
+    summaries = sweep(all_specs, executor=executor, progress=progress)
+    split = len(ns) * len(seeds)
+    return Fig7(world_name, list(ns), list(seeds), alpha, dict(options), summaries[:split], summaries[split:])
+
+
+def path_at(curve: Sequence[Point], fraction: float) -> float | None:
+    """The counting curve's path length where its certain fraction first
+    reaches ``fraction``, interpolated linearly between consecutive points
+    (``None``: never reached)."""
+    if not curve:
+        return None
+    if curve[0].certain >= fraction:
+        return curve[0].path_m
+    for a, b in zip(curve, curve[1:]):
+        if a.certain < fraction <= b.certain:
+            t = (fraction - a.certain) / (b.certain - a.certain)
+            return a.path_m + t * (b.path_m - a.path_m)
+    return None
+
+
+def crossings(curve: Sequence[Point], path_m: float) -> list[float]:
+    """The certain fractions at which the counting curve passes the path
+    length ``path_m`` (the coverage runs' mean), interpolated linearly
+    between consecutive points, in the order of ``n``."""
+    found = []
+    for a, b in zip(curve, curve[1:]):
+        da, db = a.path_m - path_m, b.path_m - path_m
+        if da == 0.0:
+            found.append(a.certain)
+        elif da * db < 0.0:
+            t = da / (da - db)
+            found.append(a.certain + t * (b.certain - a.certain))
+    if curve and curve[-1].path_m == path_m:
+        found.append(curve[-1].certain)
+    return found
+
+
+def _pct(x: float) -> str:
+    return f"{100.0 * x:.1f} %"
+
+
+def report(f: Fig7) -> str:
+    """The sweep as text: the counting curve, the coverage cross, where they
+    cross, and both strategies' path lengths at :data:`FRACTIONS`."""
+    lines = [
+        f"Fig. 7, {f.world_name}, {len(f.seeds)} seed{'s' if len(f.seeds) != 1 else ''} "
+        f"({', '.join(map(str, f.seeds))}); certain: evaluation cells with entropy below epsilon",
+    ]
+    if f.options:
+        lines.append("options: " + ", ".join(f"{k}={v!r}" for k, v in sorted(f.options.items())))
+    lines.append(f"{'runs':<22} {'certain (mean ± sd)':>22} {'path [m] (mean ± sd)':>24}")
+    for p in [*f.curve, f.cross]:
+        label = f"counting {p.label}" if p.label.startswith("n =") else p.label
+        lines.append(
+            f"{label:<22} {100 * p.certain:>11.1f} ± {100 * p.certain_spread:>5.1f} % "
+            f"{p.path_m:>13.1f} ± {p.path_spread_m:>7.1f}"
+        )
+    cross = f.cross
+    found = crossings(f.curve, cross.path_m)
+    if found:
+        lines.append(
+            f"the counting curve passes the coverage runs' mean path ({cross.path_m:.1f} m) at "
+            + ", ".join(_pct(x) for x in found)
+            + " certain"
+        )
+    else:
+        lines.append(f"the counting curve never passes the coverage runs' mean path ({cross.path_m:.1f} m)")
+    best = max(f.curve, key=lambda p: p.certain)
+    for fraction in FRACTIONS:
+        counting = path_at(f.curve, fraction)
+        counting_text = (
+            f"counting {counting:.1f} m (interpolated along the curve)"
+            if counting is not None
+            else f"counting never reaches it (at most {_pct(best.certain)}, {best.label})"
+        )
+        coverage_text = (
+            f"coverage {cross.path_m:.1f} m"
+            if cross.certain >= fraction
+            else f"coverage does not reach it (mean {_pct(cross.certain)})"
+        )
+        verdict = ""
+        if counting is not None and cross.certain >= fraction:
+            verdict = "; coverage travels less" if cross.path_m < counting else "; counting travels less"
+        elif cross.certain >= fraction:
+            verdict = "; only coverage reaches it"
+        lines.append(f"at {100 * fraction:.0f} % certain: {counting_text}; {coverage_text}{verdict}")
+    return "\n".join(lines)
+
+
+def csv_text(f: Fig7) -> str:
+    """One CSV row per run, columns :data:`CSV_FIELDS`."""
+    out = io.StringIO()
+    writer = csv.writer(out, lineterminator="\n")
+    writer.writerow(CSV_FIELDS)
+    for r in [*f.counting, *f.coverage]:
+        s = r.strategy
+        writer.writerow(
+            [
+                s.name,
+                "" if s.n is None else s.n,
+                "" if s.alpha is None else repr(s.alpha),
+                r.seed,
+                r.termination,
+                repr(r.path_length_m),
+                repr(r.certain_fraction),
+                repr(r.high_entropy_fraction),
+                r.scans,
+                r.steps,
+                r.contacts,
+                f"{r.seconds:.3f}",
+            ]
+        )
+    return out.getvalue()
+
+
+def write_csv(f: Fig7, path: Path) -> Path:
+    """Write :func:`csv_text` to ``path`` atomically; returns the path."""
+    from covmap._native import write_atomic
+
+    path.parent.mkdir(parents=True, exist_ok=True)
+    write_atomic(path, csv_text(f).encode())
+    return path
