@@ -23,8 +23,10 @@ else
 fi
 printf 'image: map.pgm\nresolution: 0.05\norigin: [0.0, 0.0, 0.0]\nnegate: 0\noccupied_thresh: 0.65\nfree_thresh: 0.196\nmode: trinary\n' > corpus/ros_map_yaml/written.yaml
 printf '{"type":"FeatureCollection","features":[{"type":"Feature","properties":{"material":"glass"},"geometry":{"type":"Polygon","coordinates":[[[0,0],[1,0],[1,1],[0,0]]]}}]}' > corpus/geojson/square.geojson
-# A map file with a history, as CoverageMap.save writes it (needs covmap in Python).
-python3 - <<'PY' || echo "seed.sh: covmap is not importable in python3: no map file seed" >&2
+# A map file with a history, as CoverageMap.save writes it (needs covmap in
+# the Python of $PYTHON, python3 if unset).
+python=${PYTHON:-python3}
+"$python" - <<'PY' || echo "seed.sh: covmap is not importable in $python: no map file seed" >&2
 import covmap
 m = covmap.CoverageMap(covmap.Grid(origin=(0.0, 0.0), resolution=0.1, shape=(8, 10)), bins=4)
 m.track_history(True)
