@@ -25,6 +25,26 @@ pub struct RangeModel {
     pub xi_min: f64,
     /// Growth of the uniform weight per metre of distance `s = min(d_l, d)`.
     pub xi_per_m: f64,
+    /// How far a no-echo reading clears its footprint, as a fraction of
+    /// `max_range_m`, in `(0, 1]`. 1 (the default): out to the maximum range,
+    /// as the paper reads it.
+    #[serde(default = "one")]
+    pub no_echo_reach: f64,
+    /// How strongly a no-echo reading clears, in `[0, 1]`: its kernel is
+    /// `no_echo_weight * k_free + (1 - no_echo_weight) / bins`, a mixture of
+    /// the free-space kernel and the uniform prior. 1 (the default): the
+    /// free-space kernel, as the paper reads it; 0: a no-echo reading
+    /// leaves the map as it was. A specular miss (a sonar pulse that glanced
+    /// off a wall and never came back) is a no-echo reading through a wall,
+    /// so a weight below 1 keeps such misses from erasing walls that echoes
+    /// from other angles found.
+    #[serde(default = "one")]
+    pub no_echo_weight: f64,
+}
+
+/// The default of the no-echo parameters: the paper's reading.
+fn one() -> f64 {
+    1.0
 }
 
 /// The smallest `sigma_min`: a standard deviation of coverage (which spans
@@ -88,6 +108,18 @@ impl RangeModel {
             self.xi(self.max_range_m) <= MAX_XI,
             "a growth that keeps xi_min + xi_per_m * max_range_m at most 1e6",
         )?;
+        check(
+            "no_echo_reach",
+            self.no_echo_reach,
+            self.no_echo_reach > 0.0 && self.no_echo_reach <= 1.0,
+            "a fraction of the maximum range in (0, 1]",
+        )?;
+        check(
+            "no_echo_weight",
+            self.no_echo_weight,
+            (0.0..=1.0).contains(&self.no_echo_weight),
+            "a weight in [0, 1]",
+        )?;
         let widest = self.sigma(self.max_range_m);
         check(
             "sigma_end",
@@ -108,13 +140,29 @@ impl RangeModel {
     }
 
     /// How far along the beam a reading of `range_m` reaches, and whether it is
-    /// an echo (`false`: no echo, clear up to the maximum range).
+    /// an echo (`false`: no echo, clear up to `no_echo_reach` of the maximum
+    /// range).
     pub fn reach(&self, range_m: f64) -> (f64, bool) {
         if range_m >= self.max_range_m {
-            (self.max_range_m, false)
+            (self.no_echo_reach_m(), false)
         } else {
             (range_m + self.band_m, true)
         }
+    }
+
+    /// How far a no-echo reading clears, metres: `no_echo_reach * max_range_m`.
+    pub fn no_echo_reach_m(&self) -> f64 {
+        if self.no_echo_reach >= 1.0 {
+            self.max_range_m
+        } else {
+            self.no_echo_reach * self.max_range_m
+        }
+    }
+
+    /// Whether a no-echo reading's kernel is the free-space kernel itself
+    /// (`no_echo_weight` 1), rather than a mixture with the prior.
+    pub fn no_echo_is_free(&self) -> bool {
+        self.no_echo_weight >= 1.0
     }
 
     /// The kernel the map multiplies in for a cell at `cell_distance_m` and a
@@ -182,7 +230,18 @@ impl RangeModel {
         } else {
             (1.0, self.sigma(s))
         };
-        Some(kernel_values(mu, sigma, self.xi(s), bins))
+        let k = kernel_values(mu, sigma, self.xi(s), bins);
+        Some(if echo { k } else { self.no_echo_mixture(k) })
+    }
+
+    /// A free-space kernel `k` as a no-echo reading gives it: mixed with the
+    /// uniform prior by `no_echo_weight` (unchanged at weight 1).
+    pub(crate) fn no_echo_mixture(&self, mut k: Vec<f64>) -> Vec<f64> {
+        if !self.no_echo_is_free() {
+            let (w, uniform) = (self.no_echo_weight, 1.0 / k.len() as f64);
+            k.iter_mut().for_each(|v| *v = w * *v + (1.0 - w) * uniform);
+        }
+        k
     }
 }
 
