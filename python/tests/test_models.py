@@ -17,6 +17,8 @@ SONAR_PARAMETERS = [
     "sigma_end",
     "xi_min",
     "xi_per_m",
+    "no_echo_reach",
+    "no_echo_weight",
     "opening_angle_rad",
 ]
 
