@@ -18,6 +18,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             "--test" => config.test_world = value()?,
             "--laser" => config.model = AnySensorModel::laser(),
             "--evaluations" => config.fit.max_evaluations = value()?.parse()?,
+            "--occlude" => config.fit.occlude_no_echo = true,
             "--restarts" => config.fit.restarts = value()?.parse()?,
             "--scans" => config.scans = value()?.parse()?,
             "--parameters" => {

@@ -51,6 +51,10 @@ pub struct FitOptions {
     /// A search stops when its simplex's scores spread by less than this
     /// (standard deviation, nats; default 0.5).
     pub tolerance: f64,
+    /// Whether the maps are built with no-echo readings occluded by the map
+    /// ([`CoverageMap::integrate_log_occluding`]) rather than clearing
+    /// their whole footprint ([`CoverageMap::integrate_log`]; the default).
+    pub occlude_no_echo: bool,
 }
 
 impl Default for FitOptions {
@@ -63,6 +67,7 @@ impl Default for FitOptions {
             seed: 0,
             bins: 16,
             tolerance: 0.5,
+            occlude_no_echo: false,
         }
     }
 }
@@ -189,6 +194,7 @@ struct Search<'a, M> {
     bounds: Vec<[f64; 2]>,
     bins: usize,
     tolerance: f64,
+    occlude_no_echo: bool,
 }
 
 impl<'a, M: Fittable> Search<'a, M> {
@@ -293,13 +299,18 @@ impl<'a, M: Fittable> Search<'a, M> {
             bounds,
             bins: options.bins,
             tolerance: options.tolerance,
+            occlude_no_echo: options.occlude_no_echo,
         })
     }
 
     /// The log-likelihood of the truth under the map `model` builds.
     fn score(&self, model: &M) -> Result<f64> {
         let mut map = CoverageMap::with_bins(self.data.grid, self.bins)?;
-        map.integrate_log(self.data.log, model)?;
+        if self.occlude_no_echo {
+            map.integrate_log_occluding(self.data.log, model)?;
+        } else {
+            map.integrate_log(self.data.log, model)?;
+        }
         log_likelihood(&map, self.data.truth, self.data.cells)
     }
 

@@ -9,7 +9,7 @@ use covmap_core::{CoverageMap, Grid, Log, OccupancyGrid, Pose};
 use rand::RngExt;
 
 use crate::error::{Result, check_param};
-use crate::exploration::{choose_start, clearances};
+use crate::exploration::{choose_start, clearances, evaluation_cells};
 use crate::laser::Laser;
 use crate::rng::sim_rng_stream;
 use crate::robot::Robot;
@@ -132,6 +132,17 @@ pub struct Drive {
     pub grid: Grid,
     /// The exact coverage of every cell.
     pub truth: Vec<f64>,
+    /// The cells the drive is judged on: those its readings reached (the
+    /// occupancy grid's scan counts above 0, with the model the drive was
+    /// simulated with) that a robot driving from the drive's start could
+    /// observe ([`evaluation_cells`] with a 0.25 m robot and a 0.2 m end
+    /// band: the free space it can reach and the obstacle cells that bound
+    /// it). Not the free space behind walls nor the insides of thick walls:
+    /// no reading reaches them, though no-echo footprints run through them.
+    pub judged: Vec<bool>,
+    /// The occupancy grid's probabilities of the drive (the baseline, built
+    /// with the model the drive was simulated with).
+    pub occupancy: Vec<f32>,
 }
 
 impl Drive {
@@ -147,6 +158,9 @@ impl Drive {
         let [x0, y0, x1, y1] = world.bounds_m();
         let grid = Grid::covering(x0 - 0.5, y0 - 0.5, x1 + 0.5, y1 + 0.5, resolution_m)?;
         let poses = survey_drive(&world, &grid, 0.25, seed, step_m, scans)?;
+        let truth = world.coverage(&grid);
+        let clearance = clearances(&world, &grid, &Robot::new(0.25)?);
+        let observable = evaluation_cells(&grid, &clearance, &truth, &poses[0], 0.25, 0.2)?;
         let log = match model {
             AnySensorModel::Sonar(m) => {
                 record(&SonarRing::default().with_model(m), &world, &poses, seed)?
@@ -157,42 +171,56 @@ impl Drive {
                 record(&laser, &world, &poses, seed)?
             }
         };
+        // The judged cells and the baseline come from the drive's own sensor
+        // (the model it was simulated with), the same for every model scored.
+        let mut occupancy = OccupancyGrid::new(grid);
+        occupancy.integrate_log(&log, model)?;
+        let judged = occupancy
+            .counts()
+            .counts()
+            .iter()
+            .zip(&observable)
+            .map(|(&c, &observable)| c > 0.0 && observable)
+            .collect();
         Ok(Self {
             world: name.into(),
-            truth: world.coverage(&grid),
+            truth,
+            judged,
+            occupancy: occupancy.probabilities(),
             log,
             grid,
         })
     }
 
-    /// How well maps of this drive built with `model` match the truth.
-    pub fn score(&self, model: &AnySensorModel) -> Result<DriveScore> {
+    /// The mean absolute error of `values` against the truth over the
+    /// judged cells whose truth `keep` accepts.
+    fn error_where(&self, values: &[f32], keep: impl Fn(f64) -> bool) -> f64 {
+        let (sum, n) = (0..self.grid.len())
+            .filter(|&i| self.judged[i] && keep(self.truth[i]))
+            .fold((0.0, 0usize), |(s, n), i| {
+                (s + (f64::from(values[i]) - self.truth[i]).abs(), n + 1)
+            });
+        sum / n.max(1) as f64
+    }
+
+    /// How well maps of this drive built with `model` match the truth (its
+    /// no-echo readings occluded by the map if `occlude_no_echo`, see
+    /// [`CoverageMap::integrate_log_occluding`]).
+    pub fn score(&self, model: &AnySensorModel, occlude_no_echo: bool) -> Result<DriveScore> {
         let mut map = CoverageMap::new(self.grid);
-        map.integrate_log(&self.log, model)?;
-        let mut occupancy = OccupancyGrid::new(self.grid);
-        occupancy.integrate_log(&self.log, model)?;
-        let reached: Vec<bool> = occupancy
-            .counts()
-            .counts()
-            .iter()
-            .map(|&c| c > 0.0)
-            .collect();
-        let error_where = |values: &[f32], keep: &dyn Fn(f64) -> bool| {
-            let (sum, n) = (0..self.grid.len())
-                .filter(|&i| reached[i] && keep(self.truth[i]))
-                .fold((0.0, 0usize), |(s, n), i| {
-                    (s + (f64::from(values[i]) - self.truth[i]).abs(), n + 1)
-                });
-            sum / n.max(1) as f64
-        };
+        if occlude_no_echo {
+            map.integrate_log_occluding(&self.log, model)?;
+        } else {
+            map.integrate_log(&self.log, model)?;
+        }
         let mean = map.mean();
         Ok(DriveScore {
             log_likelihood: log_likelihood(&map, &self.truth, None)?,
-            mean_error: error_where(&mean, &|_| true),
-            free_error: error_where(&mean, &|t| t == 0.0),
-            obstacle_error: error_where(&mean, &|t| t > 0.0),
-            occupancy_error: error_where(&occupancy.probabilities(), &|_| true),
-            cells_reached: reached.iter().filter(|&&r| r).count(),
+            mean_error: self.error_where(&mean, |_| true),
+            free_error: self.error_where(&mean, |t| t == 0.0),
+            obstacle_error: self.error_where(&mean, |t| t > 0.0),
+            occupancy_error: self.error_where(&self.occupancy, |_| true),
+            cells_reached: self.judged.iter().filter(|&&r| r).count(),
         })
     }
 }
@@ -202,16 +230,17 @@ impl Drive {
 pub struct DriveScore {
     /// Log-likelihood of the truth under the coverage map, over every cell.
     pub log_likelihood: f64,
-    /// Mean absolute error of the coverage map's mean, over the cells the
-    /// readings reached (the occupancy grid's scan counts above 0).
+    /// Mean absolute error of the coverage map's mean over the judged cells
+    /// ([`Drive::judged`]).
     pub mean_error: f64,
     /// The same over the reached cells that are free (truth 0).
     pub free_error: f64,
     /// The same over the reached cells that hold some obstacle (truth above 0).
     pub obstacle_error: f64,
-    /// The same of the occupancy grid's probabilities.
+    /// The same of the occupancy grid's probabilities (the drive's baseline,
+    /// whatever the model scored).
     pub occupancy_error: f64,
-    /// The cells the readings reached.
+    /// The judged cells.
     pub cells_reached: usize,
 }
 
@@ -246,8 +275,12 @@ pub fn learn(config: &LearnConfig, progress: &(dyn Fn(usize) + Sync)) -> Result<
         cells: None,
     };
     let fit = fit_sensor_model(&data, &config.model, &config.fit, progress)?;
-    let scores =
-        |m: &AnySensorModel| -> Result<[DriveScore; 2]> { Ok([train.score(m)?, test.score(m)?]) };
+    let scores = |m: &AnySensorModel| -> Result<[DriveScore; 2]> {
+        {
+            let occlude = config.fit.occlude_no_echo;
+            Ok([train.score(m, occlude)?, test.score(m, occlude)?])
+        }
+    };
     Ok(LearnReport {
         default_scores: scores(&config.model)?,
         learned_scores: scores(&fit.model)?,
