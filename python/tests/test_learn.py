@@ -157,3 +157,43 @@ def test_a_weak_no_echo_weight_keeps_walls_that_no_echo_readings_erase(learned: 
 @pytest.mark.xfail(strict=True, reason="issue 22 goal not met: the fitted no-echo weight stays near 0.9")
 def test_walls_survive_no_echo_readings_under_the_learned_model(learned: dict[str, Any]) -> None:
     assert wall_mean(learned["drives"][0], learned["fit"].model, 20) > 0.5
+
+
+def test_the_readme_example_of_learning_runs() -> None:
+    import re
+    from pathlib import Path
+
+    readme = Path(__file__).resolve().parents[2] / "README.md"
+    if not readme.is_file():
+        pytest.skip("no README.md beside the package")
+    blocks = [b for b in re.findall(r"```python\n(.*?)```", readme.read_text(), flags=re.S) if "fit_sensor_model" in b]
+    assert len(blocks) == 1
+    namespace: dict[str, Any] = {"np": np, "covmap": covmap}
+    exec(compile(blocks[0], str(readme), "exec"), namespace)
+    fit = namespace["fit"]
+    assert fit.log_likelihood >= fit.initial_log_likelihood and fit.evaluations <= 20
+
+
+def test_learn_and_fig2_commands(tmp_path: Any) -> None:
+    import json
+
+    from cli_helpers import PNG_SIGNATURE, run_cli
+
+    out = tmp_path / "learn"
+    r = run_cli("learn", "--evaluations", "6", "--scans", "30", "--parameters", "xi_min,no_echo_weight",
+                "--out", str(out))
+    assert r.returncode == 0, r.stderr
+    assert "test drive (office" in r.stdout and "log-likelihood" in r.stdout
+    saved = json.loads((out / "model.json").read_text())
+    assert saved["sensor"] == "sonar" and set(saved["model"]) >= {"xi_min", "no_echo_weight"}
+    trace = (out / "trace.csv").read_text().splitlines()
+    assert trace[0] == "evaluation,xi_min,no_echo_weight,log_likelihood" and 2 <= len(trace) <= 7
+    r = run_cli("fig2", "--model", str(out / "model.json"), "--out", str(tmp_path / "fig2"))
+    assert r.returncode == 0, r.stderr
+    assert (tmp_path / "fig2" / "fig2.png").read_bytes().startswith(PNG_SIGNATURE)
+    bad = tmp_path / "bad.json"
+    bad.write_text("{}")
+    r = run_cli("fig2", "--model", str(bad), "--out", str(tmp_path / "fig2"))
+    assert r.returncode != 0 and "not a covmap learn model file" in r.stderr
+    r = run_cli("learn", "--world", "atlantis", "--out", str(out))
+    assert r.returncode != 0 and "atlantis" in r.stderr

@@ -377,8 +377,7 @@ impl<'a, M: Fittable> Search<'a, M> {
                 failure: &failure,
             };
             let simplex = simplex(&from);
-            // A spent budget ends the search with an error; what it found is
-            // in the trace either way.
+            // What the search found is in the trace, however it ended.
             let _ = NelderMead::new(simplex)
                 .with_sd_tolerance(self.tolerance)
                 .map(|solver| {
@@ -439,16 +438,21 @@ impl<M: Fittable> CostFunction for Restart<'_, M> {
             return Ok(f64::INFINITY);
         };
         let mut trace = self.trace.lock().unwrap_or_else(|e| e.into_inner());
-        if trace.len() >= self.budget {
-            return Err(SearchError::msg("the evaluation budget is spent"));
+        // argmin's Nelder-Mead unwraps some of its cost calls, so this one
+        // never fails: a spent budget or a failure scores minus infinity
+        // (builds no map) and the search runs out its iterations at once.
+        let mut failure = self.failure.lock().unwrap_or_else(|e| e.into_inner());
+        if trace.len() >= self.budget || failure.is_some() {
+            return Ok(f64::INFINITY);
         }
         let score = match self.search.score(&model) {
             Ok(score) => score,
             Err(e) => {
-                *self.failure.lock().unwrap_or_else(|e| e.into_inner()) = Some(e);
-                return Err(SearchError::msg("a map could not be built"));
+                *failure = Some(e);
+                return Ok(f64::INFINITY);
             }
         };
+        drop(failure);
         let values =
             u.0.iter()
                 .zip(&self.search.bounds)
@@ -461,5 +465,92 @@ impl<M: Fittable> CostFunction for Restart<'_, M> {
         drop(trace);
         (self.progress)(self.done.fetch_add(1, Ordering::Relaxed) + 1);
         Ok(-score)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::log::Bearings;
+    use crate::pose::Pose;
+    use crate::sensor::LaserModel;
+
+    /// A wall at x = 2 m seen by a two-beam laser from a few poses.
+    fn wall() -> (Log, Grid, Vec<f64>) {
+        let grid = Grid::new([0.0, 0.0], 0.1, 20, 30).unwrap();
+        let mut truth = vec![0.0; grid.len()];
+        for row in 0..20 {
+            truth[row * 30 + 20] = 1.0;
+        }
+        let poses: Vec<Pose> = (0..4)
+            .map(|i| Pose::new(0.5, 0.4 + 0.3 * i as f64, 0.0))
+            .collect();
+        let ranges = (0..4).flat_map(|_| [1.5, 1.5]).collect();
+        let times = (0..4).map(f64::from).collect();
+        let log = Log::new(poses, times, ranges, Bearings::Fixed(vec![0.0, 0.05]), 30.0).unwrap();
+        (log, grid, truth)
+    }
+
+    /// However small the budget, the search stops within it (argmin's
+    /// solver must never see a failing cost), and the result is the same
+    /// at every run.
+    #[test]
+    fn every_budget_is_kept_and_the_fit_repeats_exactly() {
+        let (log, grid, truth) = wall();
+        let data = FitData {
+            log: &log,
+            grid,
+            truth: &truth,
+            cells: None,
+        };
+        for budget in 1..12 {
+            for restarts in [1, 2, 3] {
+                let options = FitOptions {
+                    max_evaluations: budget,
+                    restarts,
+                    ..FitOptions::default()
+                };
+                let fit =
+                    fit_sensor_model(&data, &LaserModel::default(), &options, &|_| {}).unwrap();
+                assert!(fit.evaluations <= budget && fit.evaluations == fit.trace.len());
+                assert!(fit.log_likelihood >= fit.initial_log_likelihood);
+                let again =
+                    fit_sensor_model(&data, &LaserModel::default(), &options, &|_| {}).unwrap();
+                assert_eq!(fit, again);
+            }
+        }
+    }
+
+    /// A log that leaves the grid fails on the starting model, before any
+    /// search.
+    #[test]
+    fn a_log_off_the_grid_is_an_error_naming_the_scan() {
+        let (_, grid, truth) = wall();
+        let far = Log::new(
+            vec![Pose::new(9.0, 1.0, 0.0)],
+            vec![0.0],
+            vec![1.0],
+            Bearings::Fixed(vec![0.0]),
+            30.0,
+        )
+        .unwrap();
+        let data = FitData {
+            log: &far,
+            grid,
+            truth: &truth,
+            cells: None,
+        };
+        let calls = AtomicUsize::new(0);
+        let err = fit_sensor_model(
+            &data,
+            &LaserModel::default(),
+            &FitOptions::default(),
+            &|_| {
+                calls.fetch_add(1, Ordering::Relaxed);
+            },
+        )
+        .unwrap_err();
+        assert!(matches!(err, CovmapError::InScan { scan: 0, .. }), "{err}");
+        assert_eq!(calls.load(Ordering::Relaxed), 0);
     }
 }
