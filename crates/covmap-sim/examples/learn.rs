@@ -18,6 +18,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             "--test" => config.test_world = value()?,
             "--laser" => config.model = AnySensorModel::laser(),
             "--evaluations" => config.fit.max_evaluations = value()?.parse()?,
+            "--judged" => config.judged_only = true,
             "--occlude" => config.fit.occlude_no_echo = true,
             "--restarts" => config.fit.restarts = value()?.parse()?,
             "--scans" => config.scans = value()?.parse()?,
@@ -48,12 +49,14 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     for (k, drive) in report.drives.iter().enumerate() {
         let (d, l) = (report.default_scores[k], report.learned_scores[k]);
         println!(
-            "{} drive ({}, {} cells reached): log-likelihood {:.0} -> {:.0}; mean-map error {:.4} -> {:.4} (free {:.4} -> {:.4}, obstacle {:.4} -> {:.4}; occupancy grid {:.4})",
+            "{} drive ({}, {} cells reached): log-likelihood {:.0} -> {:.0} (judged cells {:.0} -> {:.0}); mean-map error {:.4} -> {:.4} (free {:.4} -> {:.4}, obstacle {:.4} -> {:.4}; occupancy grid {:.4})",
             ["training", "test"][k],
             drive.world,
             d.cells_reached,
             d.log_likelihood,
             l.log_likelihood,
+            d.judged_log_likelihood,
+            l.judged_log_likelihood,
             d.mean_error,
             l.mean_error,
             d.free_error,

@@ -103,6 +103,9 @@ pub struct LearnConfig {
     pub test_seed: u64,
     /// How the fit searches.
     pub fit: FitOptions,
+    /// Whether the fit scores the training drive's judged cells only
+    /// ([`Drive::judged`]) rather than every cell of its grid.
+    pub judged_only: bool,
 }
 
 impl Default for LearnConfig {
@@ -117,6 +120,7 @@ impl Default for LearnConfig {
             train_seed: 0,
             test_seed: 1,
             fit: FitOptions::default(),
+            judged_only: false,
         }
     }
 }
@@ -216,6 +220,7 @@ impl Drive {
         let mean = map.mean();
         Ok(DriveScore {
             log_likelihood: log_likelihood(&map, &self.truth, None)?,
+            judged_log_likelihood: log_likelihood(&map, &self.truth, Some(&self.judged))?,
             mean_error: self.error_where(&mean, |_| true),
             free_error: self.error_where(&mean, |t| t == 0.0),
             obstacle_error: self.error_where(&mean, |t| t > 0.0),
@@ -230,6 +235,8 @@ impl Drive {
 pub struct DriveScore {
     /// Log-likelihood of the truth under the coverage map, over every cell.
     pub log_likelihood: f64,
+    /// The same over the judged cells ([`Drive::judged`]).
+    pub judged_log_likelihood: f64,
     /// Mean absolute error of the coverage map's mean over the judged cells
     /// ([`Drive::judged`]).
     pub mean_error: f64,
@@ -272,14 +279,12 @@ pub fn learn(config: &LearnConfig, progress: &(dyn Fn(usize) + Sync)) -> Result<
         log: &train.log,
         grid: train.grid,
         truth: &train.truth,
-        cells: None,
+        cells: config.judged_only.then_some(&train.judged[..]),
     };
     let fit = fit_sensor_model(&data, &config.model, &config.fit, progress)?;
     let scores = |m: &AnySensorModel| -> Result<[DriveScore; 2]> {
-        {
-            let occlude = config.fit.occlude_no_echo;
-            Ok([train.score(m, occlude)?, test.score(m, occlude)?])
-        }
+        let occlude = config.fit.occlude_no_echo;
+        Ok([train.score(m, occlude)?, test.score(m, occlude)?])
     };
     Ok(LearnReport {
         default_scores: scores(&config.model)?,
