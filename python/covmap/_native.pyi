@@ -40,6 +40,10 @@ __all__ = [
     "Laser",
     "Robot",
     "run_fig3",
+    "run_learn",
+    "log_likelihood",
+    "fit_sensor_model",
+    "SensorFit",
     "Strategy",
     "DEFAULT_DISCOUNT_BEYOND_M",
     "explore",
@@ -159,6 +163,12 @@ class _RangeModel:
     @property
     def no_echo_weight(self) -> float:
         """How strongly a no-echo reading clears, in [0, 1]: 1 the free-space kernel, 0 nothing."""
+    @property
+    def end_weight(self) -> float:
+        """How strongly an echo marks the cells at and behind its end, in [0, 1]: 1 the paper's kernels."""
+    @property
+    def posterior_floor(self) -> float:
+        """The least probability an update leaves any bin, in [0, 1/256]: 0 the paper's Bayes update."""
     def kernel(
         self,
         cell_distance: float,
@@ -208,6 +218,8 @@ class SonarModel(_RangeModel):
         xi_per_m: float | None = None,
         no_echo_reach: float | None = None,
         no_echo_weight: float | None = None,
+        end_weight: float | None = None,
+        posterior_floor: float | None = None,
         opening_angle_rad: float | None = None,
     ) -> SonarModel: ...
     @property
@@ -237,6 +249,8 @@ class LaserModel(_RangeModel):
         xi_per_m: float | None = None,
         no_echo_reach: float | None = None,
         no_echo_weight: float | None = None,
+        end_weight: float | None = None,
+        posterior_floor: float | None = None,
     ) -> LaserModel: ...
 
 @final
@@ -1150,6 +1164,7 @@ def run_learn(
     restarts: int = 2,
     seed: int = 0,
     parameters: Sequence[str] | None = None,
+    judged_only: bool = False,
     progress: bool | Callable[[int, int], object] = False,
 ) -> dict[str, Any]:
     """Learn the sensor model in simulation (``covmap learn``): simulate a
@@ -1158,13 +1173,16 @@ def run_learn(
     ``SonarModel``, a 180-degree laser for a ``LaserModel``; each along
     shortest paths to seeded waypoints), fit ``model`` on the training drive
     (as ``fit_sensor_model``), and score the starting and the learned model
-    on both drives. Runs with the GIL released.
+    on both drives. With ``judged_only`` the fit scores the training drive's
+    judged cells only, not every cell of its grid. Runs with the GIL released.
 
     Returns a dict: ``fit`` (``SensorFit``); ``drives``, one dict per drive
     (training first) of ``world``, ``log`` (``Log``), ``grid`` (``Grid``) and
     ``truth`` (float64 ``(rows, cols)``); ``default`` and ``learned``, one
     dict per drive of ``log_likelihood`` (of the truth, every cell),
-    ``mean_error`` (of the mean map, over the cells the readings reached),
+    ``judged_log_likelihood`` (over the judged cells: reached by the drive's
+    readings and observable from its free space),
+    ``mean_error`` (of the mean map, over the judged cells),
     ``free_error`` and ``obstacle_error`` (the same over the reached free and
     obstacle cells), ``occupancy_error`` (the occupancy grid's) and
     ``cells_reached``.

@@ -19,6 +19,8 @@ SONAR_PARAMETERS = [
     "xi_per_m",
     "no_echo_reach",
     "no_echo_weight",
+    "end_weight",
+    "posterior_floor",
     "opening_angle_rad",
 ]
 

@@ -59,13 +59,16 @@ pub(crate) fn run_fig3(py: Python<'_>, seed: Seed) -> PyResult<Bound<'_, PyAny>>
 /// ``SonarModel``, a 180-degree laser for a ``LaserModel``; each along
 /// shortest paths to seeded waypoints), fit ``model`` on the training drive
 /// (as ``fit_sensor_model``), and score the starting and the learned model
-/// on both drives. Runs with the GIL released.
+/// on both drives. With ``judged_only`` the fit scores the training drive's
+/// judged cells only, not every cell of its grid. Runs with the GIL released.
 ///
 /// Returns a dict: ``fit`` (``SensorFit``); ``drives``, one dict per drive
 /// (training first) of ``world``, ``log`` (``Log``), ``grid`` (``Grid``) and
 /// ``truth`` (float64 ``(rows, cols)``); ``default`` and ``learned``, one
 /// dict per drive of ``log_likelihood`` (of the truth, every cell),
-/// ``mean_error`` (of the mean map, over the cells the readings reached),
+/// ``judged_log_likelihood`` (over the judged cells: reached by the drive's
+/// readings and observable from its free space),
+/// ``mean_error`` (of the mean map, over the judged cells),
 /// ``free_error`` and ``obstacle_error`` (the same over the reached free and
 /// obstacle cells), ``occupancy_error`` (the occupancy grid's) and
 /// ``cells_reached``.
@@ -73,8 +76,9 @@ pub(crate) fn run_fig3(py: Python<'_>, seed: Seed) -> PyResult<Bound<'_, PyAny>>
 #[pyo3(signature = (
     model, *, train_world="corridor", test_world="office", scans=300, step=0.15,
     resolution=0.05, train_seed=Seed(0), test_seed=Seed(1), max_evaluations=300,
-    restarts=2, seed=Seed(0), parameters=None, progress=crate::log::ProgressArg::Flag(false)
-))]
+    restarts=2, seed=Seed(0), parameters=None, judged_only=false,
+    progress=crate::log::ProgressArg::Flag(false)
+), text_signature = "(model, *, train_world='corridor', test_world='office', scans=300, step=0.15, resolution=0.05, train_seed=0, test_seed=1, max_evaluations=300, restarts=2, seed=0, parameters=None, judged_only=False, progress=False)")]
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn run_learn<'py>(
     py: Python<'py>,
@@ -90,6 +94,7 @@ pub(crate) fn run_learn<'py>(
     restarts: usize,
     seed: Seed,
     parameters: Option<Vec<String>>,
+    judged_only: bool,
     progress: crate::log::ProgressArg,
 ) -> PyResult<Bound<'py, PyDict>> {
     let config = experiments::LearnConfig {
@@ -108,6 +113,7 @@ pub(crate) fn run_learn<'py>(
             seed: seed.0,
             ..covmap::learn::FitOptions::default()
         },
+        judged_only,
     };
     let report = crate::learn::with_progress(py, progress, max_evaluations, |show| {
         experiments::learn(&config, show)
@@ -131,6 +137,7 @@ pub(crate) fn run_learn<'py>(
         for s in scores {
             let d = PyDict::new(py);
             d.set_item("log_likelihood", s.log_likelihood)?;
+            d.set_item("judged_log_likelihood", s.judged_log_likelihood)?;
             d.set_item("mean_error", s.mean_error)?;
             d.set_item("free_error", s.free_error)?;
             d.set_item("obstacle_error", s.obstacle_error)?;

@@ -90,7 +90,7 @@ pub(crate) fn log_likelihood(
 #[pyo3(signature = (
     log, truth, model, *, grid=None, parameters=None, bounds=None, max_evaluations=300,
     restarts=2, seed=Seed(0), bins=16, cells=None, progress=ProgressArg::Flag(false)
-))]
+), text_signature = "(log, truth, model, *, grid=None, parameters=None, bounds=None, max_evaluations=300, restarts=2, seed=0, bins=16, cells=None, progress=False)")]
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn fit_sensor_model(
     py: Python<'_>,

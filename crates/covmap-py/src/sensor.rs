@@ -1,6 +1,6 @@
 //! `covmap.SonarModel` and `covmap.LaserModel`: the inverse sensor models.
 //!
-//! Both are a range model (nine parameters) and, for the sonar, the opening
+//! Both are a range model (eleven parameters) and, for the sonar, the opening
 //! angle of its cone; [`sensor_model_class!`] writes their Python methods
 //! once for both.
 
@@ -62,6 +62,10 @@ macro_rules! sensor_model_class {
                 no_echo_reach
                 /// How strongly a no-echo reading clears, in [0, 1]: 1 the free-space kernel, 0 nothing.
                 no_echo_weight
+                /// How strongly an echo marks the cells at and behind its end, in [0, 1]: 1 the paper's kernels.
+                end_weight
+                /// The least probability an update leaves any bin, in [0, 1/256]: 0 the paper's Bayes update.
+                posterior_floor
             ],
             [ $( $(#[doc = $doc])* $extra )* ]
         );

@@ -33,7 +33,7 @@ pub trait Fittable: SensorModel + Clone + Send + Sync {
 /// enough to hold every sensible sonar and laser (a standard deviation of
 /// coverage up to 1, a uniform weight up to 4 times the peak of a unit
 /// Gaussian, an end band up to 1 m deep).
-const RANGE: [Parameter; 8] = [
+const RANGE: [Parameter; 10] = [
     Parameter {
         name: "band_m",
         bounds: [0.0, 1.0],
@@ -66,11 +66,19 @@ const RANGE: [Parameter; 8] = [
         name: "no_echo_weight",
         bounds: [0.0, 1.0],
     },
+    Parameter {
+        name: "end_weight",
+        bounds: [0.0, 1.0],
+    },
+    Parameter {
+        name: "posterior_floor",
+        bounds: [0.0, 1.0 / 256.0],
+    },
 ];
 
 /// The sonar's: the range model's and the cone's opening angle (2 to 60
 /// degrees).
-const SONAR: [Parameter; 9] = [
+const SONAR: [Parameter; 11] = [
     RANGE[0],
     RANGE[1],
     RANGE[2],
@@ -79,6 +87,8 @@ const SONAR: [Parameter; 9] = [
     RANGE[5],
     RANGE[6],
     RANGE[7],
+    RANGE[8],
+    RANGE[9],
     Parameter {
         name: "opening_angle_rad",
         bounds: [PI / 90.0, PI / 3.0],
@@ -96,6 +106,8 @@ fn range_field<'a>(range: &'a mut RangeModel, name: &str) -> Option<&'a mut f64>
         "xi_per_m" => &mut range.xi_per_m,
         "no_echo_reach" => &mut range.no_echo_reach,
         "no_echo_weight" => &mut range.no_echo_weight,
+        "end_weight" => &mut range.end_weight,
+        "posterior_floor" => &mut range.posterior_floor,
         _ => return None,
     })
 }

@@ -32,7 +32,8 @@ pub(crate) fn check_resolution(resolution_m: f64) -> Result<()> {
 ///
 /// Region 0 is free space (`mu = 0`), regions `1..=BAND_SLICES` are slices of
 /// the end band (each evaluated at its centre), region `BAND_SLICES + 1` is the
-/// band behind the end point (`mu = 1`), and region `BAND_SLICES + 2`
+/// band behind the end point (`mu = 1`; these mixed with the prior by the
+/// model's `end_weight`), and region `BAND_SLICES + 2`
 /// ([`NO_ECHO_REGION`]) the free space of a no-echo reading (region 0's
 /// kernels mixed with the prior by the model's `no_echo_weight`; a weight of
 /// 1 makes no-echo readings use region 0 itself). The distance `s` is rounded
@@ -85,6 +86,8 @@ impl KernelTable {
                 let mut k = kernel_values(mu, sigma, model.xi(s), bins);
                 if region == NO_ECHO_REGION {
                     k = model.no_echo_mixture(k);
+                } else if region > 0 {
+                    k = model.end_mixture(k);
                 }
                 values.extend(k.into_iter().map(|v| v as f32));
             }
@@ -260,6 +263,7 @@ mod tests {
     fn table_matches_exact_kernel() {
         let mut weak_no_echo = SonarModel::default().range;
         (weak_no_echo.no_echo_weight, weak_no_echo.no_echo_reach) = (0.4, 0.6);
+        weak_no_echo.end_weight = 0.3;
         for model in [
             SonarModel::default().range,
             LaserModel::default().range,

@@ -41,6 +41,8 @@ impl Default for LaserModel {
                 xi_per_m: 0.005,
                 no_echo_reach: 1.0,
                 no_echo_weight: 1.0,
+                end_weight: 1.0,
+                posterior_floor: 0.0,
             },
         }
     }

@@ -40,12 +40,33 @@ pub struct RangeModel {
     /// from other angles found.
     #[serde(default = "one")]
     pub no_echo_weight: f64,
+    /// How strongly an echo marks the cells at and behind its end point
+    /// (the end band and the band behind it), in `[0, 1]`: their kernels
+    /// are mixed with the uniform prior as no-echo kernels are. 1 (the
+    /// default): the paper's kernels. A sonar's echo comes from somewhere
+    /// on the arc of its cone, so most cells of the arc are not what it
+    /// hit; a weight below 1 says so, where 1 marks the whole arc covered.
+    #[serde(default = "one")]
+    pub end_weight: f64,
+    /// The least probability an update leaves any bin of a cell's
+    /// histogram, in `[0, 1/256]`: after each update the cell's posterior
+    /// is mixed with the uniform prior, `(1 - bins p) h + p`. 0 (the
+    /// default): the paper's Bayes update (bins floored at 1e-30 only).
+    /// Readings of one cell are not independent (a sonar sees the same wall
+    /// face from the same places again and again), so the product of their
+    /// kernels grows far more confident than the evidence is: a floor caps
+    /// what a wrong cell can cost, as clamping does in OctoMap.
+    #[serde(default)]
+    pub posterior_floor: f64,
 }
 
 /// The default of the no-echo parameters: the paper's reading.
 fn one() -> f64 {
     1.0
 }
+
+/// The largest `posterior_floor`: one bin's share of the largest histogram.
+const MAX_POSTERIOR_FLOOR: f64 = 1.0 / crate::histogram::MAX_BINS as f64;
 
 /// The smallest `sigma_min`: a standard deviation of coverage (which spans
 /// 0 to 1) a millionth wide is already a spike between the bins; far below
@@ -118,6 +139,18 @@ impl RangeModel {
             "no_echo_weight",
             self.no_echo_weight,
             (0.0..=1.0).contains(&self.no_echo_weight),
+            "a weight in [0, 1]",
+        )?;
+        check(
+            "posterior_floor",
+            self.posterior_floor,
+            (0.0..=MAX_POSTERIOR_FLOOR).contains(&self.posterior_floor),
+            "a probability in [0, 1/256]",
+        )?;
+        check(
+            "end_weight",
+            self.end_weight,
+            (0.0..=1.0).contains(&self.end_weight),
             "a weight in [0, 1]",
         )?;
         let widest = self.sigma(self.max_range_m);
@@ -231,18 +264,36 @@ impl RangeModel {
             (1.0, self.sigma(s))
         };
         let k = kernel_values(mu, sigma, self.xi(s), bins);
-        Some(if echo { k } else { self.no_echo_mixture(k) })
+        Some(if !echo {
+            self.no_echo_mixture(k)
+        } else if o >= -half {
+            self.end_mixture(k)
+        } else {
+            k
+        })
+    }
+
+    /// A kernel of the end band or behind it as an echo gives it: mixed
+    /// with the uniform prior by `end_weight` (unchanged at weight 1).
+    pub(crate) fn end_mixture(&self, k: Vec<f64>) -> Vec<f64> {
+        mixture(k, self.end_weight)
     }
 
     /// A free-space kernel `k` as a no-echo reading gives it: mixed with the
     /// uniform prior by `no_echo_weight` (unchanged at weight 1).
-    pub(crate) fn no_echo_mixture(&self, mut k: Vec<f64>) -> Vec<f64> {
-        if !self.no_echo_is_free() {
-            let (w, uniform) = (self.no_echo_weight, 1.0 / k.len() as f64);
-            k.iter_mut().for_each(|v| *v = w * *v + (1.0 - w) * uniform);
-        }
-        k
+    pub(crate) fn no_echo_mixture(&self, k: Vec<f64>) -> Vec<f64> {
+        mixture(k, self.no_echo_weight)
     }
+}
+
+/// `w k + (1 - w) / bins`: kernel `k` mixed with the uniform prior by the
+/// weight `w` (`k` itself at weight 1).
+fn mixture(mut k: Vec<f64>, w: f64) -> Vec<f64> {
+    if w < 1.0 {
+        let uniform = 1.0 / k.len() as f64;
+        k.iter_mut().for_each(|v| *v = w * *v + (1.0 - w) * uniform);
+    }
+    k
 }
 
 /// Errors unless both distances of a kernel query are finite and

@@ -53,6 +53,8 @@ impl Default for SonarModel {
                 xi_per_m: 0.08,
                 no_echo_reach: 1.0,
                 no_echo_weight: 1.0,
+                end_weight: 1.0,
+                posterior_floor: 0.0,
             },
             opening_angle_rad: 15f64.to_radians(),
         }

@@ -39,6 +39,7 @@ fn fast_equals_exact_on_a_partly_known_map() {
         sonar_weak_no_echo.range.no_echo_weight,
         sonar_weak_no_echo.range.no_echo_reach,
     ) = (0.3, 0.5);
+    sonar_weak_no_echo.range.end_weight = 0.2;
     let mut laser_weak_no_echo = LaserModel::default();
     laser_weak_no_echo.range.no_echo_weight = 0.0;
     let models: [&dyn SensorModel; 6] = [
@@ -111,6 +112,7 @@ fn every_arithmetic_equals_exact_on_random_maps() {
         if case % 2 == 1 {
             sonar.range.no_echo_weight = next();
             sonar.range.no_echo_reach = 0.2 + 0.8 * next();
+            sonar.range.end_weight = next();
         }
         let mut laser = LaserModel::default();
         laser.range.max_range_m = 1.0 + 1.5 * next();
