@@ -220,3 +220,14 @@ def test_end_weight_and_posterior_floor() -> None:
     for bad in ({"end_weight": 1.5}, {"posterior_floor": 0.01}, {"posterior_floor": -1e-9}):
         with pytest.raises(covmap.InvalidParameterError):
             covmap.LaserModel(**bad)
+
+
+def test_the_learned_laser_model_meets_the_goals_on_an_unseen_drive() -> None:
+    """For the laser the issue's expected result holds: a drive in another world,
+    a higher likelihood, a mean-map error below 0.08 and below the grid's."""
+    r = covmap.run_learn(covmap.LaserModel(), scans=150, max_evaluations=40)
+    default, new = r["default"][1], r["learned"][1]
+    assert r["drives"][1]["world"] == "office"
+    assert new["log_likelihood"] > default["log_likelihood"]
+    assert new["judged_log_likelihood"] > default["judged_log_likelihood"]
+    assert new["mean_error"] < 0.08 and new["mean_error"] < new["occupancy_error"]
