@@ -56,6 +56,7 @@ from covmap._native import (
     Plan,
     Planner,
     Robot,
+    SensorFit,
     SonarModel,
     SonarRing,
     Strategy,
@@ -63,7 +64,10 @@ from covmap._native import (
     __version__,
     expected_information_gain,
     explore,
+    fit_sensor_model,
+    log_likelihood,
     run_fig3,
+    run_learn,
 )
 
 __all__ = [
@@ -89,6 +93,7 @@ __all__ = [
     "Planner",
     "Robot",
     "RunSummary",
+    "SensorFit",
     "SonarModel",
     "SonarRing",
     "Step",
@@ -100,8 +105,11 @@ __all__ = [
     "dask_client",
     "expected_information_gain",
     "explore",
+    "fit_sensor_model",
+    "log_likelihood",
     "plot",
     "run_fig3",
+    "run_learn",
     "sweep",
 ]
 __all__ += _errors.__all__

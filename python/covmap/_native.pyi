@@ -40,6 +40,10 @@ __all__ = [
     "Laser",
     "Robot",
     "run_fig3",
+    "run_learn",
+    "log_likelihood",
+    "fit_sensor_model",
+    "SensorFit",
     "Strategy",
     "DEFAULT_DISCOUNT_BEYOND_M",
     "explore",
@@ -153,6 +157,18 @@ class _RangeModel:
     @property
     def xi_per_m(self) -> float:
         """Growth of the uniform weight per metre of distance min(d_l, d)."""
+    @property
+    def no_echo_reach(self) -> float:
+        """How far a no-echo reading clears, as a fraction of the maximum range, in (0, 1]."""
+    @property
+    def no_echo_weight(self) -> float:
+        """How strongly a no-echo reading clears, in [0, 1]: 1 the free-space kernel, 0 nothing."""
+    @property
+    def end_weight(self) -> float:
+        """How strongly an echo marks the cells at and behind its end, in [0, 1]: 1 the paper's kernels."""
+    @property
+    def posterior_floor(self) -> float:
+        """The least probability an update leaves any bin, in [0, 1/256]: 0 the paper's Bayes update."""
     def kernel(
         self,
         cell_distance: float,
@@ -200,6 +216,10 @@ class SonarModel(_RangeModel):
         sigma_end: float | None = None,
         xi_min: float | None = None,
         xi_per_m: float | None = None,
+        no_echo_reach: float | None = None,
+        no_echo_weight: float | None = None,
+        end_weight: float | None = None,
+        posterior_floor: float | None = None,
         opening_angle_rad: float | None = None,
     ) -> SonarModel: ...
     @property
@@ -227,6 +247,10 @@ class LaserModel(_RangeModel):
         sigma_end: float | None = None,
         xi_min: float | None = None,
         xi_per_m: float | None = None,
+        no_echo_reach: float | None = None,
+        no_echo_weight: float | None = None,
+        end_weight: float | None = None,
+        posterior_floor: float | None = None,
     ) -> LaserModel: ...
 
 @final
@@ -1078,6 +1102,126 @@ def run_fig3(seed: int = 0) -> Fig3Result:
     the truth under the coverage map with ``log_likelihood_prior`` under the
     uniform prior. Runs with the GIL released.
     """
+def log_likelihood(
+    map: CoverageMap,
+    truth: npt.NDArray[np.float64] | npt.NDArray[np.float32],
+    *,
+    cells: npt.NDArray[np.bool_] | None = None,
+) -> float:
+    """The log-probability of the ground truth ``truth`` (a float64 or float32
+    array of shape ``(rows, cols)`` of coverage values in [0, 1]) under the
+    map's histograms, summed over every cell or those where ``cells`` (a bool
+    array of the same shape) is true. A truth value between two bin values
+    is scored by linear interpolation of the two bins' probabilities; a cell
+    at the uniform prior scores ``ln(1 / bins)``.
+    """
+def fit_sensor_model(
+    log: Log,
+    truth: World | npt.NDArray[np.float64] | npt.NDArray[np.float32],
+    model: SonarModel | LaserModel,
+    *,
+    grid: Grid | None = None,
+    parameters: Sequence[str] | None = None,
+    bounds: Sequence[tuple[str, tuple[float, float]]] | None = None,
+    max_evaluations: int = 300,
+    restarts: int = 2,
+    seed: int = 0,
+    bins: int = 16,
+    cells: npt.NDArray[np.bool_] | None = None,
+    progress: bool | Callable[[int, int], object] = False,
+) -> SensorFit:
+    """Fit ``model``'s parameters to a recorded drive by maximum likelihood: the
+    model under whose map of ``log`` the ground truth scores highest
+    (``log_likelihood``), found by Nelder-Mead over the parameters scaled to
+    their bounds, from ``restarts`` starting points (the first ``model``
+    itself, the others drawn around it from ``seed``), in parallel, with the
+    GIL released. The result is the same whatever the thread count.
+
+    ``truth`` is a ``World`` (its exact coverage on ``grid``) or a float
+    array of shape ``(rows, cols)``; ``grid`` defaults to the world's bounds
+    and 0.5 m at 5 cm (required with an array). ``parameters`` names the
+    parameters fitted (default: all the model has but ``max_range_m``);
+    ``bounds`` maps names to ``(low, high)`` replacing the defaults.
+    ``max_evaluations`` bounds the maps built, the starting model's
+    included. ``progress``: ``True`` for a bar over evaluations, or a
+    callable ``(done, total)``.
+
+    Unknown parameter names, bounds that exclude the starting model, a truth
+    of the wrong shape or an empty log raise ``InvalidParameterError`` (or the
+    array errors) before any map is built.
+    """
+def run_learn(
+    model: SonarModel | LaserModel,
+    *,
+    train_world: str = "corridor",
+    test_world: str = "office",
+    scans: int = 300,
+    step: float = 0.15,
+    resolution: float = 0.05,
+    train_seed: int = 0,
+    test_seed: int = 1,
+    max_evaluations: int = 300,
+    restarts: int = 2,
+    seed: int = 0,
+    parameters: Sequence[str] | None = None,
+    judged_only: bool = False,
+    progress: bool | Callable[[int, int], object] = False,
+) -> dict[str, Any]:
+    """Learn the sensor model in simulation (``covmap learn``): simulate a
+    training drive of ``scans`` scans through the built-in ``train_world``
+    and a test drive through ``test_world`` (the 24-sonar ring for a
+    ``SonarModel``, a 180-degree laser for a ``LaserModel``; each along
+    shortest paths to seeded waypoints), fit ``model`` on the training drive
+    (as ``fit_sensor_model``), and score the starting and the learned model
+    on both drives. With ``judged_only`` the fit scores the training drive's
+    judged cells only, not every cell of its grid. Runs with the GIL released.
+
+    Returns a dict: ``fit`` (``SensorFit``); ``drives``, one dict per drive
+    (training first) of ``world``, ``log`` (``Log``), ``grid`` (``Grid``) and
+    ``truth`` (float64 ``(rows, cols)``); ``default`` and ``learned``, one
+    dict per drive of ``log_likelihood`` (of the truth, every cell),
+    ``judged_log_likelihood`` (over the judged cells: reached by the drive's
+    readings and observable from its free space),
+    ``mean_error`` (of the mean map, over the judged cells),
+    ``free_error`` and ``obstacle_error`` (the same over the reached free and
+    obstacle cells), ``occupancy_error`` (the occupancy grid's) and
+    ``cells_reached``.
+    """
+
+@final
+class SensorFit:
+    """What ``fit_sensor_model`` found: ``model`` (the best model, the starting
+    one if nothing scored higher), ``log_likelihood`` and
+    ``initial_log_likelihood`` (the starting model's), ``evaluations`` (maps
+    built), ``parameters`` (the fitted names), ``bounds`` and ``trace``
+    (every evaluation in order, the starting model's first: a dict of the
+    fitted parameters and ``log_likelihood``).
+    """
+
+    @property
+    def model(self) -> SonarModel | LaserModel:
+        """The best model found."""
+    @property
+    def log_likelihood(self) -> float:
+        """The log-likelihood of the truth under the best model's map."""
+    @property
+    def initial_log_likelihood(self) -> float:
+        """The same under the starting model's map."""
+    @property
+    def evaluations(self) -> int:
+        """How many maps were built and scored."""
+    @property
+    def parameters(self) -> list[str]:
+        """The names of the fitted parameters."""
+    @property
+    def bounds(self) -> dict[str, tuple[float, float]]:
+        """The bounds each was searched within, ``{name: (low, high)}``."""
+    @property
+    def trace(self) -> list[dict[str, float]]:
+        """Every evaluation in order: a dict of the fitted parameters and
+        ``log_likelihood``.
+        """
+
 def write_atomic(path: _Path, data: bytes) -> None:
     """Write ``data`` to ``path`` atomically: a temporary file of a short name of
     its own in the same directory, flushed to disk, then renamed over

@@ -17,6 +17,10 @@ SONAR_PARAMETERS = [
     "sigma_end",
     "xi_min",
     "xi_per_m",
+    "no_echo_reach",
+    "no_echo_weight",
+    "end_weight",
+    "posterior_floor",
     "opening_angle_rad",
 ]
 

@@ -9,6 +9,15 @@ use thiserror::Error;
 #[derive(Debug, Clone, PartialEq, Error)]
 #[non_exhaustive]
 pub enum CovmapError {
+    /// A setting is unknown or unusable where a number range cannot say
+    /// why: a fit's parameter names and bounds, an empty log.
+    #[error("invalid `{name}`: {reason}")]
+    InvalidSetting {
+        /// The setting's name.
+        name: &'static str,
+        /// What is wrong with it, naming the value.
+        reason: String,
+    },
     /// A grid was described with an unusable geometry.
     #[error("invalid grid: {0}")]
     InvalidGrid(String),

@@ -127,6 +127,16 @@ fn update_fixed<const N: usize>(h: &mut [f32], k: &[f32], floor: f32) {
     }
 }
 
+/// Mix `h` (normalised) with the uniform histogram: `(1 - w) h + w / bins`,
+/// still normalised, every bin at least `w / bins`.
+#[inline(always)]
+pub(crate) fn mix_uniform(h: &mut [f32], w: f32) {
+    let share = w / h.len() as f32;
+    for v in h.iter_mut() {
+        *v = *v * (1.0 - w) + share;
+    }
+}
+
 /// [`update`] for any bin count.
 #[inline]
 fn update_any(h: &mut [f32], k: &[f32], floor: f32) {

@@ -33,6 +33,7 @@ mod footprint;
 pub mod gain;
 mod grid;
 pub mod histogram;
+pub mod learn;
 pub mod log;
 mod map_file;
 #[doc = include_str!("model.md")]

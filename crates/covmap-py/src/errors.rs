@@ -77,7 +77,9 @@ impl Exception {
     fn of(err: &CovmapError) -> Self {
         match err {
             CovmapError::InvalidGrid(_) => Self::InvalidGrid,
-            CovmapError::InvalidParameter { .. } => Self::InvalidParameter,
+            CovmapError::InvalidParameter { .. } | CovmapError::InvalidSetting { .. } => {
+                Self::InvalidParameter
+            }
             CovmapError::InvalidRange { .. } => Self::InvalidRange,
             CovmapError::InvalidBearing { .. } => Self::InvalidBearing,
             CovmapError::InvalidPose { .. } => Self::InvalidPose,

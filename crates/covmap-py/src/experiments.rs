@@ -52,3 +52,101 @@ pub(crate) fn run_fig3(py: Python<'_>, seed: Seed) -> PyResult<Bound<'_, PyAny>>
     fields.set_item("log_likelihood_prior", r.log_likelihood_prior)?;
     classes.getattr("Fig3Result")?.call((), Some(&fields))
 }
+
+/// Learn the sensor model in simulation (``covmap learn``): simulate a
+/// training drive of ``scans`` scans through the built-in ``train_world``
+/// and a test drive through ``test_world`` (the 24-sonar ring for a
+/// ``SonarModel``, a 180-degree laser for a ``LaserModel``; each along
+/// shortest paths to seeded waypoints), fit ``model`` on the training drive
+/// (as ``fit_sensor_model``), and score the starting and the learned model
+/// on both drives. With ``judged_only`` the fit scores the training drive's
+/// judged cells only, not every cell of its grid. Runs with the GIL released.
+///
+/// Returns a dict: ``fit`` (``SensorFit``); ``drives``, one dict per drive
+/// (training first) of ``world``, ``log`` (``Log``), ``grid`` (``Grid``) and
+/// ``truth`` (float64 ``(rows, cols)``); ``default`` and ``learned``, one
+/// dict per drive of ``log_likelihood`` (of the truth, every cell),
+/// ``judged_log_likelihood`` (over the judged cells: reached by the drive's
+/// readings and observable from its free space),
+/// ``mean_error`` (of the mean map, over the judged cells),
+/// ``free_error`` and ``obstacle_error`` (the same over the reached free and
+/// obstacle cells), ``occupancy_error`` (the occupancy grid's) and
+/// ``cells_reached``.
+#[pyfunction]
+#[pyo3(signature = (
+    model, *, train_world="corridor", test_world="office", scans=300, step=0.15,
+    resolution=0.05, train_seed=Seed(0), test_seed=Seed(1), max_evaluations=300,
+    restarts=2, seed=Seed(0), parameters=None, judged_only=false,
+    progress=crate::log::ProgressArg::Flag(false)
+), text_signature = "(model, *, train_world='corridor', test_world='office', scans=300, step=0.15, resolution=0.05, train_seed=0, test_seed=1, max_evaluations=300, restarts=2, seed=0, parameters=None, judged_only=False, progress=False)")]
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn run_learn<'py>(
+    py: Python<'py>,
+    model: &Bound<'py, PyAny>,
+    train_world: &str,
+    test_world: &str,
+    scans: usize,
+    step: f64,
+    resolution: f64,
+    train_seed: Seed,
+    test_seed: Seed,
+    max_evaluations: usize,
+    restarts: usize,
+    seed: Seed,
+    parameters: Option<Vec<String>>,
+    judged_only: bool,
+    progress: crate::log::ProgressArg,
+) -> PyResult<Bound<'py, PyDict>> {
+    let config = experiments::LearnConfig {
+        train_world: train_world.into(),
+        test_world: test_world.into(),
+        model: crate::sensor::any_model(model)?,
+        scans,
+        step_m: step,
+        resolution_m: resolution,
+        train_seed: train_seed.0,
+        test_seed: test_seed.0,
+        fit: covmap::learn::FitOptions {
+            parameters,
+            max_evaluations,
+            restarts,
+            seed: seed.0,
+            ..covmap::learn::FitOptions::default()
+        },
+        judged_only,
+    };
+    let report = crate::learn::with_progress(py, progress, max_evaluations, |show| {
+        experiments::learn(&config, show)
+    })?;
+    let out = PyDict::new(py);
+    let drives = pyo3::types::PyList::empty(py);
+    for d in &report.drives {
+        let drive = PyDict::new(py);
+        drive.set_item("world", &d.world)?;
+        drive.set_item("log", crate::log::PyLog(d.log.clone()))?;
+        drive.set_item("grid", PyGrid(d.grid))?;
+        drive.set_item("truth", cell_array(py, &d.grid, d.truth.clone())?)?;
+        drives.append(drive)?;
+    }
+    out.set_item("drives", drives)?;
+    for (key, scores) in [
+        ("default", report.default_scores),
+        ("learned", report.learned_scores),
+    ] {
+        let list = pyo3::types::PyList::empty(py);
+        for s in scores {
+            let d = PyDict::new(py);
+            d.set_item("log_likelihood", s.log_likelihood)?;
+            d.set_item("judged_log_likelihood", s.judged_log_likelihood)?;
+            d.set_item("mean_error", s.mean_error)?;
+            d.set_item("free_error", s.free_error)?;
+            d.set_item("obstacle_error", s.obstacle_error)?;
+            d.set_item("occupancy_error", s.occupancy_error)?;
+            d.set_item("cells_reached", s.cells_reached)?;
+            list.append(d)?;
+        }
+        out.set_item(key, list)?;
+    }
+    out.set_item("fit", crate::learn::PySensorFit(report.fit))?;
+    Ok(out)
+}

@@ -13,6 +13,7 @@ mod files;
 mod gain;
 mod grid;
 mod keywords;
+mod learn;
 mod log;
 mod occupancy;
 mod plan;
@@ -54,6 +55,10 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<sim_sensor::PyLaser>()?;
     m.add_class::<robot::PyRobot>()?;
     m.add_function(wrap_pyfunction!(experiments::run_fig3, m)?)?;
+    m.add_function(wrap_pyfunction!(experiments::run_learn, m)?)?;
+    m.add_function(wrap_pyfunction!(learn::log_likelihood, m)?)?;
+    m.add_function(wrap_pyfunction!(learn::fit_sensor_model, m)?)?;
+    m.add_class::<learn::PySensorFit>()?;
     m.add_class::<strategy::PyStrategy>()?;
     m.add(
         "DEFAULT_DISCOUNT_BEYOND_M",

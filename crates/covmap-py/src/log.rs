@@ -306,8 +306,8 @@ impl PyLog {
 /// How `integrate_log` shows its progress: nothing, a bar (tqdm's if it is
 /// installed, else a line on standard error that rewrites itself), or the
 /// caller's `progress(done, total)`.
-enum Progress {
-    Bar(Option<Py<PyAny>>),
+pub(crate) enum Progress {
+    Bar(Option<Py<PyAny>>, &'static str),
     Call(Py<PyAny>),
 }
 
@@ -320,8 +320,24 @@ pub(crate) enum ProgressArg {
     Call(Py<PyAny>),
 }
 
+/// The display `progress` asks for, over `total` steps counted in `unit`
+/// (a word with a leading space, for the bar).
+pub(crate) fn progress_display(
+    py: Python<'_>,
+    progress: ProgressArg,
+    total: usize,
+    unit: &'static str,
+) -> PyResult<Option<Progress>> {
+    Progress::new(py, progress, total, unit)
+}
+
 impl Progress {
-    fn new(py: Python<'_>, progress: ProgressArg, total: usize) -> PyResult<Option<Self>> {
+    fn new(
+        py: Python<'_>,
+        progress: ProgressArg,
+        total: usize,
+        unit: &'static str,
+    ) -> PyResult<Option<Self>> {
         match progress {
             ProgressArg::Flag(false) => Ok(None),
             ProgressArg::Call(f) if f.bind(py).is_callable() => Ok(Some(Self::Call(f))),
@@ -337,32 +353,38 @@ impl Progress {
                     Ok(tqdm) => {
                         let kwargs = pyo3::types::PyDict::new(py);
                         kwargs.set_item("total", total)?;
-                        kwargs.set_item("unit", " scans")?;
+                        kwargs.set_item("unit", unit)?;
                         Some(tqdm.getattr("tqdm")?.call((), Some(&kwargs))?.unbind())
                     }
                     Err(_) => None,
                 };
-                Ok(Some(Self::Bar(bar)))
+                Ok(Some(Self::Bar(bar, unit)))
             }
         }
     }
 
-    fn show(&self, py: Python<'_>, done: usize, step: usize, total: usize) -> PyResult<()> {
+    pub(crate) fn show(
+        &self,
+        py: Python<'_>,
+        done: usize,
+        step: usize,
+        total: usize,
+    ) -> PyResult<()> {
         match self {
             Self::Call(f) => f.call1(py, (done, total)).map(drop),
-            Self::Bar(Some(bar)) => bar.call_method1(py, "update", (step,)).map(drop),
-            Self::Bar(None) => py
+            Self::Bar(Some(bar), _) => bar.call_method1(py, "update", (step,)).map(drop),
+            Self::Bar(None, unit) => py
                 .import("sys")?
                 .getattr("stderr")?
-                .call_method1("write", (format!("\rscans {done}/{total}"),))
+                .call_method1("write", (format!("\r{} {done}/{total}", unit.trim()),))
                 .map(drop),
         }
     }
 
-    fn close(&self, py: Python<'_>) -> PyResult<()> {
+    pub(crate) fn close(&self, py: Python<'_>) -> PyResult<()> {
         match self {
-            Self::Bar(Some(bar)) => bar.call_method0(py, "close").map(drop),
-            Self::Bar(None) => py
+            Self::Bar(Some(bar), _) => bar.call_method0(py, "close").map(drop),
+            Self::Bar(None, _) => py
                 .import("sys")?
                 .getattr("stderr")?
                 .call_method1("write", ("\n",))
@@ -382,7 +404,7 @@ pub(crate) fn integrate_log_showing<T: Send>(
     progress: ProgressArg,
     integrate: impl FnOnce(&mut dyn FnMut(usize)) -> covmap::Result<T> + Send,
 ) -> PyResult<T> {
-    let display = Progress::new(py, progress, total)?;
+    let display = Progress::new(py, progress, total, " scans")?;
     let every = (total / 100).max(1);
     let mut shown = 0;
     let mut failed: Option<PyErr> = None;

@@ -1,6 +1,6 @@
 //! `covmap.SonarModel` and `covmap.LaserModel`: the inverse sensor models.
 //!
-//! Both are a range model (seven parameters) and, for the sonar, the opening
+//! Both are a range model (eleven parameters) and, for the sonar, the opening
 //! angle of its cone; [`sensor_model_class!`] writes their Python methods
 //! once for both.
 
@@ -58,6 +58,14 @@ macro_rules! sensor_model_class {
                 xi_min
                 /// Growth of the uniform weight per metre of distance min(d_l, d).
                 xi_per_m
+                /// How far a no-echo reading clears, as a fraction of the maximum range, in (0, 1].
+                no_echo_reach
+                /// How strongly a no-echo reading clears, in [0, 1]: 1 the free-space kernel, 0 nothing.
+                no_echo_weight
+                /// How strongly an echo marks the cells at and behind its end, in [0, 1]: 1 the paper's kernels.
+                end_weight
+                /// The least probability an update leaves any bin, in [0, 1/256]: 0 the paper's Bayes update.
+                posterior_floor
             ],
             [ $( $(#[doc = $doc])* $extra )* ]
         );
@@ -205,4 +213,15 @@ pub(crate) fn any_model(obj: &Bound<'_, PyAny>) -> PyResult<AnySensorModel> {
             ),
         ))
     }
+}
+
+/// The Python object of a core model: a `SonarModel` or a `LaserModel`.
+pub(crate) fn model_object<'py>(
+    py: Python<'py>,
+    model: &AnySensorModel,
+) -> PyResult<Bound<'py, PyAny>> {
+    Ok(match model {
+        AnySensorModel::Sonar(m) => Bound::new(py, PySonarModel(*m))?.into_any(),
+        AnySensorModel::Laser(m) => Bound::new(py, PyLaserModel(*m))?.into_any(),
+    })
 }

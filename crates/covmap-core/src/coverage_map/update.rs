@@ -146,6 +146,7 @@ fn apply<const N: usize, M: SensorModel + ?Sized>(
             table,
             bins,
             floor: histogram::BIN_FLOOR,
+            mix: (range.posterior_floor * bins as f64) as f32,
             lookup: table.reading(r.min(range.max_range_m), echo),
             updates: 0,
         };
@@ -168,6 +169,9 @@ struct BeamUpdate<'a, const N: usize> {
     table: &'a KernelTable,
     bins: usize,
     floor: f32,
+    /// The weight of the uniform prior mixed into each updated histogram
+    /// (the model's `posterior_floor` times the bin count; 0: none).
+    mix: f32,
     lookup: ReadingLookup,
     updates: usize,
 }
@@ -178,6 +182,9 @@ impl<const N: usize> CellVisitor for BeamUpdate<'_, N> {
         let h = &mut self.data[index * self.bins..(index + 1) * self.bins];
         let k = self.table.at(self.lookup.offset(d_l));
         histogram::update_bins::<N>(h, k, self.floor);
+        if self.mix > 0.0 {
+            histogram::mix_uniform(h, self.mix);
+        }
         self.updates += 1;
     }
 }

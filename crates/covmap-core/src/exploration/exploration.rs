@@ -34,10 +34,8 @@ use super::strategy::{
     Chooser, Decision, Outcome, Strategy, View, sees_all_around, widest_gap_rad,
 };
 use crate::counting::ScanCounts;
-use crate::coverage_map::CONTACT_COVERAGE;
 use crate::coverage_map::CoverageMap;
 use crate::error::{CovmapError, Result};
-use crate::footprint::visit;
 use crate::grid::{Cell, Grid};
 use crate::histogram;
 use crate::histogram::DEFAULT_BINS;
@@ -429,14 +427,9 @@ impl<S: ScanSource, M: Motion> Exploration<S, M> {
         let (pose, bearings, model) = (&self.pose, &self.bearings[..], self.model.as_dyn());
         // The coverage map validates the scan first: an invalid one changes no map.
         if self.config.occlude_no_echo {
-            let reaches = no_echo_reaches(
-                &self.map,
-                &self.contact_cells,
-                pose,
-                &ranges,
-                bearings,
-                model,
-            );
+            let reaches =
+                self.map
+                    .no_echo_reaches(&self.contact_cells, pose, &ranges, bearings, model);
             self.map
                 .integrate_clipped(pose, &ranges, bearings, model, &reaches)?;
             self.occupancy
@@ -723,58 +716,6 @@ impl<S, M> Exploration<S, M> {
             occupancy: self.occupancy,
         }
     }
-}
-
-/// How far each no-echo reading of a scan clears: to the nearest cell of
-/// its footprint that `map` holds as covered (ML coverage above
-/// [`CONTACT_COVERAGE`]) or that the robot ran into, at most the maximum
-/// range; echo readings get the maximum range (they ignore it).
-fn no_echo_reaches(
-    map: &CoverageMap,
-    contact_cells: &[Cell],
-    pose: &Pose,
-    ranges: &[f64],
-    bearings: &[f64],
-    model: &dyn SensorModel,
-) -> Vec<f64> {
-    let grid = map.grid();
-    let (bins, histograms) = (map.bins(), map.histograms());
-    let max_range_m = model.range_model().max_range_m;
-    let footprint = model.footprint();
-    let half = 0.5 * grid.resolution_m();
-    let contacts: Vec<usize> = contact_cells
-        .iter()
-        .filter_map(|&c| grid.index(c).ok())
-        .collect();
-    let covered = |i: usize| {
-        let ml = histogram::bin_value(
-            histogram::argmax(&histograms[i * bins..(i + 1) * bins]),
-            bins,
-        );
-        ml > CONTACT_COVERAGE || contacts.contains(&i)
-    };
-    ranges
-        .iter()
-        .zip(bearings)
-        .map(|(&r, &bearing)| {
-            let mut reach = max_range_m;
-            if r >= max_range_m {
-                visit(
-                    grid,
-                    [pose.x_m, pose.y_m],
-                    pose.theta_rad + bearing,
-                    max_range_m,
-                    footprint,
-                    &mut |i: usize, d_l: f64| {
-                        if d_l - half < reach && covered(i) {
-                            reach = (d_l - half).max(0.0);
-                        }
-                    },
-                );
-            }
-            reach
-        })
-        .collect()
 }
 
 /// The corners of `path` (cell centres, 8-connected steps): its first and

@@ -128,6 +128,31 @@ impl CoverageMap {
             self.integrate_clipped(&s.pose, &s.ranges, &s.bearings, model, &s.reaches)
         })
     }
+
+    /// [`CoverageMap::integrate_log`], each no-echo reading occluded by the
+    /// map as it stands when its scan comes: it clears only up to the
+    /// nearest cell of its footprint the map holds as covered
+    /// ([`CoverageMap::no_echo_reaches`]), as the exploration loop
+    /// integrates its scans. A no-echo reading through a wall that earlier
+    /// echoes found is then taken for a specular miss, which says nothing of
+    /// the wall or of what lies behind it.
+    ///
+    /// # Errors
+    /// As [`CoverageMap::integrate_log`].
+    pub fn integrate_log_occluding<M: SensorModel>(
+        &mut self,
+        log: &Log,
+        model: &M,
+    ) -> Result<usize> {
+        let grid = *self.grid();
+        integrate_scans(&grid, log, model, &mut |_| {}, |s| {
+            let mut reaches = self.no_echo_reaches(&[], &s.pose, &s.ranges, &s.bearings, model);
+            for (r, &log_reach) in reaches.iter_mut().zip(&s.reaches) {
+                *r = r.min(log_reach);
+            }
+            self.integrate_clipped(&s.pose, &s.ranges, &s.bearings, model, &reaches)
+        })
+    }
 }
 
 /// `integrate_log` and `integrate_log_with_progress` of a baseline, whose

@@ -11,6 +11,10 @@ use crate::numeric::x_ln_x;
 pub const BAND_SLICES: usize = 32;
 /// Steps the distance `s = min(d_l, d)` is cut into, from 0 to `max_range_m`.
 pub const DISTANCE_STEPS: usize = 256;
+/// The table's region of no-echo kernels (see [`KernelTable`]).
+pub const NO_ECHO_REGION: usize = BAND_SLICES + 2;
+/// Regions in a table.
+const REGIONS: usize = BAND_SLICES + 3;
 
 /// Errors unless `resolution_m` is a finite cell size a grid may have (at
 /// least [`MIN_RESOLUTION_M`]).
@@ -28,14 +32,18 @@ pub(crate) fn check_resolution(resolution_m: f64) -> Result<()> {
 ///
 /// Region 0 is free space (`mu = 0`), regions `1..=BAND_SLICES` are slices of
 /// the end band (each evaluated at its centre), region `BAND_SLICES + 1` is the
-/// band behind the end point (`mu = 1`). The distance `s` is rounded to the
-/// nearest of `DISTANCE_STEPS + 1` steps; `sigma` and `xi` are linear in `s`, so
-/// the quantisation moves them by at most half a step's worth.
+/// band behind the end point (`mu = 1`; these mixed with the prior by the
+/// model's `end_weight`), and region `BAND_SLICES + 2`
+/// ([`NO_ECHO_REGION`]) the free space of a no-echo reading (region 0's
+/// kernels mixed with the prior by the model's `no_echo_weight`; a weight of
+/// 1 makes no-echo readings use region 0 itself). The distance `s` is rounded
+/// to the nearest of `DISTANCE_STEPS + 1` steps; `sigma` and `xi` are linear
+/// in `s`, so the quantisation moves them by at most half a step's worth.
 ///
-/// Memory: `(BAND_SLICES + 2) * (DISTANCE_STEPS + 1) * bins` kernel values,
-/// 139 808 at 16 bins: 546 KiB in `f32` for the update (of which the
+/// Memory: `(BAND_SLICES + 3) * (DISTANCE_STEPS + 1) * bins` kernel values,
+/// 143 920 at 16 bins: 562 KiB in `f32` for the update (of which the
 /// free-space row it reads most is 16 KiB), and twice 1.1 MiB in `f64` (the
-/// values and their `k ln k`) for the expected gain, 2.7 MiB in all.
+/// values and their `k ln k`) for the expected gain, 2.8 MiB in all.
 #[derive(Clone, Debug)]
 pub struct KernelTable {
     model: RangeModel,
@@ -63,23 +71,25 @@ impl KernelTable {
         debug_assert!(bins <= MAX_BINS);
         let step_s = model.max_range_m / DISTANCE_STEPS as f64;
         let slice = resolution_m / BAND_SLICES as f64;
-        let mut values = Vec::with_capacity((BAND_SLICES + 2) * (DISTANCE_STEPS + 1) * bins);
-        for region in 0..BAND_SLICES + 2 {
+        let mut values = Vec::with_capacity(REGIONS * (DISTANCE_STEPS + 1) * bins);
+        for region in 0..REGIONS {
             for step in 0..=DISTANCE_STEPS {
                 let s = step as f64 * step_s;
                 let (mu, sigma) = match region {
-                    0 => (0.0, model.sigma(s)),
+                    0 | NO_ECHO_REGION => (0.0, model.sigma(s)),
                     r if r <= BAND_SLICES => {
                         let o = -0.5 * resolution_m + (r as f64 - 0.5) * slice;
                         (0.5 + o / resolution_m, model.sigma_end)
                     }
                     _ => (1.0, model.sigma(s)),
                 };
-                values.extend(
-                    kernel_values(mu, sigma, model.xi(s), bins)
-                        .into_iter()
-                        .map(|v| v as f32),
-                );
+                let mut k = kernel_values(mu, sigma, model.xi(s), bins);
+                if region == NO_ECHO_REGION {
+                    k = model.no_echo_mixture(k);
+                } else if region > 0 {
+                    k = model.end_mixture(k);
+                }
+                values.extend(k.into_iter().map(|v| v as f32));
             }
         }
         let (mut values_f64, mut k_ln_k) =
@@ -122,7 +132,13 @@ impl KernelTable {
     #[inline(always)]
     pub(crate) fn reading(&self, d: f64, echo: bool) -> ReadingLookup {
         let half = 0.5 * self.resolution_m;
+        let free_region = if echo || self.model.no_echo_is_free() {
+            0
+        } else {
+            NO_ECHO_REGION
+        };
         ReadingLookup {
+            free_base: free_region * (DISTANCE_STEPS + 1) * self.bins,
             // step(d_l) = min(d_l, d) / step_s, rounded.
             inv_step_s: self.inv_step_s,
             d,
@@ -173,6 +189,10 @@ impl KernelTable {
 /// computed once per beam.
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct ReadingLookup {
+    /// Offset of the kernels this reading gives cells in free space: region
+    /// 0, or [`NO_ECHO_REGION`] for a no-echo reading that is not plain
+    /// free space.
+    free_base: usize,
     inv_step_s: f64,
     d: f64,
     slice_per_m: f64,
@@ -194,26 +214,33 @@ impl ReadingLookup {
         // Clamped in floating point first, so that each conversion is a plain
         // truncation of a value known to fit.
         let slice = d_l * self.slice_per_m + self.slice_at_zero;
-        let region = if slice < 0.0 {
-            0
-        } else if slice <= BAND_SLICES as f64 {
+        if slice < 0.0 {
+            return self.free_offset(d_l);
+        }
+        let region = if slice <= BAND_SLICES as f64 {
             1 + (slice as i32 as usize).min(BAND_SLICES - 1)
         } else {
             BAND_SLICES + 1
         };
-        region * (DISTANCE_STEPS + 1) * self.bins + self.free_offset(d_l)
+        region * (DISTANCE_STEPS + 1) * self.bins + self.free_step(d_l) * self.bins
     }
 
     /// [`ReadingLookup::offset`] for a cell in free space (`is_free`, or any
-    /// cell of a no-echo reading): region 0.
+    /// cell of a no-echo reading): region 0, or the no-echo region.
     #[inline(always)]
     pub(crate) fn free_offset(&self, d_l: f64) -> usize {
-        self.free_step(d_l) * self.bins
+        self.free_base + self.free_step(d_l) * self.bins
+    }
+
+    /// The index of the kernel at [`ReadingLookup::free_offset`] among all
+    /// the table's kernels.
+    #[inline(always)]
+    pub(crate) fn free_kernel(&self, d_l: f64) -> usize {
+        self.free_base / self.bins + self.free_step(d_l)
     }
 
     /// The distance step of [`ReadingLookup::free_offset`]: the index of the
-    /// kernel among the table's free-space kernels (region 0, the first
-    /// `DISTANCE_STEPS + 1`).
+    /// kernel among its region's `DISTANCE_STEPS + 1`.
     #[inline(always)]
     pub(crate) fn free_step(&self, d_l: f64) -> usize {
         // Clamped by comparisons (which become plain vector min and max; a
@@ -234,7 +261,14 @@ mod tests {
     /// The table agrees with the exact model to within its quantisation.
     #[test]
     fn table_matches_exact_kernel() {
-        for model in [SonarModel::default().range, LaserModel::default().range] {
+        let mut weak_no_echo = SonarModel::default().range;
+        (weak_no_echo.no_echo_weight, weak_no_echo.no_echo_reach) = (0.4, 0.6);
+        weak_no_echo.end_weight = 0.3;
+        for model in [
+            SonarModel::default().range,
+            LaserModel::default().range,
+            weak_no_echo,
+        ] {
             for bins in [8, 16, 33] {
                 let r = 0.05;
                 let table = KernelTable::new(&model, r, bins).unwrap();

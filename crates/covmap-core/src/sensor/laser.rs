@@ -39,6 +39,10 @@ impl Default for LaserModel {
                 sigma_end: 0.25,
                 xi_min: 0.02,
                 xi_per_m: 0.005,
+                no_echo_reach: 1.0,
+                no_echo_weight: 1.0,
+                end_weight: 1.0,
+                posterior_floor: 0.0,
             },
         }
     }

@@ -33,7 +33,12 @@
 //!
 //! Cells more than `band_m` behind the end point are not touched. A reading at or
 //! beyond `max_range_m` is "no echo": every cell of the footprint up to
-//! `max_range_m` gets the free kernel (with `d = max_range_m`) and none is marked.
+//! `no_echo_reach * max_range_m` gets the free kernel (with `d = max_range_m`)
+//! mixed with the uniform prior by `no_echo_weight`, and none is marked. The
+//! kernels of the end band and behind it are mixed with the prior by
+//! `end_weight`, and every updated histogram by `posterior_floor` (see
+//! [`RangeModel`]); all three weights are the paper's reading (no mixing) by
+//! default.
 //!
 //! # Predicted readings, `p(d | map)`
 //! The forward model, for the expected information gain ([`crate::gain`])

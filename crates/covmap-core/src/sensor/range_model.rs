@@ -25,7 +25,48 @@ pub struct RangeModel {
     pub xi_min: f64,
     /// Growth of the uniform weight per metre of distance `s = min(d_l, d)`.
     pub xi_per_m: f64,
+    /// How far a no-echo reading clears its footprint, as a fraction of
+    /// `max_range_m`, in `(0, 1]`. 1 (the default): out to the maximum range,
+    /// as the paper reads it.
+    #[serde(default = "one")]
+    pub no_echo_reach: f64,
+    /// How strongly a no-echo reading clears, in `[0, 1]`: its kernel is
+    /// `no_echo_weight * k_free + (1 - no_echo_weight) / bins`, a mixture of
+    /// the free-space kernel and the uniform prior. 1 (the default): the
+    /// free-space kernel, as the paper reads it; 0: a no-echo reading
+    /// leaves the map as it was. A specular miss (a sonar pulse that glanced
+    /// off a wall and never came back) is a no-echo reading through a wall,
+    /// so a weight below 1 keeps such misses from erasing walls that echoes
+    /// from other angles found.
+    #[serde(default = "one")]
+    pub no_echo_weight: f64,
+    /// How strongly an echo marks the cells at and behind its end point
+    /// (the end band and the band behind it), in `[0, 1]`: their kernels
+    /// are mixed with the uniform prior as no-echo kernels are. 1 (the
+    /// default): the paper's kernels. A sonar's echo comes from somewhere
+    /// on the arc of its cone, so most cells of the arc are not what it
+    /// hit; a weight below 1 says so, where 1 marks the whole arc covered.
+    #[serde(default = "one")]
+    pub end_weight: f64,
+    /// The least probability an update leaves any bin of a cell's
+    /// histogram, in `[0, 1/256]`: after each update the cell's posterior
+    /// is mixed with the uniform prior, `(1 - bins p) h + p`. 0 (the
+    /// default): the paper's Bayes update (bins floored at 1e-30 only).
+    /// Readings of one cell are not independent (a sonar sees the same wall
+    /// face from the same places again and again), so the product of their
+    /// kernels grows far more confident than the evidence is: a floor caps
+    /// what a wrong cell can cost, as clamping does in OctoMap.
+    #[serde(default)]
+    pub posterior_floor: f64,
 }
+
+/// The default of the no-echo parameters: the paper's reading.
+fn one() -> f64 {
+    1.0
+}
+
+/// The largest `posterior_floor`: one bin's share of the largest histogram.
+const MAX_POSTERIOR_FLOOR: f64 = 1.0 / crate::histogram::MAX_BINS as f64;
 
 /// The smallest `sigma_min`: a standard deviation of coverage (which spans
 /// 0 to 1) a millionth wide is already a spike between the bins; far below
@@ -88,6 +129,30 @@ impl RangeModel {
             self.xi(self.max_range_m) <= MAX_XI,
             "a growth that keeps xi_min + xi_per_m * max_range_m at most 1e6",
         )?;
+        check(
+            "no_echo_reach",
+            self.no_echo_reach,
+            self.no_echo_reach > 0.0 && self.no_echo_reach <= 1.0,
+            "a fraction of the maximum range in (0, 1]",
+        )?;
+        check(
+            "no_echo_weight",
+            self.no_echo_weight,
+            (0.0..=1.0).contains(&self.no_echo_weight),
+            "a weight in [0, 1]",
+        )?;
+        check(
+            "posterior_floor",
+            self.posterior_floor,
+            (0.0..=MAX_POSTERIOR_FLOOR).contains(&self.posterior_floor),
+            "a probability in [0, 1/256]",
+        )?;
+        check(
+            "end_weight",
+            self.end_weight,
+            (0.0..=1.0).contains(&self.end_weight),
+            "a weight in [0, 1]",
+        )?;
         let widest = self.sigma(self.max_range_m);
         check(
             "sigma_end",
@@ -108,13 +173,29 @@ impl RangeModel {
     }
 
     /// How far along the beam a reading of `range_m` reaches, and whether it is
-    /// an echo (`false`: no echo, clear up to the maximum range).
+    /// an echo (`false`: no echo, clear up to `no_echo_reach` of the maximum
+    /// range).
     pub fn reach(&self, range_m: f64) -> (f64, bool) {
         if range_m >= self.max_range_m {
-            (self.max_range_m, false)
+            (self.no_echo_reach_m(), false)
         } else {
             (range_m + self.band_m, true)
         }
+    }
+
+    /// How far a no-echo reading clears, metres: `no_echo_reach * max_range_m`.
+    pub fn no_echo_reach_m(&self) -> f64 {
+        if self.no_echo_reach >= 1.0 {
+            self.max_range_m
+        } else {
+            self.no_echo_reach * self.max_range_m
+        }
+    }
+
+    /// Whether a no-echo reading's kernel is the free-space kernel itself
+    /// (`no_echo_weight` 1), rather than a mixture with the prior.
+    pub fn no_echo_is_free(&self) -> bool {
+        self.no_echo_weight >= 1.0
     }
 
     /// The kernel the map multiplies in for a cell at `cell_distance_m` and a
@@ -182,8 +263,37 @@ impl RangeModel {
         } else {
             (1.0, self.sigma(s))
         };
-        Some(kernel_values(mu, sigma, self.xi(s), bins))
+        let k = kernel_values(mu, sigma, self.xi(s), bins);
+        Some(if !echo {
+            self.no_echo_mixture(k)
+        } else if o >= -half {
+            self.end_mixture(k)
+        } else {
+            k
+        })
     }
+
+    /// A kernel of the end band or behind it as an echo gives it: mixed
+    /// with the uniform prior by `end_weight` (unchanged at weight 1).
+    pub(crate) fn end_mixture(&self, k: Vec<f64>) -> Vec<f64> {
+        mixture(k, self.end_weight)
+    }
+
+    /// A free-space kernel `k` as a no-echo reading gives it: mixed with the
+    /// uniform prior by `no_echo_weight` (unchanged at weight 1).
+    pub(crate) fn no_echo_mixture(&self, k: Vec<f64>) -> Vec<f64> {
+        mixture(k, self.no_echo_weight)
+    }
+}
+
+/// `w k + (1 - w) / bins`: kernel `k` mixed with the uniform prior by the
+/// weight `w` (`k` itself at weight 1).
+fn mixture(mut k: Vec<f64>, w: f64) -> Vec<f64> {
+    if w < 1.0 {
+        let uniform = 1.0 / k.len() as f64;
+        k.iter_mut().for_each(|v| *v = w * *v + (1.0 - w) * uniform);
+    }
+    k
 }
 
 /// Errors unless both distances of a kernel query are finite and

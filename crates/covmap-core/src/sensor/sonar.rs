@@ -51,6 +51,10 @@ impl Default for SonarModel {
                 sigma_end: 0.30,
                 xi_min: 0.08,
                 xi_per_m: 0.08,
+                no_echo_reach: 1.0,
+                no_echo_weight: 1.0,
+                end_weight: 1.0,
+                posterior_floor: 0.0,
             },
             opening_angle_rad: 15f64.to_radians(),
         }

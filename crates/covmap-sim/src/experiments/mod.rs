@@ -1,5 +1,7 @@
 //! The paper's experiments, reproduced in simulation.
 
 mod fig3;
+mod learn;
 
 pub use fig3::{Fig3Config, Fig3Report, MapErrors, corridor_path, fig3, fig3_with};
+pub use learn::{Drive, DriveScore, LearnConfig, LearnReport, learn, survey_drive};

@@ -64,6 +64,8 @@ impl GainEvaluator<'_> {
             last_bucket: buckets.len().saturating_sub(1) as f64,
             no_echo: dist.no_echo,
             none_lookup: self.table.reading(self.range.max_range_m, false),
+            free_lookup: self.table.reading(self.range.max_range_m, true),
+            no_echo_apart: !self.range.no_echo_is_free(),
             none_reach,
         };
         // Fix the bin count at compile time for the common sizes, so that the
@@ -198,7 +200,13 @@ pub(super) struct Beam<'a> {
     /// The index of the last bucket.
     last_bucket: f64,
     no_echo: f64,
+    /// The kernels of no echo.
     none_lookup: ReadingLookup,
+    /// The free-space kernels of echoes (region 0 at distance `d_l`).
+    free_lookup: ReadingLookup,
+    /// Whether no echo's kernels differ from echoes' free-space kernels
+    /// (the model's `no_echo_weight` below 1): then each gets its own gain.
+    no_echo_apart: bool,
     none_reach: f64,
 }
 
@@ -266,14 +274,14 @@ impl<const N: usize, const A: u8> FastBeam<'_, N, A> {
         let _ = i;
     }
 
-    /// The weight of the free kernel, if it is the only one every cell of a
-    /// cone's row block (at distances from `near` to `far`) gets: every cell
+    /// The weights of the free kernels (echoes', then no echo's), if they
+    /// are the only ones every cell of a cone's row block (at distances from `near` to `far`) gets: every cell
     /// within `reach_m`, the echoes that end before the block reaching none
     /// of it, the next leaving all of it in free space, and either every cell
     /// or none within the reach of no echo. The same weight
     /// [`CellVisitor::cell`] gives each.
     #[inline(always)]
-    fn block_weight(&self, [near, far]: [f64; 2], reach_m: f64) -> Option<f64> {
+    fn block_weight(&self, [near, far]: [f64; 2], reach_m: f64) -> Option<(f64, f64)> {
         let beam = self.beam;
         if !(far <= reach_m) {
             return None;
@@ -294,9 +302,9 @@ impl<const N: usize, const A: u8> FastBeam<'_, N, A> {
             return None;
         }
         if far <= beam.none_reach {
-            Some(beam.suffix[j] + beam.no_echo)
+            Some((beam.suffix[j], beam.no_echo))
         } else if near > beam.none_reach {
-            Some(beam.suffix[j])
+            Some((beam.suffix[j], 0.0))
         } else {
             None
         }
@@ -368,12 +376,22 @@ impl<const N: usize, const A: u8> CellVisitor for FastBeam<'_, N, A> {
             }
             j += 1;
         }
-        let mut free_weight = beam.suffix[j];
-        if enter <= beam.none_reach {
-            free_weight += beam.no_echo;
-        }
-        if free_weight > 0.0 {
-            self.gain(i, beam.none_lookup.free_offset(d_l), free_weight, prior);
+        let echo_free = beam.suffix[j];
+        let no_echo = if enter <= beam.none_reach {
+            beam.no_echo
+        } else {
+            0.0
+        };
+        if beam.no_echo_apart {
+            if echo_free > 0.0 {
+                self.gain(i, beam.free_lookup.free_offset(d_l), echo_free, prior);
+            }
+            if no_echo > 0.0 {
+                self.gain(i, beam.none_lookup.free_offset(d_l), no_echo, prior);
+            }
+        } else if echo_free + no_echo > 0.0 {
+            let offset = beam.none_lookup.free_offset(d_l);
+            self.gain(i, offset, echo_free + no_echo, prior);
         }
     }
 
@@ -386,13 +404,37 @@ impl<const N: usize, const A: u8> CellVisitor for FastBeam<'_, N, A> {
         bounds: [f64; 2],
         reach_m: f64,
     ) {
-        if let Some(weight) = self.block_weight(bounds, reach_m) {
-            // Every cell of the block gets the free kernel with `weight`:
-            // what `cell` would do for each, done for the block at once.
+        let Some((echo_free, no_echo)) = self.block_weight(bounds, reach_m) else {
+            cells_of_block(self, first, d, n, reach_m);
+            return;
+        };
+        let beam = self.beam;
+        if beam.no_echo_apart {
+            self.free_block(first, d, n, beam.free_lookup, echo_free);
+            self.free_block(first, d, n, beam.none_lookup, no_echo);
+        } else {
+            self.free_block(first, d, n, beam.none_lookup, echo_free + no_echo);
+        }
+    }
+}
+
+impl<const N: usize, const A: u8> FastBeam<'_, N, A> {
+    /// Every cell of a row block (the `n` cells from `first`, at distances
+    /// `d`) gets the free-space kernel of `free` with `weight`: what `cell`
+    /// would do for each, done for the block at once.
+    #[inline(always)]
+    fn free_block(
+        &mut self,
+        first: usize,
+        d: &[f64; ROW_BLOCK],
+        n: usize,
+        free: ReadingLookup,
+        weight: f64,
+    ) {
+        {
             if weight <= 0.0 {
                 return;
             }
-            let free = self.beam.none_lookup;
             let prior = &self.beam.terms.prior[first..first + n];
             let flags = match prior.first_chunk::<ROW_BLOCK>() {
                 Some(all) => u64::from_ne_bytes(*all),
@@ -400,10 +442,10 @@ impl<const N: usize, const A: u8> CellVisitor for FastBeam<'_, N, A> {
             };
             if flags == u64::from_ne_bytes([1; ROW_BLOCK]) {
                 // The whole block is at the prior (common in unexplored
-                // space): free-space kernels are the table's first, so the
-                // distance step is the kernel's index.
+                // space): its gains come from the table.
                 let gains = &self.beam.terms.prior_gain;
-                let block: [f64; ROW_BLOCK] = std::array::from_fn(|k| gains[free.free_step(d[k])]);
+                let block: [f64; ROW_BLOCK] =
+                    std::array::from_fn(|k| gains[free.free_kernel(d[k])]);
                 self.total += weight * pairwise_sum(&block);
                 return;
             }
@@ -413,7 +455,7 @@ impl<const N: usize, const A: u8> CellVisitor for FastBeam<'_, N, A> {
                 let mut gains = [0.0f64; ROW_BLOCK];
                 for k in 0..n {
                     if prior[k] != 0 {
-                        gains[k] = self.beam.terms.prior_gain[free.free_step(d[k])];
+                        gains[k] = self.beam.terms.prior_gain[free.free_kernel(d[k])];
                     } else {
                         self.prefetch(first + k);
                         self.push(first + k, free.free_offset(d[k]), weight);
@@ -447,8 +489,6 @@ impl<const N: usize, const A: u8> CellVisitor for FastBeam<'_, N, A> {
             if self.queue.len >= BATCH {
                 self.flush();
             }
-            return;
         }
-        cells_of_block(self, first, d, n, reach_m);
     }
 }

@@ -1,0 +1,257 @@
+//! `covmap.log_likelihood`, `covmap.fit_sensor_model` and `SensorFit`:
+//! learning the sensor model by maximum likelihood.
+
+use std::sync::Mutex;
+
+use covmap::Grid;
+use covmap::exploration::AnySensorModel;
+use covmap::learn::{FitData, FitOptions, SensorFit, fit_sensor_model as fit};
+use pyo3::prelude::*;
+use pyo3::types::{PyDict, PyList};
+
+use crate::convert::{self, Seed};
+use crate::coverage_map::PyCoverageMap;
+use crate::errors::{Exception, OrRaise};
+use crate::grid::PyGrid;
+use crate::log::{ProgressArg, PyLog, progress_display};
+use crate::sensor::{any_model, model_object};
+use crate::world::PyWorld;
+
+/// A ground truth for `grid`: a float64 or float32 array of shape
+/// `(rows, cols)`, or a `World` (its exact coverage on the grid).
+fn truth_values(py: Python<'_>, truth: &Bound<'_, PyAny>, grid: &Grid) -> PyResult<Vec<f64>> {
+    if let Ok(world) = truth.cast::<PyWorld>() {
+        let world = &world.get().0;
+        return Ok(py.detach(|| world.coverage(grid)));
+    }
+    let (values, shape) = convert::matrix(truth, "truth")?;
+    let (rows, cols) = grid.shape();
+    if shape != [rows, cols] {
+        return Err(Exception::ArrayShape.err(
+            py,
+            format!(
+                "truth must have the grid's shape ({rows}, {cols}), got ({}, {})",
+                shape[0], shape[1]
+            ),
+        ));
+    }
+    Ok(values)
+}
+
+/// A cell mask for `grid`, if given: a bool array of shape `(rows, cols)`.
+fn mask(cells: Option<&Bound<'_, PyAny>>, grid: &Grid) -> PyResult<Option<Vec<bool>>> {
+    cells
+        .map(|c| convert::cell_values::<bool>(c, grid, "cells", "bool", None))
+        .transpose()
+}
+
+/// The log-probability of the ground truth ``truth`` (a float64 or float32
+/// array of shape ``(rows, cols)`` of coverage values in [0, 1]) under the
+/// map's histograms, summed over every cell or those where ``cells`` (a bool
+/// array of the same shape) is true. A truth value between two bin values
+/// is scored by linear interpolation of the two bins' probabilities; a cell
+/// at the uniform prior scores ``ln(1 / bins)``.
+#[pyfunction]
+#[pyo3(signature = (map, truth, *, cells=None))]
+pub(crate) fn log_likelihood(
+    py: Python<'_>,
+    map: &Bound<'_, PyCoverageMap>,
+    truth: &Bound<'_, PyAny>,
+    cells: Option<&Bound<'_, PyAny>>,
+) -> PyResult<f64> {
+    let map = map.borrow();
+    let map = &map.0;
+    let grid = *map.grid();
+    let truth = truth_values(py, truth, &grid)?;
+    let cells = mask(cells, &grid)?;
+    covmap::learn::log_likelihood(map, &truth, cells.as_deref()).or_raise(py)
+}
+
+/// Fit ``model``'s parameters to a recorded drive by maximum likelihood: the
+/// model under whose map of ``log`` the ground truth scores highest
+/// (``log_likelihood``), found by Nelder-Mead over the parameters scaled to
+/// their bounds, from ``restarts`` starting points (the first ``model``
+/// itself, the others drawn around it from ``seed``), in parallel, with the
+/// GIL released. The result is the same whatever the thread count.
+///
+/// ``truth`` is a ``World`` (its exact coverage on ``grid``) or a float
+/// array of shape ``(rows, cols)``; ``grid`` defaults to the world's bounds
+/// and 0.5 m at 5 cm (required with an array). ``parameters`` names the
+/// parameters fitted (default: all the model has but ``max_range_m``);
+/// ``bounds`` maps names to ``(low, high)`` replacing the defaults.
+/// ``max_evaluations`` bounds the maps built, the starting model's
+/// included. ``progress``: ``True`` for a bar over evaluations, or a
+/// callable ``(done, total)``.
+///
+/// Unknown parameter names, bounds that exclude the starting model, a truth
+/// of the wrong shape or an empty log raise ``InvalidParameterError`` (or the
+/// array errors) before any map is built.
+#[pyfunction]
+#[pyo3(signature = (
+    log, truth, model, *, grid=None, parameters=None, bounds=None, max_evaluations=300,
+    restarts=2, seed=Seed(0), bins=16, cells=None, progress=ProgressArg::Flag(false)
+), text_signature = "(log, truth, model, *, grid=None, parameters=None, bounds=None, max_evaluations=300, restarts=2, seed=0, bins=16, cells=None, progress=False)")]
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn fit_sensor_model(
+    py: Python<'_>,
+    log: &Bound<'_, PyLog>,
+    truth: &Bound<'_, PyAny>,
+    model: &Bound<'_, PyAny>,
+    grid: Option<&Bound<'_, PyGrid>>,
+    parameters: Option<Vec<String>>,
+    bounds: Option<Vec<(String, (f64, f64))>>,
+    max_evaluations: i64,
+    restarts: i64,
+    seed: Seed,
+    bins: i64,
+    cells: Option<&Bound<'_, PyAny>>,
+    progress: ProgressArg,
+) -> PyResult<PySensorFit> {
+    let start = any_model(model)?;
+    let grid = match (grid, truth.cast::<PyWorld>()) {
+        (Some(g), _) => g.get().0,
+        (None, Ok(world)) => {
+            let [x0, y0, x1, y1] = world.get().0.bounds_m();
+            Grid::covering(x0 - 0.5, y0 - 0.5, x1 + 0.5, y1 + 0.5, 0.05).or_raise(py)?
+        }
+        (None, Err(_)) => {
+            return Err(Exception::InvalidValue.err(
+                py,
+                "grid is required when truth is an array (it gives the cells' positions)",
+            ));
+        }
+    };
+    let count = |name: &str, v: i64| -> PyResult<usize> {
+        usize::try_from(v).map_err(|_| {
+            Exception::InvalidValue.err(py, format!("{name} must be a non-negative count, got {v}"))
+        })
+    };
+    let options = FitOptions {
+        parameters,
+        bounds: bounds
+            .unwrap_or_default()
+            .into_iter()
+            .map(|(n, (lo, hi))| (n, [lo, hi]))
+            .collect(),
+        max_evaluations: count("max_evaluations", max_evaluations)?,
+        restarts: count("restarts", restarts)?,
+        seed: seed.0,
+        bins: convert::bins(py, bins)?,
+        ..FitOptions::default()
+    };
+    let truth = truth_values(py, truth, &grid)?;
+    let cells = mask(cells, &grid)?;
+    let log = &log.get().0;
+    let data = FitData {
+        log,
+        grid,
+        truth: &truth,
+        cells: cells.as_deref(),
+    };
+    let result = with_progress(py, progress, options.max_evaluations, |show| {
+        fit(&data, &start, &options, show)
+    })?;
+    Ok(PySensorFit(result))
+}
+
+/// Run `work` (a fit, which reports its evaluations so far from the
+/// threads it runs on) with the GIL released, showing progress over `total`
+/// evaluations as `progress` asks; an exception the display raises is
+/// raised after the work is done.
+pub(crate) fn with_progress<T, R: OrRaise<T> + Send>(
+    py: Python<'_>,
+    progress: ProgressArg,
+    total: usize,
+    work: impl FnOnce(&(dyn Fn(usize) + Sync)) -> R + Send,
+) -> PyResult<T> {
+    let display = progress_display(py, progress, total, " evaluations")?;
+    let state: Mutex<(usize, Option<PyErr>)> = Mutex::new((0, None));
+    let result = py.detach(|| {
+        work(&|done| {
+            let Some(d) = &display else { return };
+            let mut state = state.lock().unwrap_or_else(|e| e.into_inner());
+            if state.1.is_none() && done > state.0 {
+                let step = done - state.0;
+                state.0 = done;
+                if let Err(e) = Python::attach(|py| d.show(py, done, step, total)) {
+                    state.1 = Some(e);
+                }
+            }
+        })
+    });
+    if let Some(d) = &display {
+        d.close(py)?;
+    }
+    if let Some(e) = state.into_inner().unwrap_or_else(|e| e.into_inner()).1 {
+        return Err(e);
+    }
+    result.or_raise(py)
+}
+
+/// What ``fit_sensor_model`` found: ``model`` (the best model, the starting
+/// one if nothing scored higher), ``log_likelihood`` and
+/// ``initial_log_likelihood`` (the starting model's), ``evaluations`` (maps
+/// built), ``parameters`` (the fitted names), ``bounds`` and ``trace``
+/// (every evaluation in order, the starting model's first: a dict of the
+/// fitted parameters and ``log_likelihood``).
+#[pyclass(frozen, name = "SensorFit", module = "covmap._native")]
+pub(crate) struct PySensorFit(pub(crate) SensorFit<AnySensorModel>);
+
+#[pymethods]
+impl PySensorFit {
+    /// The best model found.
+    #[getter]
+    fn model<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        model_object(py, &self.0.model)
+    }
+    /// The log-likelihood of the truth under the best model's map.
+    #[getter]
+    fn log_likelihood(&self) -> f64 {
+        self.0.log_likelihood
+    }
+    /// The same under the starting model's map.
+    #[getter]
+    fn initial_log_likelihood(&self) -> f64 {
+        self.0.initial_log_likelihood
+    }
+    /// How many maps were built and scored.
+    #[getter]
+    fn evaluations(&self) -> usize {
+        self.0.evaluations
+    }
+    /// The names of the fitted parameters.
+    #[getter]
+    fn parameters(&self) -> Vec<&'static str> {
+        self.0.parameters.clone()
+    }
+    /// The bounds each was searched within, ``{name: (low, high)}``.
+    #[getter]
+    fn bounds<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+        let d = PyDict::new(py);
+        for (name, [lo, hi]) in self.0.parameters.iter().zip(&self.0.bounds) {
+            d.set_item(name, (lo, hi))?;
+        }
+        Ok(d)
+    }
+    /// Every evaluation in order: a dict of the fitted parameters and
+    /// ``log_likelihood``.
+    #[getter]
+    fn trace<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyList>> {
+        let list = PyList::empty(py);
+        for e in &self.0.trace {
+            let d = PyDict::new(py);
+            for (name, v) in self.0.parameters.iter().zip(&e.values) {
+                d.set_item(name, v)?;
+            }
+            d.set_item("log_likelihood", e.log_likelihood)?;
+            list.append(d)?;
+        }
+        Ok(list)
+    }
+    fn __repr__(&self) -> String {
+        format!(
+            "SensorFit(log_likelihood={:.1}, initial_log_likelihood={:.1}, evaluations={})",
+            self.0.log_likelihood, self.0.initial_log_likelihood, self.0.evaluations
+        )
+    }
+}

@@ -1,0 +1,70 @@
+//! The sensor-model fit of `covmap learn`, from Rust: a training drive in
+//! one built-in world, a test drive in another, the fit, and the scores.
+//!
+//! `cargo run --release -p covmap-sim --example learn -- [--train corridor]
+//! [--test office] [--laser] [--evaluations 300] [--scans 300]
+//! [--parameters a,b,...]`
+
+use covmap_core::exploration::AnySensorModel;
+use covmap_sim::experiments::{LearnConfig, learn};
+
+fn main() -> Result<(), Box<dyn std::error::Error>> {
+    let mut config = LearnConfig::default();
+    let mut args = std::env::args().skip(1);
+    while let Some(a) = args.next() {
+        let mut value = || args.next().ok_or(format!("{a} needs a value"));
+        match a.as_str() {
+            "--train" => config.train_world = value()?,
+            "--test" => config.test_world = value()?,
+            "--laser" => config.model = AnySensorModel::laser(),
+            "--evaluations" => config.fit.max_evaluations = value()?.parse()?,
+            "--judged" => config.judged_only = true,
+            "--occlude" => config.fit.occlude_no_echo = true,
+            "--restarts" => config.fit.restarts = value()?.parse()?,
+            "--scans" => config.scans = value()?.parse()?,
+            "--parameters" => {
+                config.fit.parameters = Some(value()?.split(',').map(String::from).collect())
+            }
+            other => return Err(format!("unknown argument {other}").into()),
+        }
+    }
+    let started = std::time::Instant::now();
+    let report = learn(&config, &|_| {})?;
+    let seconds = started.elapsed().as_secs_f64();
+    let fit = &report.fit;
+    println!(
+        "fit: {} evaluations in {seconds:.1} s ({:.0} ms each), training log-likelihood {:.0} -> {:.0}",
+        fit.evaluations,
+        1e3 * seconds / fit.evaluations as f64,
+        fit.initial_log_likelihood,
+        fit.log_likelihood
+    );
+    for (name, value) in fit.parameters.iter().zip(&fit.trace[0].values) {
+        use covmap_core::learn::Fittable;
+        println!(
+            "  {name:18} {value:8.4} -> {:8.4}",
+            fit.model.get(name).unwrap_or(f64::NAN)
+        );
+    }
+    for (k, drive) in report.drives.iter().enumerate() {
+        let (d, l) = (report.default_scores[k], report.learned_scores[k]);
+        println!(
+            "{} drive ({}, {} cells reached): log-likelihood {:.0} -> {:.0} (judged cells {:.0} -> {:.0}); mean-map error {:.4} -> {:.4} (free {:.4} -> {:.4}, obstacle {:.4} -> {:.4}; occupancy grid {:.4})",
+            ["training", "test"][k],
+            drive.world,
+            d.cells_reached,
+            d.log_likelihood,
+            l.log_likelihood,
+            d.judged_log_likelihood,
+            l.judged_log_likelihood,
+            d.mean_error,
+            l.mean_error,
+            d.free_error,
+            l.free_error,
+            d.obstacle_error,
+            l.obstacle_error,
+            d.occupancy_error
+        );
+    }
+    Ok(())
+}

@@ -1,0 +1,233 @@
+"""Learning the sensor model (issue 22): the likelihood, the fit, the
+no-echo parameters, and the learned model on a drive it never saw."""
+
+from __future__ import annotations
+
+from typing import Any
+
+import numpy as np
+import pytest
+
+import covmap
+
+
+def corridor_drive(scans: int = 60, seed: int = 3) -> tuple[covmap.Log, covmap.World, covmap.Grid]:
+    """A short sonar drive along the built-in corridor, its world and grid."""
+    world = covmap.World.builtin("corridor")
+    x = np.linspace(1.0, 15.0, scans)
+    poses = np.stack([x, np.full(scans, 1.3), np.zeros(scans)], axis=1)
+    log = covmap.SonarRing().record(world, poses, seed=seed)
+    x0, y0, x1, y1 = world.bounds
+    grid = covmap.Grid(origin=(x0 - 0.5, y0 - 0.5), resolution=0.1, shape=(
+        int(np.ceil((y1 - y0 + 1.0) / 0.1)), int(np.ceil((x1 - x0 + 1.0) / 0.1))))
+    return log, world, grid
+
+
+def test_log_likelihood_of_the_prior_and_of_an_informed_map() -> None:
+    grid = covmap.Grid(origin=(0.0, 0.0), resolution=0.1, shape=(4, 5))
+    m = covmap.CoverageMap(grid)
+    truth = np.zeros((4, 5))
+    assert covmap.log_likelihood(m, truth) == pytest.approx(20 * np.log(1 / 16))
+    mask = np.zeros((4, 5), dtype=bool)
+    mask[0, :2] = True
+    assert covmap.log_likelihood(m, truth, cells=mask) == pytest.approx(2 * np.log(1 / 16))
+    # Readings through the cells make "empty" likelier: the truth scores higher.
+    m.integrate((0.05, 0.05, 0.0), np.array([0.45]), np.zeros(1), covmap.LaserModel())
+    assert covmap.log_likelihood(m, truth) > 20 * np.log(1 / 16)
+    assert covmap.log_likelihood(m, truth.astype(np.float32)) == pytest.approx(covmap.log_likelihood(m, truth))
+
+
+def test_log_likelihood_rejects_bad_truth_and_masks() -> None:
+    grid = covmap.Grid(origin=(0.0, 0.0), resolution=0.1, shape=(4, 5))
+    m = covmap.CoverageMap(grid)
+    for bad in (np.zeros((5, 4)), np.full((4, 5), np.nan), np.full((4, 5), 1.5), np.zeros(20)):
+        with pytest.raises(covmap.CovmapError):
+            covmap.log_likelihood(m, bad)
+    with pytest.raises(covmap.CovmapError):
+        covmap.log_likelihood(m, np.zeros((4, 5)), cells=np.ones((4, 4), dtype=bool))
+
+
+def test_no_echo_parameters_weaken_and_shorten_no_echo_readings() -> None:
+    default, weak = covmap.SonarModel(), covmap.SonarModel(no_echo_weight=0.25, no_echo_reach=0.5)
+    assert (default.no_echo_weight, default.no_echo_reach) == (1.0, 1.0)
+    assert weak.to_dict()["no_echo_weight"] == 0.25
+    k_default = default.kernel(1.0, 9.0)  # a no-echo reading (beyond 5 m)
+    k_weak = weak.kernel(1.0, 9.0)
+    assert k_default is not None and k_weak is not None
+    # The weak kernel lies a quarter of the way from the prior to the free kernel.
+    assert np.allclose(k_weak, 0.25 * k_default + 0.75 / 16, atol=1e-6)
+    # It clears half the maximum range only; echoes are untouched.
+    assert weak.kernel(2.6, 9.0) is None and default.kernel(2.6, 9.0) is not None
+    assert np.array_equal(weak.kernel(1.0, 2.0), default.kernel(1.0, 2.0))
+    for bad in ({"no_echo_weight": 1.5}, {"no_echo_weight": -0.1}, {"no_echo_reach": 0.0}, {"no_echo_reach": 2.0}):
+        with pytest.raises(covmap.InvalidParameterError):
+            covmap.SonarModel(**bad)
+
+
+def test_fit_bad_input_is_refused_before_any_evaluation() -> None:
+    log, world, grid = corridor_drive(10)
+    calls: list[int] = []
+
+    def progress(done: int, total: int) -> None:
+        calls.append(done)
+
+    cases: list[dict[str, Any]] = [
+        {"parameters": ["sigma_min", "nonsense"]},
+        {"parameters": ["max_range_m"]},
+        {"parameters": ["xi_min", "xi_min"]},
+        {"parameters": ["xi_min"], "bounds": [("xi_min", (0.5, 1.0))]},
+        {"parameters": ["xi_min"], "bounds": [("sigma_min", (0.0, 1.0))]},
+        {"parameters": ["xi_min"], "bounds": [("xi_min", (1.0, 0.5))]},
+        {"max_evaluations": 0},
+        {"restarts": 0},
+    ]
+    for kwargs in cases:
+        with pytest.raises(covmap.InvalidParameterError) as e:
+            covmap.fit_sensor_model(log, world, covmap.SonarModel(), grid=grid, progress=progress, **kwargs)
+        named = kwargs.get("parameters", [""])[-1] if "parameters" in kwargs else ""
+        assert named in str(e.value)
+    assert "nonsense" in str(pytest.raises(covmap.CovmapError, covmap.fit_sensor_model, log, world,
+                                           covmap.SonarModel(), grid=grid, parameters=["nonsense"]).value)
+    with pytest.raises(covmap.CovmapError):
+        covmap.fit_sensor_model(log, np.zeros((3, 3)), covmap.SonarModel(), grid=grid)
+    with pytest.raises(covmap.CovmapError):
+        covmap.fit_sensor_model(log, np.zeros((3, 3)), covmap.SonarModel())  # no grid for an array
+    with pytest.raises(covmap.CovmapError):
+        covmap.fit_sensor_model(log[0:0], world, covmap.SonarModel(), grid=grid)
+    assert calls == []
+
+
+def test_fit_is_deterministic_never_lowers_its_likelihood_and_traces_every_evaluation() -> None:
+    log, world, grid = corridor_drive(40)
+    kwargs: dict[str, Any] = {"grid": grid, "parameters": ["no_echo_weight", "xi_min"], "max_evaluations": 25}
+    a = covmap.fit_sensor_model(log, world, covmap.SonarModel(), **kwargs)
+    b = covmap.fit_sensor_model(log, world, covmap.SonarModel(), **kwargs)
+    assert a.trace == b.trace and a.model == b.model
+    assert a.evaluations == len(a.trace) <= 25
+    assert a.log_likelihood >= a.initial_log_likelihood
+    assert a.log_likelihood == max(e["log_likelihood"] for e in a.trace)
+    assert a.trace[0]["no_echo_weight"] == 1.0
+    assert a.initial_log_likelihood == a.trace[0]["log_likelihood"]
+    # The score is the map's: the learned model's map of the log scores as the fit said.
+    m = covmap.CoverageMap(grid)
+    m.integrate_log(log, a.model)
+    assert covmap.log_likelihood(m, world.coverage(grid)) == pytest.approx(a.log_likelihood, rel=1e-12)
+    assert set(a.bounds) == {"no_echo_weight", "xi_min"}
+
+
+@pytest.fixture(scope="module")
+def learned() -> dict[str, Any]:
+    """The fit of ``covmap learn`` (smaller): trained in the corridor, tested in the office."""
+    return covmap.run_learn(covmap.SonarModel(), scans=200, max_evaluations=100)
+
+
+def test_the_learned_model_explains_a_drive_in_another_world_better(learned: dict[str, Any]) -> None:
+    fit = learned["fit"]
+    assert fit.log_likelihood > fit.initial_log_likelihood
+    assert [d["world"] for d in learned["drives"]] == ["corridor", "office"]
+    default, new = learned["default"][1], learned["learned"][1]
+    assert new["log_likelihood"] > default["log_likelihood"]
+
+
+@pytest.mark.xfail(strict=True, reason="issue 22 goal not met: the likelihood gives up wall cells for free space (BENCHMARKS.md, sensor model learning)")
+def test_the_learned_mean_map_error_on_the_unseen_drive_is_below_8_percent_and_the_grids(
+    learned: dict[str, Any],
+) -> None:
+    new = learned["learned"][1]
+    assert new["mean_error"] < 0.08 and new["mean_error"] < new["occupancy_error"]
+
+
+def wall_mean(drive: dict[str, Any], model: Any, min_counts: int) -> float:
+    """The mean coverage of the fully covered cells the readings reached at least ``min_counts`` times."""
+    m = covmap.CoverageMap(drive["grid"])
+    m.integrate_log(drive["log"], model)
+    o = covmap.OccupancyGrid(drive["grid"])
+    o.integrate_log(drive["log"], model)
+    wall = (drive["truth"] >= 0.99) & (o.counts() >= min_counts)
+    assert wall.sum() > 100
+    return float(m.mean()[wall].mean())
+
+
+def test_a_weak_no_echo_weight_keeps_walls_that_no_echo_readings_erase(learned: dict[str, Any]) -> None:
+    corridor = learned["drives"][0]
+    assert wall_mean(corridor, covmap.SonarModel(), 20) < 0.5
+    assert wall_mean(corridor, covmap.SonarModel(no_echo_weight=0.2), 20) > 0.5
+
+
+@pytest.mark.xfail(strict=True, reason="issue 22 goal not met: no fit chooses a no-echo weight low enough to keep walls")
+def test_walls_survive_no_echo_readings_under_the_learned_model(learned: dict[str, Any]) -> None:
+    assert wall_mean(learned["drives"][0], learned["fit"].model, 20) > 0.5
+
+
+def test_the_readme_example_of_learning_runs() -> None:
+    import re
+    from pathlib import Path
+
+    readme = Path(__file__).resolve().parents[2] / "README.md"
+    if not readme.is_file():
+        pytest.skip("no README.md beside the package")
+    blocks = [b for b in re.findall(r"```python\n(.*?)```", readme.read_text(), flags=re.S) if "fit_sensor_model" in b]
+    assert len(blocks) == 1
+    namespace: dict[str, Any] = {"np": np, "covmap": covmap}
+    exec(compile(blocks[0], str(readme), "exec"), namespace)
+    fit = namespace["fit"]
+    assert fit.log_likelihood >= fit.initial_log_likelihood and fit.evaluations <= 20
+
+
+def test_learn_and_fig2_commands(tmp_path: Any) -> None:
+    import json
+
+    from cli_helpers import PNG_SIGNATURE, run_cli
+
+    out = tmp_path / "learn"
+    r = run_cli("learn", "--evaluations", "6", "--scans", "30", "--parameters", "xi_min,no_echo_weight",
+                "--out", str(out))
+    assert r.returncode == 0, r.stderr
+    assert "test drive (office" in r.stdout and "log-likelihood" in r.stdout
+    saved = json.loads((out / "model.json").read_text())
+    assert saved["sensor"] == "sonar" and set(saved["model"]) >= {"xi_min", "no_echo_weight"}
+    trace = (out / "trace.csv").read_text().splitlines()
+    assert trace[0] == "evaluation,xi_min,no_echo_weight,log_likelihood" and 2 <= len(trace) <= 7
+    r = run_cli("fig2", "--model", str(out / "model.json"), "--out", str(tmp_path / "fig2"))
+    assert r.returncode == 0, r.stderr
+    assert (tmp_path / "fig2" / "fig2.png").read_bytes().startswith(PNG_SIGNATURE)
+    bad = tmp_path / "bad.json"
+    bad.write_text("{}")
+    r = run_cli("fig2", "--model", str(bad), "--out", str(tmp_path / "fig2"))
+    assert r.returncode != 0 and "not a covmap learn model file" in r.stderr
+    r = run_cli("learn", "--world", "atlantis", "--out", str(out))
+    assert r.returncode != 0 and "atlantis" in r.stderr
+
+
+def test_end_weight_and_posterior_floor() -> None:
+    default = covmap.SonarModel()
+    weak_end = covmap.SonarModel(end_weight=0.5)
+    k_end, k_weak = default.kernel(2.2, 2.1), weak_end.kernel(2.2, 2.1)  # behind the end point
+    assert k_end is not None and k_weak is not None
+    assert np.allclose(k_weak, 0.5 * k_end + 0.5 / 16, atol=1e-6)
+    assert np.array_equal(weak_end.kernel(1.0, 2.0), default.kernel(1.0, 2.0))  # free space untouched
+    grid = covmap.Grid(origin=(0.0, 0.0), resolution=0.05, shape=(20, 60))
+    laser = covmap.LaserModel(posterior_floor=0.002)
+    m = covmap.CoverageMap(grid)
+    for _ in range(200):
+        m.integrate((0.05, 0.5, 0.0), np.array([2.0]), np.zeros(1), laser)
+    h = m.histograms
+    assert h.min() >= 0.002 * (1 - 1e-4) and np.allclose(h.sum(axis=2), 1.0, atol=1e-5)
+    plain = covmap.CoverageMap(grid)
+    for _ in range(200):
+        plain.integrate((0.05, 0.5, 0.0), np.array([2.0]), np.zeros(1), covmap.LaserModel())
+    assert plain.histograms.min() < 1e-20
+    for bad in ({"end_weight": 1.5}, {"posterior_floor": 0.01}, {"posterior_floor": -1e-9}):
+        with pytest.raises(covmap.InvalidParameterError):
+            covmap.LaserModel(**bad)
+
+
+def test_the_learned_laser_model_meets_the_goals_on_an_unseen_drive() -> None:
+    """For the laser the issue's expected result holds: a drive in another world,
+    a higher likelihood, a mean-map error below 0.08 and below the grid's."""
+    r = covmap.run_learn(covmap.LaserModel(), scans=150, max_evaluations=40)
+    default, new = r["default"][1], r["learned"][1]
+    assert r["drives"][1]["world"] == "office"
+    assert new["log_likelihood"] > default["log_likelihood"]
+    assert new["judged_log_likelihood"] > default["judged_log_likelihood"]
+    assert new["mean_error"] < 0.08 and new["mean_error"] < new["occupancy_error"]
