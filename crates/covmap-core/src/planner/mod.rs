@@ -65,4 +65,4 @@ pub use cache::{CacheStats, PlanningCache};
 pub use config::{MAX_CANDIDATE_HEADINGS, PlannerConfig};
 pub use path::{Reachability, shortest_paths};
 pub use termination::ExplorationStatus;
-pub use viewpoint::{Candidates, Plan, Planner};
+pub use viewpoint::{Candidates, Plan, Planner, fixed_headings};

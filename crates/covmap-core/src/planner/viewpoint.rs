@@ -137,9 +137,7 @@ impl Planner {
         if k == 1 {
             return vec![pose.theta_rad];
         }
-        (0..k)
-            .map(|i| i as f64 * std::f64::consts::TAU / k as f64)
-            .collect()
+        fixed_headings(k)
     }
 
     /// The plan that eq. 14 chooses among the candidates at `poses` (in
@@ -213,6 +211,15 @@ impl Planner {
             })
             .collect())
     }
+}
+
+/// `k` headings evenly around the circle, `i * 2 pi / k` for `i` in
+/// `0..k`: the fixed headings a candidate viewpoint (or a strategy's goal)
+/// may face.
+pub fn fixed_headings(k: usize) -> Vec<f64> {
+    (0..k)
+        .map(|i| i as f64 * std::f64::consts::TAU / k as f64)
+        .collect()
 }
 
 #[cfg(test)]

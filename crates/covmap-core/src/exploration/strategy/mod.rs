@@ -229,9 +229,7 @@ pub(super) fn viewpoint_headings(bearings: &[f64], robot_heading: f64) -> Vec<f6
     if sees_all_around(bearings) {
         vec![robot_heading]
     } else {
-        (0..HEADINGS)
-            .map(|i| i as f64 * std::f64::consts::TAU / HEADINGS as f64)
-            .collect()
+        crate::planner::fixed_headings(HEADINGS)
     }
 }
 
