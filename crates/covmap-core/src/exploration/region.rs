@@ -61,12 +61,18 @@ pub(super) fn reachable_region(
     band_m: f64,
 ) -> Result<Vec<bool>> {
     let reach = navigator.reachability(map, pose)?;
+    Ok(region_of(&reach, map.grid(), navigator, band_m))
+}
+
+/// [`reachable_region`] from the paths `reach` of `navigator` on `grid`.
+pub(super) fn region_of(
+    reach: &Reachability,
+    grid: &Grid,
+    navigator: &Planner,
+    band_m: f64,
+) -> Vec<bool> {
     let reachable: Vec<bool> = reach.costs().iter().map(|c| c.is_finite()).collect();
-    Ok(dilate(
-        map.grid(),
-        &reachable,
-        navigator.config().robot_radius_m + band_m,
-    ))
+    dilate(grid, &reachable, navigator.config().robot_radius_m + band_m)
 }
 
 /// `mask` (one flag a cell of `grid`, row-major) grown by `radius_m`: every

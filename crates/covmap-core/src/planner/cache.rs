@@ -50,6 +50,7 @@ use crate::gain::{
 use crate::grid::Grid;
 use crate::histogram;
 use crate::parallel;
+use crate::planner::path::Reachability;
 use crate::planner::viewpoint::{Plan, Planner};
 use crate::pose::{Pose, check_pose};
 use crate::sensor::{Footprint, KernelTable, RangeModel, SensorModel, StopCoverage};
@@ -365,6 +366,34 @@ impl Planner {
         let gains = cache.gathered(&cells, &poses);
         cache.stats = stats;
         self.choose(&reach, &cells, poses, gains)
+    }
+}
+
+impl Planner {
+    /// [`Self::reachability`] from the map's read-outs `cache` keeps
+    /// (brought up to date with `map` first, as [`Self::next_viewpoint_cached`]
+    /// does): the same paths, without reading the whole map out again.
+    ///
+    /// # Errors
+    /// As [`Self::reachability`].
+    pub fn reachability_cached(
+        &self,
+        cache: &mut PlanningCache,
+        map: &CoverageMap,
+        pose: &Pose,
+    ) -> Result<Reachability> {
+        let start = check_pose(map.grid(), pose)?;
+        cache.see(map);
+        let blocked = match cache.seen.as_ref() {
+            Some(seen) => self.blocked_of(
+                map.bins(),
+                &seen.ml,
+                &seen.entropy,
+                !self.config.unknown_is_free,
+            ),
+            None => self.blocked(map, !self.config.unknown_is_free),
+        };
+        Ok(self.free_and_reachable_of(map.grid(), &blocked, start)?.1)
     }
 }
 

@@ -55,7 +55,7 @@
 use super::{Decision, HEADINGS, Outcome, View, sees_all_around};
 use crate::error::Result;
 use crate::exploration::ExplorationConfig;
-use crate::exploration::region::{navigator, reachable_region};
+use crate::exploration::region::{navigator, reachable_region, region_of};
 use crate::exploration::result::Termination;
 use crate::grid::Grid;
 use crate::planner::{Plan, Planner, PlannerConfig, PlanningCache};
@@ -172,7 +172,16 @@ impl Coverage {
     /// or the run has stagnated (see the module documentation).
     fn termination(&mut self, view: &View) -> Result<Option<Termination>> {
         let band_m = view.model.as_dyn().range_model().band_m;
-        let region = reachable_region(&self.navigator, view.planning_map, &view.pose, band_m)?;
+        // The planner's cache keeps the map's read-outs the region needs; its
+        // configuration is the navigator's where paths are concerned.
+        let reach =
+            self.planner
+                .reachability_cached(&mut self.cache, view.planning_map, &view.pose)?;
+        let region = region_of(&reach, view.planning_map.grid(), &self.planner, band_m);
+        debug_assert_eq!(
+            region,
+            reachable_region(&self.navigator, view.planning_map, &view.pose, band_m)?
+        );
         let epsilon = view.config.epsilon;
         let (mut certain, mut stagnated, mut open) = (0usize, 0usize, 0usize);
         let mut entropy = 0.0;
