@@ -172,6 +172,40 @@ impl PyLog {
             .or_raise(py)
     }
 
+    /// The log of one sensor in a ROS 1 (``.bag``) or ROS 2 bag, read with
+    /// the ``rosbags`` package (``pip install 'covmap[rosbags]'``): the
+    /// ``sensor_msgs/LaserScan`` or ``sensor_msgs/Range`` messages on
+    /// ``topic`` (default: the bag's only such topic), REP 117 converted as
+    /// ``from_laser_scans`` does; the robot's poses from the
+    /// ``nav_msgs/Odometry`` on ``odom_topic``, else from ``/tf``
+    /// (``base_frame``, default ``base_link``, in ``fixed_frame``, default
+    /// the tree's root), interpolated at each message's stamp; the sensor's
+    /// mounting from ``/tf_static``. ``max_range_m`` overrides the messages'
+    /// maximum range. A bag that cannot be read or lacks what is asked
+    /// raises ``FileFormatError`` naming the file (see ``covmap._bag``).
+    #[staticmethod]
+    #[pyo3(signature = (path, *, topic=None, odom_topic=None, base_frame=None, fixed_frame=None, max_range_m=None))]
+    fn from_bag<'py>(
+        py: Python<'py>,
+        path: &Bound<'py, PyAny>,
+        topic: Option<&str>,
+        odom_topic: Option<&str>,
+        base_frame: Option<&str>,
+        fixed_frame: Option<&str>,
+        max_range_m: Option<f64>,
+    ) -> PyResult<Bound<'py, PyAny>> {
+        // The reading is Python's (rosbags is a Python package).
+        let kwargs = pyo3::types::PyDict::new(py);
+        kwargs.set_item("topic", topic)?;
+        kwargs.set_item("odom_topic", odom_topic)?;
+        kwargs.set_item("base_frame", base_frame)?;
+        kwargs.set_item("fixed_frame", fixed_frame)?;
+        kwargs.set_item("max_range_m", max_range_m)?;
+        py.import("covmap._bag")?
+            .getattr("read_bag")?
+            .call((path,), Some(&kwargs))
+    }
+
     /// The robot's pose of every scan, float64, ``(N, 3)``.
     #[getter]
     fn poses<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f64>> {
