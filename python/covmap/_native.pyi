@@ -404,12 +404,16 @@ class Log:
         sensor_offset: tuple[float, float, float] = (0.0, 0.0, 0.0),
     ) -> Log: ...
     @staticmethod
-    def from_carmen(path: str | PathLike[str], *, max_range_m: float | None = None) -> Log:
+    def from_carmen(
+        path: str | PathLike[str], *, max_range_m: float | None = None, laser: Literal["front", "rear"] = "front"
+    ) -> Log:
         """The log in a CARMEN file (plain or gzip): ``FLASER``, ``ROBOTLASER1``
         or ``RAWLASER1`` scans (poses from ``ODOM`` interpolated for the
-        last). ``max_range_m`` overrides the log's maximum range. A malformed
-        line raises ``FileFormatError`` naming the file and the line. Reads
-        with the GIL released.
+        last); with ``laser="rear"`` the rear laser's ``RLASER``,
+        ``ROBOTLASER2`` or ``RAWLASER2`` scans and mounting instead.
+        ``max_range_m`` overrides the log's maximum range. A malformed line
+        raises ``FileFormatError`` naming the file and the line. Reads with
+        the GIL released.
         """
     @staticmethod
     def from_sonar_text(

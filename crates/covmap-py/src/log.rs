@@ -4,7 +4,7 @@
 use std::path::PathBuf;
 
 use covmap::log::laser_scan::LaserScanFan;
-use covmap::{Bearings, CarmenOptions, Log, Pose, SonarTextOptions};
+use covmap::{Bearings, CarmenLaser, CarmenOptions, Log, Pose, SonarTextOptions};
 use numpy::ndarray::Array2;
 use numpy::{IntoPyArray, PyArray1, PyArray2};
 use pyo3::prelude::*;
@@ -94,14 +94,34 @@ impl PyLog {
 
     /// The log in a CARMEN file (plain or gzip): ``FLASER``, ``ROBOTLASER1``
     /// or ``RAWLASER1`` scans (poses from ``ODOM`` interpolated for the
-    /// last). ``max_range_m`` overrides the log's maximum range. A malformed
-    /// line raises ``FileFormatError`` naming the file and the line. Reads
-    /// with the GIL released.
+    /// last); with ``laser="rear"`` the rear laser's ``RLASER``,
+    /// ``ROBOTLASER2`` or ``RAWLASER2`` scans and mounting instead.
+    /// ``max_range_m`` overrides the log's maximum range. A malformed line
+    /// raises ``FileFormatError`` naming the file and the line. Reads with
+    /// the GIL released.
     #[staticmethod]
-    #[pyo3(signature = (path, *, max_range_m=None))]
-    fn from_carmen(py: Python<'_>, path: PathBuf, max_range_m: Option<f64>) -> PyResult<Self> {
+    #[pyo3(signature = (path, *, max_range_m=None, laser="front"))]
+    fn from_carmen(
+        py: Python<'_>,
+        path: PathBuf,
+        max_range_m: Option<f64>,
+        laser: &str,
+    ) -> PyResult<Self> {
+        let laser = match laser {
+            "front" => CarmenLaser::Front,
+            "rear" => CarmenLaser::Rear,
+            other => {
+                return Err(Exception::InvalidParameter.err(
+                    py,
+                    format!(
+                        "invalid parameter `laser` = {other:?}: expected \"front\" or \"rear\""
+                    ),
+                ));
+            }
+        };
         let options = CarmenOptions {
             max_range_m,
+            laser,
             ..Default::default()
         };
         py.detach(|| Log::from_carmen_with(&path, &options))

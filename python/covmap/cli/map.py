@@ -42,6 +42,13 @@ def add_arguments(command: argparse.ArgumentParser) -> None:
         "or a directory, else carmen)",
     )
     command.add_argument("--measurements", type=Path, default=None, help="a sonar-text log's measurements file")
+    command.add_argument(
+        "--laser",
+        choices=("front", "rear"),
+        default="front",
+        help="a CARMEN log's laser: front (FLASER, ROBOTLASER1, RAWLASER1) or rear (RLASER, "
+        "ROBOTLASER2, RAWLASER2); default front",
+    )
     bag = command.add_argument_group("ROS bags (--format rosbag; see covmap.Log.from_bag)")
     bag.add_argument("--topic", default=None, help="the LaserScan or Range topic (default: the bag's only one)")
     bag.add_argument(
@@ -94,6 +101,7 @@ def run(args: argparse.Namespace) -> int:
         odom_topic=args.odom_topic,
         base_frame=args.base_frame,
         fixed_frame=args.fixed_frame,
+        laser=args.laser,
     )
     # A bag's sensor_msgs/Range log is one beam along the sensor's axis.
     one_sonar = log_format == "rosbag" and log.beams == 1

@@ -42,14 +42,16 @@ def read_log(
     odom_topic: str | None = None,
     base_frame: str | None = None,
     fixed_frame: str | None = None,
+    laser: Literal["front", "rear"] = "front",
 ) -> Log:
     """The log at ``path``: a CARMEN file, (``"sonar-text"``) the poses
     file with its ``measurements`` file, or (``"rosbag"``) a ROS bag's
     ``topic`` as ``Log.from_bag`` reads it (with ``odom_topic``,
-    ``base_frame`` and ``fixed_frame``); the sonar defaults are the
+    ``base_frame`` and ``fixed_frame``); a CARMEN log's ``laser`` is its
+    front or its rear laser; the sonar defaults are the
     ``sonar-8ring`` data set's (millimetres, tenths of a degree, 5 m)."""
     if log_format == "carmen":
-        return Log.from_carmen(path, max_range_m=max_range_m)
+        return Log.from_carmen(path, max_range_m=max_range_m, laser=laser)
     if log_format == "rosbag":
         return Log.from_bag(
             path,
