@@ -207,6 +207,8 @@ class _Contents:
             contents._take(connection.topic, connection.msgtype, message, odom_topic)
         if not contents.scans:
             raise _format_error(bag, f"topic {topic}", "holds no messages")
+        if odom_topic is not None and contents.odometry is None:
+            raise _format_error(bag, f"topic {odom_topic}", "holds no messages")
         return contents
 
     @staticmethod

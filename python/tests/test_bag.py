@@ -163,6 +163,12 @@ def test_bad_bags_are_typed_errors_naming_the_file(tmp_path: Path) -> None:
         write_laser_bag(bag, mount=False)
     with pytest.raises(covmap.FileFormatError, match="no static transform from the robot's frame base_link"):
         covmap.Log.from_bag(bag.path, odom_topic="/odom")
+    with BagWriter(tmp_path, "silent-odometry", "ros2") as bag:
+        bag.writer.add_connection("/odom", "nav_msgs/msg/Odometry", typestore=bag.store)
+        bag.write("/scan", bag.laser_scan(T0, "base_link", scan_ranges(0), **FAN), T0)
+    with pytest.raises(covmap.FileFormatError, match="holds no messages") as silent:
+        covmap.Log.from_bag(bag.path, odom_topic="/odom")
+    assert silent.value.place == "topic /odom"
     with pytest.raises(covmap.FileIOError) as missing:
         covmap.Log.from_bag(tmp_path / "absent.bag")
     assert missing.value.filename == str(tmp_path / "absent.bag")
