@@ -428,12 +428,16 @@ class Log:
         sensor_offset: tuple[float, float, float] = (0.0, 0.0, 0.0),
     ) -> Log: ...
     @staticmethod
-    def from_carmen(path: str | PathLike[str], *, max_range_m: float | None = None) -> Log:
+    def from_carmen(
+        path: str | PathLike[str], *, max_range_m: float | None = None, laser: Literal["front", "rear"] = "front"
+    ) -> Log:
         """The log in a CARMEN file (plain or gzip): ``FLASER``, ``ROBOTLASER1``
         or ``RAWLASER1`` scans (poses from ``ODOM`` interpolated for the
-        last). ``max_range_m`` overrides the log's maximum range. A malformed
-        line raises ``FileFormatError`` naming the file and the line. Reads
-        with the GIL released.
+        last); with ``laser="rear"`` the rear laser's ``RLASER``,
+        ``ROBOTLASER2`` or ``RAWLASER2`` scans and mounting instead.
+        ``max_range_m`` overrides the log's maximum range. A malformed line
+        raises ``FileFormatError`` naming the file and the line. Reads with
+        the GIL released.
         """
     @staticmethod
     def from_sonar_text(
@@ -467,6 +471,28 @@ class Log:
         REP 117 is converted here: ``+inf`` and readings above ``range_max``
         have no echo; NaN, ``-inf`` and readings below ``range_min`` are
         dropped (NaN in ``ranges``). ``range_max`` is the log's maximum range.
+        """
+    @staticmethod
+    def from_bag(
+        path: str | PathLike[str],
+        *,
+        topic: str | None = None,
+        odom_topic: str | None = None,
+        base_frame: str | None = None,
+        fixed_frame: str | None = None,
+        max_range_m: float | None = None,
+    ) -> Log:
+        """The log of one sensor in a ROS 1 (``.bag``) or ROS 2 bag, read with
+        the ``rosbags`` package (``pip install 'covmap[rosbags]'``): the
+        ``sensor_msgs/LaserScan`` or ``sensor_msgs/Range`` messages on
+        ``topic`` (default: the bag's only such topic), REP 117 converted as
+        ``from_laser_scans`` does; the robot's poses from the
+        ``nav_msgs/Odometry`` on ``odom_topic``, else from ``/tf``
+        (``base_frame``, default ``base_link``, in ``fixed_frame``, default
+        the tree's root), interpolated at each message's stamp; the sensor's
+        mounting from ``/tf_static``. ``max_range_m`` overrides the messages'
+        maximum range. A bag that cannot be read or lacks what is asked
+        raises ``FileFormatError`` naming the file (see ``covmap._bag``).
         """
     @property
     def poses(self) -> npt.NDArray[np.float64]:

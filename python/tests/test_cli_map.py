@@ -7,8 +7,10 @@ from pathlib import Path
 from typing import Callable
 
 import numpy as np
+import pytest
 
 import covmap
+from bags import FORMATS, BagWriter, need_rosbags
 from cli_helpers import PNG_SIGNATURE, run_cli
 
 
@@ -74,3 +76,32 @@ def test_the_sonar_ring_maps(tmp_path: Path, shared_data: Callable[[str], Path])
     result = run_cli("map", str(poses), "--measurements", str(meas), "--resolution", "0.1", "--out", str(tmp_path))
     assert result.returncode == 0, result.stdout + result.stderr
     assert "413 of 8 beams, max range 5 m, sonar model" in result.stdout
+
+
+@pytest.mark.parametrize("bag_format", FORMATS)
+def test_a_bag_maps_as_the_same_scans_in_a_carmen_log_do(tmp_path: Path, bag_format: str) -> None:
+    need_rosbags()
+    log = tmp_path / "room.log"
+    square_room_log(log)
+    carmen = covmap.Log.from_carmen(log, max_range_m=20.0)
+    t0 = 1_700_000_000.0
+    fan = {"angle_min": float(carmen.bearings[0]), "angle_increment": math.pi / 180, "range_max": 20.0}
+    with BagWriter(tmp_path, "room", bag_format) as bag:
+        for t, pose, ranges in zip(carmen.timestamps, carmen.poses, carmen.ranges):
+            bag.write("/odom", bag.odometry(t0 + t, tuple(pose)), t0 + t)
+            bag.write("/scan", bag.laser_scan(t0 + t, "base_link", ranges, **fan), t0 + t)
+    common = ("--resolution", "0.1", "--max-range", "20")
+    result = run_cli("map", str(log), *common, "--out", str(tmp_path / "carmen"))
+    assert result.returncode == 0, result.stdout + result.stderr
+    result = run_cli("map", str(bag.path), "--odom-topic", "/odom", *common, "--out", str(tmp_path / "bag"))
+    assert result.returncode == 0, result.stdout + result.stderr
+    assert "(rosbag)" in result.stdout and "12 of 181 beams" in result.stdout
+    from_carmen = covmap.CoverageMap.load(tmp_path / "carmen" / "coverage.npz")
+    from_bag = covmap.CoverageMap.load(tmp_path / "bag" / "coverage.npz")
+    assert from_bag.grid.shape == from_carmen.grid.shape  # the bounds up to float32 ranges
+    assert from_bag.grid.bounds == pytest.approx(from_carmen.grid.bounds, abs=1e-6)
+    assert (from_bag.ml() == from_carmen.ml()).mean() > 0.99
+
+    wrong = run_cli("map", str(bag.path), "--topic", "/odom", "--out", str(tmp_path / "wrong"))
+    assert wrong.returncode == 2
+    assert f"{bag.path}: topic /odom" in wrong.stderr and "Traceback" not in wrong.stderr

@@ -215,3 +215,20 @@ def test_malformed_files_name_the_file_and_line(tmp_path: Path) -> None:
     meas.write_text("1 100 200\n3 100 200\n")
     with pytest.raises(covmap.FileFormatError, match="m.txt:2"):
         covmap.Log.from_sonar_text(poses, meas, bearings_deg=[0, 90], max_range_m=5.0)
+
+
+def test_the_rear_laser_reads_rlaser_lines_with_their_own_poses(tmp_path: Path) -> None:
+    path = tmp_path / "two-lasers.log"
+    path.write_text(
+        "PARAM robot_rear_laser_max 7.5 h 0\n"
+        "FLASER 3 1 2 3 1.2 2.0 0.5 1 2 0.5 4.0 h 4.0\n"
+        "RLASER 2 4 5 0.7 2.0 3.6 1 2 0.5 4.1 h 4.1\n"
+    )
+    front = covmap.Log.from_carmen(path)
+    rear = covmap.Log.from_carmen(path, laser="rear")
+    assert (len(front), front.beams, len(rear), rear.beams) == (1, 3, 1, 2)
+    np.testing.assert_array_equal(rear.poses, [[0.7, 2.0, 3.6]])
+    np.testing.assert_array_equal(rear.ranges, [[4.0, 5.0]])
+    assert rear.max_range_m == 7.5 and rear.timestamps.tolist() == [4.1]
+    with pytest.raises(covmap.InvalidParameterError, match="laser"):
+        covmap.Log.from_carmen(path, laser="side")  # type: ignore[arg-type]

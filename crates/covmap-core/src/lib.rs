@@ -54,7 +54,7 @@ pub use coverage_map::{
 };
 pub use error::{CovmapError, Result};
 pub use grid::{Cell, Grid, MAX_CELLS, MAX_CELLS_FROM_ZERO, MIN_RESOLUTION_M};
-pub use log::{Bearings, CarmenOptions, Log, SonarTextOptions};
+pub use log::{Bearings, CarmenLaser, CarmenOptions, Log, SonarTextOptions};
 pub use map_file::MAP_FILE_VERSION;
 pub use occupancy::{OccupancyGrid, OccupancyModel};
 pub use pose::Pose;

@@ -4,7 +4,7 @@
 use std::path::PathBuf;
 
 use covmap::log::laser_scan::LaserScanFan;
-use covmap::{Bearings, CarmenOptions, Log, Pose, SonarTextOptions};
+use covmap::{Bearings, CarmenLaser, CarmenOptions, Log, Pose, SonarTextOptions};
 use numpy::ndarray::Array2;
 use numpy::{IntoPyArray, PyArray1, PyArray2};
 use pyo3::prelude::*;
@@ -94,14 +94,34 @@ impl PyLog {
 
     /// The log in a CARMEN file (plain or gzip): ``FLASER``, ``ROBOTLASER1``
     /// or ``RAWLASER1`` scans (poses from ``ODOM`` interpolated for the
-    /// last). ``max_range_m`` overrides the log's maximum range. A malformed
-    /// line raises ``FileFormatError`` naming the file and the line. Reads
-    /// with the GIL released.
+    /// last); with ``laser="rear"`` the rear laser's ``RLASER``,
+    /// ``ROBOTLASER2`` or ``RAWLASER2`` scans and mounting instead.
+    /// ``max_range_m`` overrides the log's maximum range. A malformed line
+    /// raises ``FileFormatError`` naming the file and the line. Reads with
+    /// the GIL released.
     #[staticmethod]
-    #[pyo3(signature = (path, *, max_range_m=None))]
-    fn from_carmen(py: Python<'_>, path: PathBuf, max_range_m: Option<f64>) -> PyResult<Self> {
+    #[pyo3(signature = (path, *, max_range_m=None, laser="front"))]
+    fn from_carmen(
+        py: Python<'_>,
+        path: PathBuf,
+        max_range_m: Option<f64>,
+        laser: &str,
+    ) -> PyResult<Self> {
+        let laser = match laser {
+            "front" => CarmenLaser::Front,
+            "rear" => CarmenLaser::Rear,
+            other => {
+                return Err(Exception::InvalidParameter.err(
+                    py,
+                    format!(
+                        "invalid parameter `laser` = {other:?}: expected \"front\" or \"rear\""
+                    ),
+                ));
+            }
+        };
         let options = CarmenOptions {
             max_range_m,
+            laser,
             ..Default::default()
         };
         py.detach(|| Log::from_carmen_with(&path, &options))
@@ -170,6 +190,40 @@ impl PyLog {
         Log::from_laser_scans(poses, &ranges, &fan, timestamps)
             .map(Self)
             .or_raise(py)
+    }
+
+    /// The log of one sensor in a ROS 1 (``.bag``) or ROS 2 bag, read with
+    /// the ``rosbags`` package (``pip install 'covmap[rosbags]'``): the
+    /// ``sensor_msgs/LaserScan`` or ``sensor_msgs/Range`` messages on
+    /// ``topic`` (default: the bag's only such topic), REP 117 converted as
+    /// ``from_laser_scans`` does; the robot's poses from the
+    /// ``nav_msgs/Odometry`` on ``odom_topic``, else from ``/tf``
+    /// (``base_frame``, default ``base_link``, in ``fixed_frame``, default
+    /// the tree's root), interpolated at each message's stamp; the sensor's
+    /// mounting from ``/tf_static``. ``max_range_m`` overrides the messages'
+    /// maximum range. A bag that cannot be read or lacks what is asked
+    /// raises ``FileFormatError`` naming the file (see ``covmap._bag``).
+    #[staticmethod]
+    #[pyo3(signature = (path, *, topic=None, odom_topic=None, base_frame=None, fixed_frame=None, max_range_m=None))]
+    fn from_bag<'py>(
+        py: Python<'py>,
+        path: &Bound<'py, PyAny>,
+        topic: Option<&str>,
+        odom_topic: Option<&str>,
+        base_frame: Option<&str>,
+        fixed_frame: Option<&str>,
+        max_range_m: Option<f64>,
+    ) -> PyResult<Bound<'py, PyAny>> {
+        // The reading is Python's (rosbags is a Python package).
+        let kwargs = pyo3::types::PyDict::new(py);
+        kwargs.set_item("topic", topic)?;
+        kwargs.set_item("odom_topic", odom_topic)?;
+        kwargs.set_item("base_frame", base_frame)?;
+        kwargs.set_item("fixed_frame", fixed_frame)?;
+        kwargs.set_item("max_range_m", max_range_m)?;
+        py.import("covmap._bag")?
+            .getattr("read_bag")?
+            .call((path,), Some(&kwargs))
     }
 
     /// The robot's pose of every scan, float64, ``(N, 3)``.

@@ -5,19 +5,24 @@ from __future__ import annotations
 
 import argparse
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 from covmap.cli import _options
 from covmap.cli._progress import Progress
 
+if TYPE_CHECKING:
+    from covmap.experiments import mapping
+
 NAME = "map"
 """The command's name: ``covmap map``."""
 
-HELP = "map a recorded log (CARMEN or plain-text sonar) into a coverage map"
+HELP = "map a recorded log (CARMEN, plain-text sonar or a ROS bag) into a coverage map"
 """The command's line in ``covmap --help``."""
 
 DESCRIPTION = (
-    "Read LOG (a CARMEN log, plain or gzip, or with --format sonar-text a poses file and "
-    "its --measurements file), integrate every scan into a coverage map and into the "
+    "Read LOG (a CARMEN log, plain or gzip; with --format sonar-text a poses file and "
+    "its --measurements file; with --format rosbag a ROS 1 .bag file or a ROS 2 bag "
+    "directory, one LaserScan or Range --topic of it, which needs covmap[rosbags]), integrate every scan into a coverage map and into the "
     "occupancy-grid baseline over a grid that holds the log, and write to --out: "
     "coverage.npz (the whole posterior, CoverageMap.load reads it), map.yaml + map.pgm "
     "(the ML map for ROS map_server), occupancy.yaml + occupancy.pgm (the baseline), and "
@@ -31,16 +36,31 @@ def add_arguments(command: argparse.ArgumentParser) -> None:
     command.add_argument("log", type=Path, metavar="LOG", help="the log file (for sonar-text: its poses file)")
     command.add_argument(
         "--format",
-        choices=("carmen", "sonar-text"),
+        choices=("carmen", "sonar-text", "rosbag"),
         default=None,
-        help="the log's format (default: sonar-text with --measurements, else carmen)",
+        help="the log's format (default: sonar-text with --measurements, rosbag for a .bag file "
+        "or a directory, else carmen)",
     )
     command.add_argument("--measurements", type=Path, default=None, help="a sonar-text log's measurements file")
+    command.add_argument(
+        "--laser",
+        choices=("front", "rear"),
+        default="front",
+        help="a CARMEN log's laser: front (FLASER, ROBOTLASER1, RAWLASER1) or rear (RLASER, "
+        "ROBOTLASER2, RAWLASER2); default front",
+    )
+    bag = command.add_argument_group("ROS bags (--format rosbag; see covmap.Log.from_bag)")
+    bag.add_argument("--topic", default=None, help="the LaserScan or Range topic (default: the bag's only one)")
+    bag.add_argument(
+        "--odom-topic", default=None, help="the nav_msgs/Odometry topic of the poses (default: poses from /tf)"
+    )
+    bag.add_argument("--base-frame", default=None, help="the robot's frame (default: base_link)")
+    bag.add_argument("--fixed-frame", default=None, help="the poses' frame in /tf (default: the tree's root)")
     command.add_argument(
         "--sensor",
         choices=("laser", "sonar"),
         default=None,
-        help="the sensor model (default: laser for carmen, sonar for sonar-text)",
+        help="the sensor model (default: sonar for sonar-text and for a bag's Range topic, else laser)",
     )
     command.add_argument(
         "--resolution", type=_options.length, default=0.05, help="cell size, metres (default 0.05)"
@@ -57,16 +77,35 @@ def add_arguments(command: argparse.ArgumentParser) -> None:
     _options.add_out(command, NAME)
 
 
+def default_format(args: argparse.Namespace) -> mapping.Format:
+    """The format ``--format`` defaults to for ``args.log``."""
+    if args.measurements is not None:
+        return "sonar-text"
+    if args.log.suffix == ".bag" or args.log.is_dir():
+        return "rosbag"
+    return "carmen"
+
+
 def run(args: argparse.Namespace) -> int:
     """Map the log, write the files, print the summary."""
     from covmap.experiments import mapping
     from covmap.plot import plot_mapping
 
-    log_format = args.format or ("sonar-text" if args.measurements is not None else "carmen")
-    sensor = args.sensor or ("sonar" if log_format == "sonar-text" else "laser")
+    log_format = args.format or default_format(args)
     log = mapping.read_log(
-        args.log, log_format=log_format, measurements=args.measurements, max_range_m=args.max_range
+        args.log,
+        log_format=log_format,
+        measurements=args.measurements,
+        max_range_m=args.max_range,
+        topic=args.topic,
+        odom_topic=args.odom_topic,
+        base_frame=args.base_frame,
+        fixed_frame=args.fixed_frame,
+        laser=args.laser,
     )
+    # A bag's sensor_msgs/Range log is one beam along the sensor's axis.
+    one_sonar = log_format == "rosbag" and log.beams == 1
+    sensor: mapping.Sensor = args.sensor or ("sonar" if log_format == "sonar-text" or one_sonar else "laser")
     args.out.mkdir(parents=True, exist_ok=True)
     with Progress(2 * len(log), "scans") as progress:
         last = 0

@@ -1,7 +1,8 @@
 """A recorded log into a coverage map and the occupancy baseline: the grid
 that holds the log, both maps fed the same beams, and what they show.
 
-:func:`read_log` reads a CARMEN log or a plain-text sonar log;
+:func:`read_log` reads a CARMEN log, a plain-text sonar log or one sensor
+of a ROS bag;
 :func:`run` maps it; :func:`summary` says what came out;
 :func:`covmap.plot.plot_mapping` draws the maps. ``covmap map`` runs all
 four and writes the map files.
@@ -24,7 +25,7 @@ if TYPE_CHECKING:
 SONAR_8RING_BEARINGS_DEG = (-90.0, -37.5, -22.5, -7.5, 7.5, 22.5, 37.5, 90.0)
 """The bearings of the ``sonar-8ring`` data set's sonars, degrees."""
 
-Format = Literal["carmen", "sonar-text"]
+Format = Literal["carmen", "sonar-text", "rosbag"]
 Sensor = Literal["laser", "sonar"]
 
 
@@ -37,12 +38,29 @@ def read_log(
     length_unit_m: float = 0.001,
     angle_unit_rad: float = math.pi / 1800,
     max_range_m: float | None = None,
+    topic: str | None = None,
+    odom_topic: str | None = None,
+    base_frame: str | None = None,
+    fixed_frame: str | None = None,
+    laser: Literal["front", "rear"] = "front",
 ) -> Log:
-    """The log at ``path``: a CARMEN file, or (``"sonar-text"``) the poses
-    file with its ``measurements`` file; the sonar defaults are the
+    """The log at ``path``: a CARMEN file, (``"sonar-text"``) the poses
+    file with its ``measurements`` file, or (``"rosbag"``) a ROS bag's
+    ``topic`` as ``Log.from_bag`` reads it (with ``odom_topic``,
+    ``base_frame`` and ``fixed_frame``); a CARMEN log's ``laser`` is its
+    front or its rear laser; the sonar defaults are the
     ``sonar-8ring`` data set's (millimetres, tenths of a degree, 5 m)."""
     if log_format == "carmen":
-        return Log.from_carmen(path, max_range_m=max_range_m)
+        return Log.from_carmen(path, max_range_m=max_range_m, laser=laser)
+    if log_format == "rosbag":
+        return Log.from_bag(
+            path,
+            topic=topic,
+            odom_topic=odom_topic,
+            base_frame=base_frame,
+            fixed_frame=fixed_frame,
+            max_range_m=max_range_m,
+        )
     if measurements is None:
         raise ValueError("a sonar-text log needs its measurements file (--measurements)")
     return Log.from_sonar_text(

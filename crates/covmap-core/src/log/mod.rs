@@ -13,6 +13,6 @@ pub mod laser_scan;
 pub mod readers;
 mod record;
 
-pub use readers::carmen::CarmenOptions;
+pub use readers::carmen::{CarmenLaser, CarmenOptions};
 pub use readers::sonar_text::SonarTextOptions;
 pub use record::{Bearings, Log};

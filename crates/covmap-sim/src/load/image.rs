@@ -21,7 +21,16 @@
 //! `resolution`, `origin: [x, y, yaw]`, and optionally `negate` (0/1, default
 //! 0) and `occupied_thresh` (default 0.65); `free_thresh` and `mode: trinary`
 //! or `mode: scale` (whose obstacles are the same pixels) are accepted and
-//! ignored.
+//! ignored. The YAML is read by serde (`serde_norway`, the maintained fork
+//! of serde_yaml): a value of the wrong type is an error naming its line, a
+//! value map_server refuses one naming its key.
+//!
+//! PNG is decoded by the `png` crate. PGM keeps its own small decoder
+//! (`decode_pgm`): `png` reads no PNM, and the `image` crate would add a
+//! decoder framework's compile time for a header of four numbers; the
+//! decoder here bounds what a header may claim ([`MAX_IMAGE_PIXELS`], no
+//! reservation beyond the file's length) and names the pixel where data
+//! goes wrong.
 
 use std::io::Cursor;
 use std::path::Path;
@@ -143,100 +152,81 @@ impl World {
     }
 }
 
+/// A map_server YAML file's keys, as serde reads them (serde_norway, the
+/// maintained fork of serde_yaml); other keys are ignored, as map_server
+/// ignores them. A value of the wrong type is refused by serde, naming its
+/// line; values of the right type that map_server refuses are refused
+/// after, naming their key.
+#[derive(serde::Deserialize)]
+struct RosMapYaml {
+    image: Option<String>,
+    resolution: Option<f64>,
+    origin: Option<[f64; 3]>,
+    /// map_server's 0 or 1, or a YAML boolean.
+    negate: Option<serde_norway::Value>,
+    occupied_thresh: Option<f64>,
+    free_thresh: Option<f64>,
+    mode: Option<String>,
+}
+
 /// The image path and the options of a map_server YAML text.
 fn parse_ros_yaml(text: &str, path: &Path) -> Result<(String, ImageOptions)> {
-    let mut image = None;
-    let mut resolution = None;
-    let mut origin = None;
-    let mut options = ImageOptions::new(1.0);
-    for (i, raw) in text.lines().enumerate() {
-        let place = format!("line {}", i + 1);
-        let line = raw.split('#').next().unwrap_or("").trim();
-        if line.is_empty() {
-            continue;
-        }
-        let Some((key, value)) = line.split_once(':') else {
-            return Err(parse_error(
-                path,
-                place,
-                format!("expected `key: value`, found {line:?}"),
+    let yaml: RosMapYaml = serde_norway::from_str(text).map_err(|e| {
+        let place = e.location().map_or_else(
+            || "whole file".to_string(),
+            |l| format!("line {}", l.line()),
+        );
+        parse_error(path, place, e.to_string())
+    })?;
+    let at = |key: &str, reason: String| parse_error(path, format!("key `{key}`"), reason);
+    let numbers = [
+        ("resolution", yaml.resolution),
+        ("occupied_thresh", yaml.occupied_thresh),
+        ("free_thresh", yaml.free_thresh),
+    ];
+    for (key, v) in numbers
+        .into_iter()
+        .chain(yaml.origin.iter().flatten().map(|&v| ("origin", Some(v))))
+    {
+        if let Some(v) = v.filter(|v| !v.is_finite()) {
+            return Err(at(
+                key,
+                format!("`{key}` must be a finite number, found {v}"),
             ));
-        };
-        let value = value.trim();
-        let number = |v: &str| {
-            v.parse::<f64>()
-                .ok()
-                .filter(|x| x.is_finite())
-                .ok_or_else(|| {
-                    parse_error(
-                        path,
-                        &place,
-                        format!("`{}` must be a number, found {v:?}", key.trim()),
-                    )
-                })
-        };
-        match key.trim() {
-            "image" => image = Some(value.trim_matches(|c| c == '"' || c == '\'').to_string()),
-            "resolution" => resolution = Some(number(value)?),
-            "origin" => {
-                let inner = value
-                    .strip_prefix('[')
-                    .and_then(|v| v.strip_suffix(']'))
-                    .ok_or_else(|| {
-                        parse_error(
-                            path,
-                            &place,
-                            format!("origin must be `[x, y, yaw]`, found {value:?}"),
-                        )
-                    })?;
-                let parts = inner
-                    .split(',')
-                    .map(|t| number(t.trim()))
-                    .collect::<Result<Vec<f64>>>()?;
-                if parts.len() != 3 {
-                    return Err(parse_error(
-                        path,
-                        &place,
-                        format!("origin must have 3 numbers, found {}", parts.len()),
-                    ));
-                }
-                origin = Some([parts[0], parts[1], parts[2]]);
-            }
-            "negate" => {
-                options.negate = match value {
-                    "0" | "false" => false,
-                    "1" | "true" => true,
-                    _ => {
-                        return Err(parse_error(
-                            path,
-                            &place,
-                            format!("negate must be 0 or 1, found {value:?}"),
-                        ));
-                    }
-                }
-            }
-            "occupied_thresh" => options.occupied_thresh = number(value)?,
-            "free_thresh" => {
-                number(value)?;
-            }
-            // Both modes make an obstacle of the same pixels: those more
-            // likely occupied than `occupied_thresh`.
-            "mode" if !matches!(value, "trinary" | "scale") => {
-                return Err(parse_error(
-                    path,
-                    &place,
-                    format!("only `mode: trinary` or `mode: scale` is supported, found {value:?}"),
-                ));
-            }
-            _ => {}
         }
     }
+    let negate = match &yaml.negate {
+        None => false,
+        Some(serde_norway::Value::Bool(b)) => *b,
+        Some(serde_norway::Value::Number(n)) if matches!(n.as_u64(), Some(0 | 1)) => {
+            n.as_u64() == Some(1)
+        }
+        Some(other) => {
+            return Err(at(
+                "negate",
+                format!("negate must be 0 or 1, found {other:?}"),
+            ));
+        }
+    };
+    // Both modes make an obstacle of the same pixels: those more likely
+    // occupied than `occupied_thresh`.
+    if let Some(mode) = yaml
+        .mode
+        .filter(|m| !matches!(m.as_str(), "trinary" | "scale"))
+    {
+        return Err(at(
+            "mode",
+            format!("only `mode: trinary` or `mode: scale` is supported, found {mode:?}"),
+        ));
+    }
     let missing = |key| parse_error(path, "whole file", format!("missing key `{key}`"));
-    let image = image.ok_or_else(|| missing("image"))?;
-    options.resolution_m = resolution.ok_or_else(|| missing("resolution"))?;
-    let [x, y, yaw] = origin.ok_or_else(|| missing("origin"))?;
+    let image = yaml.image.ok_or_else(|| missing("image"))?;
+    let mut options = ImageOptions::new(yaml.resolution.ok_or_else(|| missing("resolution"))?);
+    let [x, y, yaw] = yaml.origin.ok_or_else(|| missing("origin"))?;
     options.origin_m = [x, y];
     options.yaw_rad = yaw;
+    options.negate = negate;
+    options.occupied_thresh = yaml.occupied_thresh.unwrap_or(options.occupied_thresh);
     options
         .validate()
         .map_err(|e| parse_error(path, "whole file", e.to_string()))?;

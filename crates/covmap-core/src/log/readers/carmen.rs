@@ -18,6 +18,18 @@
 //! kind: the first laser message decides which, the other kinds are
 //! skipped.
 //!
+//! One laser a log. [`CarmenLaser::Front`] (the default) reads the
+//! messages above; [`CarmenLaser::Rear`] reads the rear laser's instead:
+//! `RLASER` (laid out as `FLASER`, its pose the rear laser's own, its 180
+//! degrees in front of the rear laser), `ROBOTLASER2` and `RAWLASER2` (as
+//! `ROBOTLASER1` and `RAWLASER1`), with the rear laser's mounting
+//! (`PARAM robot_rearlaser_offset`, `_side_offset`, `_angular_offset`) for
+//! `RAWLASER2` and its maximum range `PARAM robot_rear_laser_max`. (None
+//! of the four logs in `../shared/data/carmen/` holds rear-laser
+//! messages; the rear reading follows the format CARMEN's logger writes
+//! and is tested on written lines.) A rear scan is never mixed into a
+//! front log: the two lasers look different ways from different places.
+//!
 //! Spacing of `FLASER` beams. The message says only how many beams there
 //! are; the 180 degrees and the first bearing at -90 degrees are CARMEN's
 //! convention for the SICK scanners of these logs, whose steps are 1 or
@@ -34,7 +46,7 @@
 //! agree best from scan to scan.)
 //!
 //! The maximum range: [`CarmenOptions::max_range_m`] if given, else
-//! `PARAM robot_front_laser_max` if the log has it, else the largest
+//! `PARAM robot_front_laser_max` (`robot_rear_laser_max`) if the log has it, else the largest
 //! `max` of the `ROBOTLASER1`/`RAWLASER1` messages, else the largest
 //! `FLASER` reading (the value the scanner reports for no return).
 
@@ -56,9 +68,50 @@ pub struct CarmenOptions {
     /// The sensor's maximum range, metres (readings at or above it have no
     /// echo); `None`: as the module documentation says.
     pub max_range_m: Option<f64>,
-    /// The step between `FLASER` beams, radians; `None`: CARMEN's
-    /// convention (see the module documentation).
+    /// The step between `FLASER` (or `RLASER`) beams, radians; `None`:
+    /// CARMEN's convention (see the module documentation).
     pub flaser_step_rad: Option<f64>,
+    /// Which laser's scans to read.
+    pub laser: CarmenLaser,
+}
+
+/// The laser of a CARMEN log whose scans a [`Log`] holds.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum CarmenLaser {
+    /// The front laser: `FLASER`, `ROBOTLASER1`, `RAWLASER1`.
+    #[default]
+    Front,
+    /// The rear laser: `RLASER`, `ROBOTLASER2`, `RAWLASER2`.
+    Rear,
+}
+
+impl CarmenLaser {
+    /// This laser's messages: as `FLASER`, `ROBOTLASER1`, `RAWLASER1`.
+    fn messages(self) -> [&'static str; 3] {
+        match self {
+            Self::Front => ["FLASER", "ROBOTLASER1", "RAWLASER1"],
+            Self::Rear => ["RLASER", "ROBOTLASER2", "RAWLASER2"],
+        }
+    }
+
+    /// This laser's `PARAM`s: its offset forward, sideways, its angle, its
+    /// maximum range.
+    fn params(self) -> [&'static str; 4] {
+        match self {
+            Self::Front => [
+                "robot_frontlaser_offset",
+                "robot_frontlaser_side_offset",
+                "robot_frontlaser_angular_offset",
+                "robot_front_laser_max",
+            ],
+            Self::Rear => [
+                "robot_rearlaser_offset",
+                "robot_rearlaser_side_offset",
+                "robot_rearlaser_angular_offset",
+                "robot_rear_laser_max",
+            ],
+        }
+    }
 }
 
 #[derive(Clone, Copy, PartialEq, Debug)]
@@ -159,16 +212,17 @@ fn read_line(
     let Ok(word) = f.word("message") else {
         return Ok(());
     };
+    let kinds = [Kind::Flaser, Kind::RobotLaser, Kind::RawLaser];
     let kind = match word {
-        "FLASER" => Kind::Flaser,
-        "ROBOTLASER1" => Kind::RobotLaser,
-        "RAWLASER1" => Kind::RawLaser,
         "ODOM" => {
             state.odom.push(read_odom(&mut f)?);
             return Ok(());
         }
-        "PARAM" => return read_param(&mut f, state),
-        _ => return Ok(()),
+        "PARAM" => return read_param(&mut f, state, options.laser),
+        _ => match options.laser.messages().iter().position(|m| *m == word) {
+            Some(i) => kinds[i],
+            None => return Ok(()),
+        },
     };
     if *state.kind.get_or_insert(kind) != kind {
         return Ok(());
@@ -184,14 +238,18 @@ fn read_odom(f: &mut Fields) -> std::result::Result<(f64, Pose), String> {
     Ok((f.number("timestamp")?, pose))
 }
 
-fn read_param(f: &mut Fields, state: &mut State) -> std::result::Result<(), String> {
+fn read_param(
+    f: &mut Fields,
+    state: &mut State,
+    laser: CarmenLaser,
+) -> std::result::Result<(), String> {
     let name = f.word("parameter name")?;
-    let slot = match name {
-        "robot_frontlaser_offset" => &mut state.offset.x_m,
-        "robot_frontlaser_side_offset" => &mut state.offset.y_m,
-        "robot_frontlaser_angular_offset" => &mut state.offset.theta_rad,
-        "robot_front_laser_max" => state.param_max_m.get_or_insert(0.0),
-        _ => return Ok(()),
+    let slot = match laser.params().iter().position(|p| *p == name) {
+        Some(0) => &mut state.offset.x_m,
+        Some(1) => &mut state.offset.y_m,
+        Some(2) => &mut state.offset.theta_rad,
+        Some(_) => state.param_max_m.get_or_insert(0.0),
+        None => return Ok(()),
     };
     *slot = f.number(name)?;
     Ok(())
@@ -311,7 +369,8 @@ fn finish(state: State, lines: &Lines, options: &CarmenOptions) -> Result<Log> {
         reason,
     };
     let (Some(kind), Some(beams)) = (state.kind, state.beams) else {
-        return Err(end("no FLASER, ROBOTLASER1 or RAWLASER1 message".into()));
+        let [a, b, c] = options.laser.messages();
+        return Err(end(format!("no {a}, {b} or {c} message")));
     };
     let max_range_m = options
         .max_range_m

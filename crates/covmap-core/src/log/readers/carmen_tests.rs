@@ -138,3 +138,69 @@ fn bad_options_are_parameter_errors() {
         "{err}"
     );
 }
+
+fn parse_laser(text: &str, laser: CarmenLaser) -> Result<Log> {
+    let options = CarmenOptions {
+        laser,
+        ..Default::default()
+    };
+    Log::read_carmen(
+        std::io::Cursor::new(text.as_bytes().to_vec()),
+        "t.log",
+        &options,
+    )
+}
+
+#[test]
+fn rlaser_lines_are_the_rear_laser_log_and_never_mixed_into_the_front_one() {
+    // A robot at (1, 2) heading 0.5: the front laser 0.2 m ahead, the rear
+    // one 0.3 m behind and turned round; each line's pose is its laser's.
+    let text = "PARAM robot_frontlaser_offset 0.2 h 0\n\
+                PARAM robot_rearlaser_offset -0.3 h 0\n\
+                PARAM robot_rear_laser_max 7.5 h 0\n\
+                FLASER 3 1.0 2.0 3.0 1.2 2.0 0.5 1 2 0.5 4.0 h 4.0\n\
+                RLASER 2 4.0 5.0 0.7 2.0 3.6 1 2 0.5 4.1 h 4.1\n\
+                FLASER 3 1.5 2.5 3.5 1.3 2.0 0.5 1 2 0.5 5.0 h 5.0\n\
+                RLASER 2 4.5 5.5 0.8 2.0 3.7 1 2 0.5 5.1 h 5.1\n";
+    let front = parse_laser(text, CarmenLaser::Front).unwrap();
+    assert_eq!((front.len(), front.beams()), (2, 3));
+    assert_eq!(front.timestamps_s(), &[4.0, 5.0]);
+    let rear = parse_laser(text, CarmenLaser::Rear).unwrap();
+    assert_eq!((rear.len(), rear.beams()), (2, 2));
+    assert_eq!(rear.timestamps_s(), &[4.1, 5.1]);
+    assert_eq!(rear.poses()[1], Pose::new(0.8, 2.0, 3.7));
+    assert_eq!(rear.scan_ranges(0), &[4.0, 5.0]);
+    assert_eq!(rear.max_range_m(), 7.5);
+    // As FLASER's, the pose is the laser's own: no offset applied again.
+    assert_eq!(rear.sensor_offset(), Pose::default());
+    // A log without rear messages names what it looked for.
+    let only_front = "FLASER 1 1 0 0 0 0 0 0 1.0 h 1\n";
+    match parse_laser(only_front, CarmenLaser::Rear) {
+        Err(CovmapError::Parse { reason, .. }) => {
+            assert!(
+                reason.contains("no RLASER, ROBOTLASER2 or RAWLASER2"),
+                "{reason}"
+            )
+        }
+        other => panic!("expected a parse error, got {other:?}"),
+    }
+}
+
+#[test]
+fn rawlaser2_takes_the_rear_lasers_mounting() {
+    let text = "PARAM robot_frontlaser_offset 0.25 h 0\n\
+                PARAM robot_rearlaser_offset -0.3 h 0\n\
+                PARAM robot_rearlaser_side_offset 0.05 h 0\n\
+                PARAM robot_rearlaser_angular_offset 3.0 h 0\n\
+                ODOM 0 0 0 0 0 0 10.0 h 10\n\
+                RAWLASER1 0 -1.0 2.0 0.5 20.0 0.01 0 3 1 2 3 0 10.0 h 10\n\
+                RAWLASER2 0 -1.0 2.0 1.0 9.0 0.01 0 2 4 5 0 10.0 h 10\n";
+    let rear = parse_laser(text, CarmenLaser::Rear).unwrap();
+    assert_eq!((rear.len(), rear.beams(), rear.max_range_m()), (1, 2, 9.0));
+    assert_eq!(rear.sensor_offset(), Pose::new(-0.3, 0.05, 3.0));
+    let front = parse_laser(text, CarmenLaser::Front).unwrap();
+    assert_eq!(
+        (front.beams(), front.sensor_offset()),
+        (3, Pose::new(0.25, 0.0, 0.0))
+    );
+}

@@ -180,3 +180,47 @@ fn a_png_header_claiming_a_huge_image_is_refused_before_decoding() {
         );
     }
 }
+
+#[test]
+fn yaml_values_map_server_refuses_name_their_line() {
+    let base = "image: m.png\nresolution: 0.5\norigin: [0, 0, 0]\n";
+    for (extra, place, says) in [
+        (
+            "free_thresh: [1]\n",
+            "line 4",
+            "invalid type: sequence, expected f64",
+        ),
+        ("negate: 2\n", "key `negate`", "negate must be 0 or 1"),
+        ("negate: yes\n", "key `negate`", "negate must be 0 or 1"),
+        (
+            "mode: raw\n",
+            "key `mode`",
+            "only `mode: trinary` or `mode: scale`",
+        ),
+        (
+            "occupied_thresh: .nan\n",
+            "key `occupied_thresh`",
+            "must be a finite number",
+        ),
+    ] {
+        let e = parse_ros_yaml(&format!("{base}{extra}"), Path::new("m.yaml")).unwrap_err();
+        let text = e.to_string();
+        assert!(
+            text.starts_with(&format!("m.yaml, {place}")),
+            "{extra}: {text}"
+        );
+        assert!(text.contains(says), "{extra}: {text}");
+    }
+    // Quoted values, flow mappings and unknown keys read as map_server reads them.
+    let (image, o) = parse_ros_yaml(
+        "{image: \"a b.pgm\", resolution: 0.1, origin: [1, 2, 0.5], negate: true, unknown: 3}",
+        Path::new("m.yaml"),
+    )
+    .unwrap();
+    assert_eq!(
+        (image.as_str(), o.origin_m, o.yaw_rad, o.negate),
+        ("a b.pgm", [1.0, 2.0], 0.5, true)
+    );
+    let e = parse_ros_yaml("- a list\n", Path::new("m.yaml")).unwrap_err();
+    assert!(e.to_string().starts_with("m.yaml, line 1"), "{e}");
+}
