@@ -35,6 +35,7 @@ mod grid;
 pub mod histogram;
 pub mod log;
 mod map_file;
+mod memory;
 #[doc = include_str!("model.md")]
 pub mod model {}
 mod numeric;
