@@ -23,6 +23,7 @@
 //! assert!((entropy[at(9.0, 9.0)] - 16f32.ln()).abs() < 1e-6); // never seen: the prior
 //! ```
 #![warn(missing_docs)]
+#![cfg_attr(not(test), deny(clippy::unwrap_used, clippy::expect_used))]
 
 mod aligned;
 mod counting;

@@ -54,6 +54,10 @@ impl CoverageMap {
     /// # Panics
     /// If the histograms (64 bytes a cell) cannot be allocated;
     /// [`Self::with_bins`] returns an error instead.
+    #[allow(
+        clippy::expect_used,
+        reason = "documented under Panics; with_bins is the fallible form"
+    )]
     pub fn new(grid: Grid) -> Self {
         Self::with_bins(grid, DEFAULT_BINS)
             .expect("the default bin count is valid and the map fits in memory")
