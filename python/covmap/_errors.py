@@ -76,6 +76,14 @@ class InvalidParameterError(CovmapError, ValueError):
     """A sensor-model or map parameter (or a bin count) is out of its valid range."""
 
 
+class IntegerOverflowError(InvalidParameterError, OverflowError):
+    """An integer argument lies beyond what covmap takes: most integers are
+    64-bit signed (``-2**63`` to ``2**63 - 1``), seeds unsigned (up to
+    ``2**64 - 1``); the message names the argument and the limit. An
+    :class:`InvalidParameterError` (a :class:`ValueError`) and an
+    :class:`OverflowError`, as Python's own conversions raise."""
+
+
 class InvalidRangeError(CovmapError, ValueError):
     """A range reading is NaN, infinite or negative."""
 
@@ -110,11 +118,6 @@ class InvalidHistoryError(CovmapError, ValueError):
     negative, or above the prior's ``ln(bins)``)."""
 
 
-class IntegerOverflowError(CovmapError, ValueError, OverflowError):
-    """An integer argument lies beyond what covmap takes: most integers are
-    64-bit signed (``-2**63`` to ``2**63 - 1``), seeds and counts unsigned;
-    the message names the argument and the limit. Also an
-    :class:`OverflowError`, as Python's own conversions raise."""
 
 
 class OutOfMemoryError(CovmapError, MemoryError):

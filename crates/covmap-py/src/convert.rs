@@ -357,8 +357,9 @@ fn per_cell<T: Element + Copy>(
 
 /// A seed for the random generators, from a Python integer (an `int`, a
 /// numpy integer, anything with `__index__`): 0 to 2**64 - 1. Anything else
-/// raises `InvalidTypeError`, an integer out of that range
-/// `InvalidParameterError`.
+/// raises `InvalidTypeError`, a negative integer `InvalidParameterError`,
+/// one of 2**64 or more `IntegerOverflowError` (an `InvalidParameterError`
+/// and an `OverflowError`).
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct Seed(pub(crate) u64);
 
@@ -370,6 +371,13 @@ impl<'a, 'py> FromPyObject<'a, 'py> for Seed {
             return Ok(Self(seed));
         }
         match obj.call_method0(pyo3::intern!(py, "__index__")) {
+            // Beyond 64 bits, as Python's own conversion says it.
+            Ok(value) if value.gt(0).unwrap_or(false) => Err(Exception::IntegerOverflow.err(
+                py,
+                format!(
+                    "invalid parameter `seed` = {value}: expected an integer from 0 to 2**64 - 1"
+                ),
+            )),
             Ok(value) => Err(Exception::InvalidParameter.err(
                 py,
                 format!(
