@@ -36,7 +36,7 @@ mod grid;
 pub mod histogram;
 pub mod log;
 mod map_file;
-mod memory;
+pub mod memory;
 #[doc = include_str!("model.md")]
 pub mod model {}
 mod numeric;

@@ -4,12 +4,13 @@
 //! may hold up to [`crate::MAX_CELLS`] cells: a read-out of a large map can
 //! ask for more memory than there is. `Vec::with_capacity`, `vec![..]` and
 //! `collect` abort the process when the allocator says no; these ask with
-//! `try_reserve_exact` and answer [`CovmapError::OutOfMemory`] instead.
+//! `try_reserve_exact` and answer [`CovmapError::OutOfMemory`] instead. The
+//! simulator allocates its ground truth and decoded images through them.
 
 use crate::error::{CovmapError, Result};
 
 /// The error for `len` elements of `T` for `what` that could not be had.
-pub(crate) fn out_of_memory<T>(what: &str, len: usize) -> CovmapError {
+pub fn out_of_memory<T>(what: &str, len: usize) -> CovmapError {
     CovmapError::OutOfMemory {
         what: what.to_owned(),
         bytes: len as u128 * size_of::<T>() as u128,
@@ -18,7 +19,7 @@ pub(crate) fn out_of_memory<T>(what: &str, len: usize) -> CovmapError {
 
 /// An empty vector with room for `len` elements of `T`, or
 /// [`CovmapError::OutOfMemory`] naming `what`.
-pub(crate) fn try_with_capacity<T>(len: usize, what: &str) -> Result<Vec<T>> {
+pub fn try_with_capacity<T>(len: usize, what: &str) -> Result<Vec<T>> {
     let mut values = Vec::new();
     values
         .try_reserve_exact(len)
@@ -27,7 +28,7 @@ pub(crate) fn try_with_capacity<T>(len: usize, what: &str) -> Result<Vec<T>> {
 }
 
 /// `len` copies of `value`, or [`CovmapError::OutOfMemory`] naming `what`.
-pub(crate) fn try_filled<T: Clone>(value: T, len: usize, what: &str) -> Result<Vec<T>> {
+pub fn try_filled<T: Clone>(value: T, len: usize, what: &str) -> Result<Vec<T>> {
     let mut values = try_with_capacity(len, what)?;
     values.resize(len, value);
     Ok(values)
@@ -36,10 +37,7 @@ pub(crate) fn try_filled<T: Clone>(value: T, len: usize, what: &str) -> Result<V
 /// The items of `items` (exactly `len` of them, as an `ExactSizeIterator`
 /// says), collected into memory asked for first, or
 /// [`CovmapError::OutOfMemory`] naming `what`.
-pub(crate) fn try_collect<T>(
-    items: impl ExactSizeIterator<Item = T>,
-    what: &str,
-) -> Result<Vec<T>> {
+pub fn try_collect<T>(items: impl ExactSizeIterator<Item = T>, what: &str) -> Result<Vec<T>> {
     let mut values = try_with_capacity(items.len(), what)?;
     values.extend(items);
     Ok(values)

@@ -24,7 +24,7 @@
 //! above another) and coincident or overlapping polygons are handled by the
 //! parity walk without special cases.
 
-use covmap_core::{CovmapError, Grid};
+use covmap_core::{CovmapError, Grid, memory};
 
 use crate::polygon::Polygon;
 use crate::world::World;
@@ -105,23 +105,10 @@ struct Local {
     polygon: u32,
 }
 
-/// `len` zeros of `T` for `what`, or [`CovmapError::OutOfMemory`].
-fn try_zeros<T: Copy + Default>(len: usize, what: &str) -> Result<Vec<T>, CovmapError> {
-    let mut values = Vec::new();
-    values
-        .try_reserve_exact(len)
-        .map_err(|_| CovmapError::OutOfMemory {
-            what: what.to_owned(),
-            bytes: len as u128 * size_of::<T>() as u128,
-        })?;
-    values.resize(len, T::default());
-    Ok(values)
-}
-
 fn coverage(polygons: &[Polygon], grid: &Grid, parallel: bool) -> Result<Vec<f64>, CovmapError> {
     let (rows, cols) = grid.shape();
     // The result first: a grid too large for it fails before any work.
-    let mut out = try_zeros::<f64>(rows * cols, "the ground truth")?;
+    let mut out = memory::try_filled(0.0f64, rows * cols, "the ground truth")?;
     let [gx0, gy0, gx1, gy1] = grid.bounds_m();
     let col_x = |c: usize| grid.origin_m()[0] + c as f64 * grid.resolution_m();
 
@@ -187,7 +174,7 @@ fn coverage(polygons: &[Polygon], grid: &Grid, parallel: bool) -> Result<Vec<f64
         *s = acc;
         acc += n;
     }
-    let mut bucket = try_zeros::<u32>(acc, "the ground truth's column buckets")?;
+    let mut bucket = memory::try_filled(0u32, acc, "the ground truth's column buckets")?;
     let mut fill = start.clone();
     for (i, range) in ranges.iter().enumerate() {
         if let Some((first, last)) = *range {
