@@ -3,14 +3,16 @@
 Every error covmap raises for bad input is a :class:`CovmapError`; those caused
 by a bad value are also a :class:`ValueError` (a cell index out of range is an
 :class:`IndexError`, an array of the wrong dtype a :class:`TypeError`, a file
-that cannot be read an :class:`OSError`), so code that catches the builtin
-keeps working. A robot that fails during an exploration run raises
+that cannot be read an :class:`OSError`, an integer beyond 64 bits an
+:class:`OverflowError`, a result that does not fit in memory a
+:class:`MemoryError`), so code that catches the builtin keeps working. A robot that fails during an exploration run raises
 :class:`RobotError`, a :class:`RuntimeError`; a sweep whose runs raised,
 :class:`SweepError`, one too. The native module raises these classes.
 """
 
 from __future__ import annotations
 
+import re
 from typing import Any
 
 __all__ = [
@@ -24,6 +26,7 @@ __all__ = [
     "InvalidGridError",
     "InvalidHistogramError",
     "InvalidHistoryError",
+    "IntegerOverflowError",
     "InvalidParameterError",
     "InvalidPolygonError",
     "InvalidPoseError",
@@ -35,6 +38,7 @@ __all__ = [
     "InvalidValueError",
     "LengthMismatchError",
     "MissingDependencyError",
+    "OutOfMemoryError",
     "PoseOutsideMapError",
     "RobotError",
     "SchedulerError",
@@ -46,6 +50,23 @@ __all__ = [
 class CovmapError(Exception):
     """Base class of every covmap error."""
 
+    def add_note(self, note: str) -> None:
+        """Add ``note`` to the exception; the note with which the native
+        module names an argument it could not convert (``while processing
+        'resolution'``) goes into the message instead, so that the message
+        itself names the argument."""
+        match = _ARGUMENT_NOTE.fullmatch(note)
+        if match is not None and len(self.args) == 1 and isinstance(self.args[0], str):
+            self.args = (f"argument '{match.group(1)}': {self.args[0]}",)
+            return
+        # BaseException.add_note is Python 3.11's; before, notes are dropped.
+        add = getattr(super(), "add_note", None)
+        if add is not None:
+            add(note)
+
+
+_ARGUMENT_NOTE = re.compile(r"while processing '(\w+)'")
+
 
 class InvalidGridError(CovmapError, ValueError):
     """A grid was described with an unusable geometry."""
@@ -53,6 +74,14 @@ class InvalidGridError(CovmapError, ValueError):
 
 class InvalidParameterError(CovmapError, ValueError):
     """A sensor-model or map parameter (or a bin count) is out of its valid range."""
+
+
+class IntegerOverflowError(InvalidParameterError, OverflowError):
+    """An integer argument lies beyond what covmap takes: most integers are
+    64-bit signed (``-2**63`` to ``2**63 - 1``), seeds unsigned (up to
+    ``2**64 - 1``); the message names the argument and the limit. An
+    :class:`InvalidParameterError` (a :class:`ValueError`) and an
+    :class:`OverflowError`, as Python's own conversions raise."""
 
 
 class InvalidRangeError(CovmapError, ValueError):
@@ -87,6 +116,14 @@ class InvalidHistogramError(CovmapError, ValueError):
 class InvalidHistoryError(CovmapError, ValueError):
     """A stored entropy history holds an entropy no map can have (NaN, infinite,
     negative, or above the prior's ``ln(bins)``)."""
+
+
+
+
+class OutOfMemoryError(CovmapError, MemoryError):
+    """A map or a result needs more memory than can be had (a grid of many
+    cells, a read-out of a large map); the message says what and how many
+    bytes. Nothing was changed."""
 
 
 class ArrayShapeError(CovmapError, ValueError):

@@ -17,6 +17,23 @@ if TYPE_CHECKING:
 __all__ = ["ExplorationErrors", "ExplorationResult", "Step", "Timing"]
 
 REAL_TIME_SPEED_M_S = 0.5
+
+
+def real_time_factor(path_length_m: float, seconds: float, speed_m_s: float) -> float:
+    """How many times faster than real time a run of ``seconds`` was for a
+    robot driving ``path_length_m`` at ``speed_m_s`` (a positive, finite
+    number, else :class:`~covmap.InvalidParameterError`): ``inf`` for a run
+    that took no measurable time."""
+    if isinstance(speed_m_s, bool) or not isinstance(speed_m_s, (int, float, np.floating, np.integer)) or not (
+        0.0 < speed_m_s < float("inf")
+    ):
+        from covmap._errors import InvalidParameterError
+
+        raise InvalidParameterError(
+            f"invalid parameter `speed_m_s` = {speed_m_s!r}: expected a positive, finite speed (m/s)"
+        )
+    driving_s = path_length_m / float(speed_m_s)
+    return driving_s / seconds if seconds > 0.0 else float("inf")
 """The robot speed a run's wall time is compared against by default, metres
 per second (the issue's goal: far faster than a robot driving at 0.5 m/s)."""
 
@@ -158,12 +175,7 @@ class ExplorationResult:
         """How many times faster than real time the run was for a robot
         driving its path at ``speed_m_s``: the driving time over the run's
         wall time (``inf`` for a run that took no measurable time)."""
-        if not speed_m_s > 0.0:
-            from covmap._errors import InvalidParameterError
-
-            raise InvalidParameterError(f"invalid parameter `speed_m_s` = {speed_m_s}: expected a positive speed")
-        driving_s = self.path_length_m / speed_m_s
-        return driving_s / self.seconds if self.seconds > 0.0 else float("inf")
+        return real_time_factor(self.path_length_m, self.seconds, speed_m_s)
 
     def __repr__(self) -> str:
         return (

@@ -51,6 +51,7 @@ spec's index.
 from __future__ import annotations
 
 import difflib
+import math
 import os
 import pickle
 import queue
@@ -69,7 +70,7 @@ from covmap._errors import (
     SchedulerError,
     SweepError,
 )
-from covmap._exploration import REAL_TIME_SPEED_M_S, ExplorationErrors, Timing
+from covmap._exploration import REAL_TIME_SPEED_M_S, ExplorationErrors, Timing, real_time_factor
 
 if TYPE_CHECKING:
     from collections.abc import Iterator, Mapping, Sequence
@@ -163,12 +164,7 @@ class RunSummary:
         """How many times faster than real time the run was for a robot
         driving its path at ``speed_m_s`` (see
         :meth:`covmap.ExplorationResult.real_time_factor`)."""
-        if not speed_m_s > 0.0:
-            from covmap._errors import InvalidParameterError
-
-            raise InvalidParameterError(f"invalid parameter `speed_m_s` = {speed_m_s}: expected a positive speed")
-        driving_s = self.path_length_m / speed_m_s
-        return driving_s / self.seconds if self.seconds > 0.0 else float("inf")
+        return real_time_factor(self.path_length_m, self.seconds, speed_m_s)
 
     def _outcome(self) -> tuple[Any, ...]:
         return (
@@ -549,6 +545,10 @@ def _gather(
         raise
 
 
+#: The most worker processes :func:`dask_client` starts on this machine.
+MAX_LOCAL_WORKERS = 1024
+
+
 @contextmanager
 def dask_client(
     address: str | None = None, *, workers: int | None = None, timeout_s: float = 10.0
@@ -563,6 +563,20 @@ def dask_client(
         from covmap._errors import InvalidTypeError
 
         raise InvalidTypeError("dask_client takes an address or a number of workers, not both or neither")
+    if isinstance(timeout_s, bool) or not isinstance(timeout_s, (int, float)) or not 0 < timeout_s < math.inf:
+        from covmap._errors import InvalidParameterError
+
+        raise InvalidParameterError(
+            f"invalid parameter `timeout_s` = {timeout_s!r}: expected a positive, finite number of seconds"
+        )
+    if workers is not None and (
+        isinstance(workers, bool) or not isinstance(workers, int) or not 1 <= workers <= MAX_LOCAL_WORKERS
+    ):
+        from covmap._errors import InvalidParameterError
+
+        raise InvalidParameterError(
+            f"invalid parameter `workers` = {workers!r}: expected from 1 to {MAX_LOCAL_WORKERS} workers"
+        )
     try:
         from distributed import Client, LocalCluster
     except ImportError:
@@ -570,10 +584,6 @@ def dask_client(
             "Dask is not installed: pip install 'covmap[dask]' (dask.distributed)"
         ) from None
     if workers is not None:
-        if isinstance(workers, bool) or not isinstance(workers, int) or workers < 1:
-            from covmap._errors import InvalidParameterError
-
-            raise InvalidParameterError(f"invalid parameter `workers` = {workers!r}: expected at least one worker")
         with LocalCluster(
             n_workers=workers, processes=True, threads_per_worker=1, dashboard_address=None
         ) as cluster, Client(cluster) as client:

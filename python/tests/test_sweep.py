@@ -141,7 +141,7 @@ def test_a_dead_scheduler_is_a_clear_error() -> None:
         ({"strategy": {"name": "coverage", "alpha": 2.0}}, "spec 2: InvalidParameterError.*alpha"),
         ({"seed": -1}, "spec 2: InvalidParameterError.*seed"),
         ({"seed": 1.5}, "spec 2: InvalidTypeError: seed must be an integer"),
-        ({"resolution": "fine"}, "spec 2: TypeError"),
+        ({"resolution": "fine"}, "spec 2: InvalidTypeError: argument 'resolution'"),
         ({"resolution": -0.1}, "spec 2: InvalidParameterError.*resolution"),
         ({"start": (2.0, 1.0, 0.0)}, "spec 2: InvalidStartError"),
         ({"sensor": "sonar"}, "spec 2: InvalidTypeError: sensor must be a SonarRing or a Laser"),

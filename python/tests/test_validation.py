@@ -119,19 +119,21 @@ def test_wrong_argument_types_are_type_errors(grid: covmap.Grid, model: Any) -> 
 
 def test_every_error_class_derives_from_covmap_error() -> None:
     classes = [getattr(covmap, name) for name in covmap.__all__ if name.endswith("Error")]
-    assert len(classes) == 26
+    assert len(classes) == 28
     for cls in classes:
         assert issubclass(cls, covmap.CovmapError)
         # RobotError is no bad input: a robot's sensor or drive failed during a
         # run; SweepError, that some runs of a sweep raised.
         assert cls in (covmap.CovmapError, covmap.RobotError, covmap.SweepError) or issubclass(
-            cls, (ValueError, IndexError, TypeError, OSError, ImportError)
+            cls, (ValueError, IndexError, TypeError, OSError, ImportError, MemoryError)
         )
     assert issubclass(covmap.SweepError, RuntimeError) and not issubclass(covmap.SweepError, ValueError)
     assert issubclass(covmap.InvalidSpecError, ValueError) and issubclass(covmap.InvalidExecutorError, ValueError)
     assert issubclass(covmap.SchedulerError, OSError) and issubclass(covmap.MissingDependencyError, ImportError)
     assert issubclass(covmap.RobotError, RuntimeError) and not issubclass(covmap.RobotError, ValueError)
     assert issubclass(covmap.InvalidStartError, ValueError)
+    assert issubclass(covmap.IntegerOverflowError, OverflowError) and issubclass(covmap.IntegerOverflowError, ValueError)
+    assert issubclass(covmap.OutOfMemoryError, MemoryError)
     assert issubclass(covmap.CellOutOfBoundsError, IndexError)
     assert issubclass(covmap.ArrayDtypeError, TypeError)
     assert issubclass(covmap.InvalidTypeError, TypeError)
@@ -253,3 +255,31 @@ def test_masked_arrays_are_refused(grid: covmap.Grid) -> None:
     plain.integrate(POSE, R, B, covmap.SonarModel())
     cmap.integrate(POSE, np.ma.masked_array(R), B, covmap.SonarModel())
     np.testing.assert_array_equal(cmap.histograms, plain.histograms)
+
+
+@pytest.mark.parametrize(
+    ("call", "cls", "builtin", "argument"),
+    [
+        (lambda g: covmap.CoverageMap(g, 2**63), covmap.IntegerOverflowError, OverflowError, "bins"),
+        (lambda g: covmap.CoverageMap(g, "16"), covmap.InvalidTypeError, TypeError, "bins"),
+        (lambda g: g.cell_center(0, 2**64), covmap.IntegerOverflowError, OverflowError, "col"),
+        (lambda g: covmap.Grid(origin=(0.0, 0.0), resolution=0.1, shape=(1, 2, 3)), covmap.ArrayShapeError, ValueError, "shape"),
+        (lambda g: covmap.Planner(alpha="half"), covmap.InvalidTypeError, TypeError, "alpha"),
+        (lambda g: covmap.OccupancyGrid("grid"), covmap.InvalidTypeError, TypeError, "grid"),
+    ],
+    ids=["int 2**63", "str for int", "int 2**64", "tuple of three", "str for float", "str for Grid"],
+)
+def test_arguments_python_cannot_convert_raise_covmap_errors_naming_them(
+    grid: covmap.Grid, call: Any, cls: type[Exception], builtin: type[Exception], argument: str
+) -> None:
+    with pytest.raises(cls, match=f"argument '{argument}'") as raised:
+        call(grid)
+    assert isinstance(raised.value, builtin)
+
+
+def test_a_sequence_is_never_reserved_by_its_claimed_length(grid: covmap.Grid) -> None:
+    cmap = covmap.CoverageMap(grid)
+    with pytest.raises(covmap.ArrayShapeError, match="65536"):
+        cmap.integrate((1.0, 1.0, 0.0), range(2**62), np.zeros(3), covmap.LaserModel())
+    with pytest.raises(covmap.ArrayShapeError, match="ranges"):
+        cmap.integrate((1.0, 1.0, 0.0), np.broadcast_to(1.0, (2**40,)), np.zeros(3), covmap.LaserModel())

@@ -63,6 +63,10 @@ impl<T: Plain> Aligned<T> {
 
     /// `len` elements whose bits are all zero (`0.0`).
     pub(crate) fn zeroed(len: usize) -> Self {
+        #[allow(
+            clippy::expect_used,
+            reason = "the length of an existing slice, whose bytes fit in isize"
+        )]
         let bytes = len
             .checked_mul(size_of::<T>())
             .expect("buffer size overflows");

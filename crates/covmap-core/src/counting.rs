@@ -73,6 +73,10 @@ fn check_discount(discount_beyond_m: f64) -> Result<()> {
 
 impl ScanCounts {
     /// Zero counts over `grid`, every beam counting 1.
+    ///
+    /// # Panics
+    /// If its 4 bytes a cell cannot be allocated ([`ScanCounts::try_new`]
+    /// returns an error instead).
     pub fn new(grid: Grid) -> Self {
         Self {
             grid,
@@ -81,13 +85,23 @@ impl ScanCounts {
         }
     }
 
+    /// [`ScanCounts::new`], or [`CovmapError::OutOfMemory`] where its 4
+    /// bytes a cell cannot be allocated.
+    pub fn try_new(grid: Grid) -> Result<Self> {
+        Ok(Self {
+            grid,
+            discount_beyond_m: None,
+            counts: crate::memory::try_filled(0.0, grid.len(), "the scan counts")?,
+        })
+    }
+
     /// Zero counts over `grid`; beams longer than `discount_beyond_m` count
     /// `discount_beyond_m / d`.
     pub fn with_discount(grid: Grid, discount_beyond_m: f64) -> Result<Self> {
         check_discount(discount_beyond_m)?;
         Ok(Self {
             discount_beyond_m: Some(discount_beyond_m),
-            ..Self::new(grid)
+            ..Self::try_new(grid)?
         })
     }
 

@@ -161,6 +161,15 @@ pub enum CovmapError {
         /// What the line should have held.
         reason: String,
     },
+    /// The memory for a map or a result could not be had: it asked more
+    /// than the allocator gave (or more than an address can span).
+    #[error("{what} needs {bytes} bytes, more than can be allocated")]
+    OutOfMemory {
+        /// What was being allocated (`"the occupancy grid's log-odds"`).
+        what: String,
+        /// The bytes asked for.
+        bytes: u128,
+    },
 }
 
 impl CovmapError {

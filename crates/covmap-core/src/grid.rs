@@ -110,6 +110,13 @@ impl Grid {
             origin_m[0] + cols as f64 * resolution_m,
             origin_m[1] + rows as f64 * resolution_m,
         ];
+        if !(far[0].is_finite() && far[1].is_finite()) {
+            return Err(CovmapError::InvalidGrid(format!(
+                "the far corner ({:e}, {:e}) of {rows} x {cols} cells of {resolution_m:e} m from \
+                 ({:e}, {:e}) is not finite: the bounds overflow",
+                far[0], far[1], origin_m[0], origin_m[1]
+            )));
+        }
         let largest = origin_m
             .iter()
             .chain(&far)
@@ -291,6 +298,9 @@ mod tests {
             "UTM coordinates"
         );
         assert!(Grid::new([0.0, 0.0], 1e-6, 1, 40).is_ok());
+        // Bounds that overflow to infinity, though no corner is many cells out.
+        let err = Grid::new([1.7e308, 0.0], 1e300, 1, 10_000_000).unwrap_err();
+        assert!(err.to_string().contains("overflow"), "{err}");
     }
 
     #[test]

@@ -23,6 +23,7 @@
 //! assert!((entropy[at(9.0, 9.0)] - 16f32.ln()).abs() < 1e-6); // never seen: the prior
 //! ```
 #![warn(missing_docs)]
+#![cfg_attr(not(test), deny(clippy::unwrap_used, clippy::expect_used))]
 
 mod aligned;
 mod counting;
@@ -36,6 +37,7 @@ pub mod histogram;
 pub mod learn;
 pub mod log;
 mod map_file;
+pub mod memory;
 #[doc = include_str!("model.md")]
 pub mod model {}
 mod numeric;

@@ -6,6 +6,7 @@ use crate::counting::ScanCounts;
 use crate::error::{CovmapError, Result, check_parameter};
 use crate::footprint::visit;
 use crate::grid::Grid;
+use crate::memory;
 use crate::pose::{Pose, validate_scan};
 use crate::sensor::SensorModel;
 
@@ -116,7 +117,8 @@ impl OccupancyGrid {
     /// An unknown (p = 0.5) grid with the default model and undiscounted counts.
     ///
     /// # Panics
-    /// If its 8 bytes a cell cannot be allocated.
+    /// If its 8 bytes a cell cannot be allocated ([`OccupancyGrid::try_new`]
+    /// returns an error instead).
     pub fn new(grid: Grid) -> Self {
         Self {
             model: OccupancyModel::default(),
@@ -125,12 +127,24 @@ impl OccupancyGrid {
         }
     }
 
-    /// An unknown grid with `model`, counting into `counts` (which sets the grid).
+    /// [`OccupancyGrid::new`], or [`CovmapError::OutOfMemory`] where its 8
+    /// bytes a cell cannot be allocated.
+    pub fn try_new(grid: Grid) -> Result<Self> {
+        Self::with_model(OccupancyModel::default(), ScanCounts::try_new(grid)?)
+    }
+
+    /// An unknown grid with `model`, counting into `counts` (which sets the
+    /// grid); [`CovmapError::OutOfMemory`] where its log-odds cannot be
+    /// allocated.
     pub fn with_model(model: OccupancyModel, counts: ScanCounts) -> Result<Self> {
         model.validate()?;
         Ok(Self {
             model,
-            log_odds: vec![0.0; counts.grid().len()],
+            log_odds: memory::try_filled(
+                0.0,
+                counts.grid().len(),
+                "the occupancy grid's log-odds",
+            )?,
             counts,
         })
     }
@@ -149,10 +163,15 @@ impl OccupancyGrid {
     }
     /// Probability of occupancy, row-major.
     pub fn probabilities(&self) -> Vec<f32> {
-        self.log_odds
-            .iter()
-            .map(|l| 1.0 / (1.0 + (-l).exp()))
-            .collect()
+        self.log_odds.iter().map(probability).collect()
+    }
+    /// [`OccupancyGrid::probabilities`], or [`CovmapError::OutOfMemory`]
+    /// where the result cannot be allocated.
+    pub fn try_probabilities(&self) -> Result<Vec<f32>> {
+        memory::try_collect(
+            self.log_odds.iter().map(probability),
+            "the occupancy probabilities",
+        )
     }
     /// The scan counts of the same beams.
     pub fn counts(&self) -> &ScanCounts {
@@ -163,11 +182,19 @@ impl OccupancyGrid {
     /// them (their scan count is above 0) or a contact marked them. The
     /// others are unknown, whatever their probability reads (0.5).
     pub fn observed(&self) -> Vec<bool> {
+        self.observations().collect()
+    }
+    /// [`OccupancyGrid::observed`], or [`CovmapError::OutOfMemory`] where
+    /// the result cannot be allocated.
+    pub fn try_observed(&self) -> Result<Vec<bool>> {
+        memory::try_collect(self.observations(), "the observed cells")
+    }
+    /// Whether evidence has reached each cell, row-major.
+    fn observations(&self) -> impl ExactSizeIterator<Item = bool> + '_ {
         self.log_odds
             .iter()
             .zip(self.counts.counts())
             .map(|(&l, &c)| l != 0.0 || c > 0.0)
-            .collect()
     }
 
     /// Integrate a contact: the robot touched an obstacle in `cell`, which
@@ -263,6 +290,11 @@ impl OccupancyGrid {
         self.counts
             .count(pose, ranges, bearings, model, no_echo_reach_m);
     }
+}
+
+/// The probability of occupancy of log-odds `l`.
+fn probability(l: &f32) -> f32 {
+    1.0 / (1.0 + (-l).exp())
 }
 
 #[cfg(test)]

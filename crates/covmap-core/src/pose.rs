@@ -29,6 +29,15 @@ impl Pose {
 }
 
 impl Pose {
+    /// Errors ([`CovmapError::InvalidBearing`]) on the first of `bearings`
+    /// (radians, relative to the heading) that is not finite or whose beam
+    /// direction, heading plus bearing, is not: the rule every scan is held
+    /// to, integrated or simulated. The heading must be finite
+    /// ([`Pose::check_finite`]).
+    pub fn check_bearings(&self, bearings: &[f64]) -> Result<()> {
+        check_bearings(self.theta_rad, bearings)
+    }
+
     /// Errors ([`CovmapError::InvalidPose`]) unless every component is finite.
     pub fn check_finite(&self) -> Result<()> {
         if self.x_m.is_finite() && self.y_m.is_finite() && self.theta_rad.is_finite() {

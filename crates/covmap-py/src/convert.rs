@@ -12,20 +12,26 @@ use numpy::{
     Element, IntoPyArray, PyArray2, PyArray3, PyArrayDyn, PyArrayMethods, PyUntypedArray,
     PyUntypedArrayMethods,
 };
-use pyo3::exceptions::{PyRuntimeError, PyValueError};
+use pyo3::exceptions::{
+    PyOverflowError, PyRuntimeError, PyTypeError, PyUnicodeError, PyValueError,
+};
 use pyo3::prelude::*;
+use pyo3::types::{PyBytes, PyString};
 
 use crate::errors::{Exception, to_py};
 
 /// The values of a numpy array of `ndim` dimensions and element type `T`, in
 /// row-major order, with its shape. Other dimensions or dtypes, and masked
 /// arrays with masked values, are errors: nothing is converted or dropped
-/// silently.
+/// silently. `check` sees the shape before anything is copied (a broadcast
+/// array may claim far more elements than its memory holds), and the copy's
+/// memory is asked for first (`OutOfMemoryError` where it cannot be had).
 fn numpy_values<T: Element + Copy>(
     array: &Bound<'_, PyUntypedArray>,
     name: &str,
     ndim: usize,
     expected: &str,
+    check: &dyn Fn(&[usize]) -> PyResult<()>,
 ) -> PyResult<(Vec<T>, Vec<usize>)> {
     let py = array.py();
     // A masked array with masked values would lose its mask without a word:
@@ -60,8 +66,36 @@ fn numpy_values<T: Element + Copy>(
             ),
         ));
     };
-    let values = typed.try_readonly()?.as_array().iter().copied().collect();
+    check(&shape)?;
+    let readonly = typed.try_readonly()?;
+    let view = readonly.as_array();
+    let mut values = Vec::new();
+    values
+        .try_reserve_exact(view.len())
+        .map_err(|_| out_of_memory::<T>(py, &format!("a copy of {name}"), view.len()))?;
+    values.extend(view.iter().copied());
     Ok((values, shape))
+}
+
+/// `OutOfMemoryError`: `len` values of `T` for `what` could not be had.
+fn out_of_memory<T>(py: Python<'_>, what: &str, len: usize) -> PyErr {
+    to_py(
+        py,
+        CovmapError::OutOfMemory {
+            what: what.to_owned(),
+            bytes: len as u128 * size_of::<T>() as u128,
+        },
+    )
+}
+
+/// A copy of `values` (`what` names them), in memory asked for first:
+/// `OutOfMemoryError` where it cannot be had.
+pub(crate) fn copied<T: Copy>(py: Python<'_>, values: &[T], what: &str) -> PyResult<Vec<T>> {
+    let mut copy = Vec::new();
+    copy.try_reserve_exact(values.len())
+        .map_err(|_| out_of_memory::<T>(py, what, values.len()))?;
+    copy.extend_from_slice(values);
+    Ok(copy)
 }
 
 /// The values of a float64 or float32 numpy array of `ndim` dimensions as
@@ -72,16 +106,151 @@ fn float_values(
     name: &str,
     ndim: usize,
     expected: &str,
+    check: &dyn Fn(&[usize]) -> PyResult<()>,
 ) -> PyResult<(Vec<f64>, Vec<usize>)> {
     if array.cast::<PyArrayDyn<f32>>().is_ok() {
-        let (values, shape) = numpy_values::<f32>(array, name, ndim, expected)?;
+        let (values, shape) = numpy_values::<f32>(array, name, ndim, expected, check)?;
         return Ok((values.into_iter().map(f64::from).collect(), shape));
     }
-    numpy_values::<f64>(array, name, ndim, expected)
+    numpy_values::<f64>(array, name, ndim, expected, check)
+}
+
+/// The most values covmap reads from one Python sequence or array argument
+/// that no tighter limit bounds (a list of poses, the rays of a cast, a
+/// log's timestamps): 2**26. Sequences are read element by element, never
+/// reserved by what their `len()` claims.
+pub(crate) const MAX_VALUES: usize = 1 << 26;
+
+/// `ArrayShapeError`: `name` holds `len` values, more than `max_len`.
+fn too_long(py: Python<'_>, name: &str, len: usize, max_len: usize) -> PyErr {
+    Exception::ArrayShape.err(
+        py,
+        format!("{name} holds {len} values, more than the {max_len} covmap takes"),
+    )
+}
+
+/// A check for [`numpy_values`]: at most `max_len` elements.
+fn at_most<'a>(
+    py: Python<'a>,
+    name: &'a str,
+    max_len: usize,
+) -> impl Fn(&[usize]) -> PyResult<()> + 'a {
+    move |shape: &[usize]| {
+        let len = shape.iter().try_fold(1usize, |n, &d| n.checked_mul(d));
+        match len {
+            Some(len) if len <= max_len => Ok(()),
+            _ => Err(too_long(py, name, len.unwrap_or(usize::MAX), max_len)),
+        }
+    }
+}
+
+/// Calls `each(i, item)` on the items of a Python sequence (a list, a
+/// tuple, anything with a length and an iterator that is not a string), at
+/// most `max_len` of them: its `len()` is checked first and the items are
+/// read one by one, so that neither a huge claimed length nor an endless
+/// iterator makes covmap hold more than `max_len` items. A value that is no
+/// such sequence raises `not_a_sequence()`; more items `ArrayShapeError`.
+fn each_item<'py>(
+    obj: &Bound<'py, PyAny>,
+    name: &str,
+    max_len: usize,
+    not_a_sequence: &dyn Fn() -> PyErr,
+    mut each: impl FnMut(usize, Bound<'py, PyAny>) -> PyResult<()>,
+) -> PyResult<()> {
+    let py = obj.py();
+    if obj.is_instance_of::<PyString>() || obj.is_instance_of::<PyBytes>() {
+        return Err(not_a_sequence());
+    }
+    let len = match obj.len() {
+        Ok(len) => len,
+        // A length beyond isize: more than any limit.
+        Err(e) if e.is_instance_of::<PyOverflowError>(py) => usize::MAX,
+        Err(_) => return Err(not_a_sequence()),
+    };
+    if len > max_len {
+        return Err(too_long(py, name, len, max_len));
+    }
+    for (i, item) in obj.try_iter().map_err(|_| not_a_sequence())?.enumerate() {
+        if i == max_len {
+            return Err(too_long(py, name, i + 1, max_len));
+        }
+        each(i, item?)?;
+    }
+    Ok(())
+}
+
+/// The items of a Python sequence, at most `max_len` of them, as
+/// [`each_item`] reads them.
+pub(crate) fn items<'py>(
+    obj: &Bound<'py, PyAny>,
+    name: &str,
+    max_len: usize,
+    not_a_sequence: &dyn Fn() -> PyErr,
+) -> PyResult<Vec<Bound<'py, PyAny>>> {
+    let mut items = Vec::new();
+    each_item(obj, name, max_len, not_a_sequence, |_, item| {
+        items.push(item);
+        Ok(())
+    })?;
+    Ok(items)
+}
+
+/// The numbers of a Python sequence, at most `max_len` of them, as
+/// [`each_item`] reads them. `expected` describes the argument for the
+/// message of a value that is no such sequence (`ArrayDtypeError`).
+fn number_sequence(
+    obj: &Bound<'_, PyAny>,
+    name: &str,
+    max_len: usize,
+    expected: &str,
+) -> PyResult<Vec<f64>> {
+    let py = obj.py();
+    let not_numbers = || {
+        Exception::ArrayDtype.err(
+            py,
+            format!("{name} must be {expected}, got {}", obj.get_type()),
+        )
+    };
+    let mut values = Vec::new();
+    each_item(obj, name, max_len, &not_numbers, |i, item| {
+        let value = item.extract::<f64>().map_err(|e| {
+            let message = format!("{name}[{i}] must be a number, got {}: {e}", item.get_type());
+            match e.is_instance_of::<PyOverflowError>(py) {
+                true => Exception::IntegerOverflow.err(py, message),
+                false => Exception::ArrayDtype.err(py, message),
+            }
+        })?;
+        values.push(value);
+        Ok(())
+    })?;
+    Ok(values)
+}
+
+/// Exactly `N` numbers from a Python sequence (`what` says what they are,
+/// `"(x, y, theta)"`): another length raises `ArrayShapeError`, anything
+/// else `ArrayDtypeError`.
+fn fixed_numbers<const N: usize>(
+    obj: &Bound<'_, PyAny>,
+    name: &str,
+    what: &str,
+) -> PyResult<[f64; N]> {
+    let count = match N {
+        2 => "two".to_owned(),
+        3 => "three".to_owned(),
+        n => n.to_string(),
+    };
+    let expected = format!("a sequence of {count} numbers {what}");
+    let values = number_sequence(obj, name, N, &expected)?;
+    <[f64; N]>::try_from(values.as_slice()).map_err(|_| {
+        Exception::ArrayShape.err(
+            obj.py(),
+            format!("{name} must be {expected}, got {} numbers", values.len()),
+        )
+    })
 }
 
 /// A 2-D float64 or float32 numpy array as float64 values, row-major, and
-/// its shape.
+/// its shape; at most [`MAX_VALUES`] of them.
 pub(crate) fn matrix(obj: &Bound<'_, PyAny>, name: &str) -> PyResult<(Vec<f64>, [usize; 2])> {
     let Ok(array) = obj.cast::<PyUntypedArray>() else {
         return Err(Exception::ArrayDtype.err(
@@ -92,49 +261,31 @@ pub(crate) fn matrix(obj: &Bound<'_, PyAny>, name: &str) -> PyResult<(Vec<f64>, 
             ),
         ));
     };
-    let (values, shape) = float_values(array, name, 2, "float64 or float32")?;
+    let check = at_most(obj.py(), name, MAX_VALUES);
+    let (values, shape) = float_values(array, name, 2, "float64 or float32", &check)?;
     Ok((values, [shape[0], shape[1]]))
 }
 
 /// A pose: any sequence of three numbers `(x, y, theta)`, metres and radians.
 /// Another length raises `ArrayShapeError`, anything else `ArrayDtypeError`.
 pub(crate) fn pose(obj: &Bound<'_, PyAny>) -> PyResult<Pose> {
-    let py = obj.py();
-    obj.extract::<[f64; 3]>().map(Pose::from).map_err(|e| {
-        sequence_error(
-            py,
-            &e,
-            format!("pose must be a sequence of three numbers (x, y, theta): {e}"),
-        )
-    })
+    fixed_numbers::<3>(obj, "pose", "(x, y, theta)").map(Pose::from)
 }
 
-/// The error for a sequence of numbers that could not be read (`cause`): of
-/// the wrong length (a `ValueError` from the extraction) `ArrayShapeError`,
-/// else `ArrayDtypeError`.
-fn sequence_error(py: Python<'_>, cause: &PyErr, message: String) -> PyErr {
-    if cause.is_instance_of::<PyValueError>(py) {
-        Exception::ArrayShape.err(py, message)
-    } else {
-        Exception::ArrayDtype.err(py, message)
-    }
-}
-
-/// A scan's ranges or bearings: a 1-D float64 or float32 numpy array (a ROS
-/// `LaserScan`'s ranges are float32), or a sequence of numbers.
-pub(crate) fn readings(obj: &Bound<'_, PyAny>, name: &str) -> PyResult<Vec<f64>> {
+/// A scan's ranges or bearings, or another list of numbers: a 1-D float64
+/// or float32 numpy array (a ROS `LaserScan`'s ranges are float32), or a
+/// sequence of numbers; at most `max_len` of them (`ArrayShapeError`).
+pub(crate) fn readings(obj: &Bound<'_, PyAny>, name: &str, max_len: usize) -> PyResult<Vec<f64>> {
     if let Ok(array) = obj.cast::<PyUntypedArray>() {
-        return Ok(float_values(array, name, 1, "float64 or float32")?.0);
+        let check = at_most(obj.py(), name, max_len);
+        return Ok(float_values(array, name, 1, "float64 or float32", &check)?.0);
     }
-    obj.extract::<Vec<f64>>().map_err(|_| {
-        Exception::ArrayDtype.err(
-            obj.py(),
-            format!(
-                "{name} must be a 1-D float64 or float32 numpy array or a sequence of numbers, got {}",
-                obj.get_type()
-            ),
-        )
-    })
+    number_sequence(
+        obj,
+        name,
+        max_len,
+        "a 1-D float64 or float32 numpy array or a sequence of numbers",
+    )
 }
 
 /// Histograms for a map over `grid`: a float32 array of shape `(rows, cols, bins)`.
@@ -187,24 +338,28 @@ fn per_cell<T: Element + Copy>(
             ),
         ));
     };
-    let (values, shape) = numpy_values::<T>(array, name, expected.len(), dtype)?;
-    if shape
-        .iter()
-        .zip(&expected)
-        .any(|(&n, want)| want.is_some_and(|w| w != n))
-    {
-        return Err(Exception::ArrayShape.err(
-            py,
-            format!("{name} must have shape {spelled}, got {shape:?}"),
-        ));
-    }
-    Ok((values, shape))
+    let check = |shape: &[usize]| {
+        if shape
+            .iter()
+            .zip(&expected)
+            .any(|(&n, want)| want.is_some_and(|w| w != n))
+        {
+            return Err(Exception::ArrayShape.err(
+                py,
+                format!("{name} must have shape {spelled}, got {shape:?}"),
+            ));
+        }
+        // Any bin count: the map checks it; the copy is bounded by it.
+        at_most(py, name, rows * cols * histogram::MAX_BINS)(shape)
+    };
+    numpy_values::<T>(array, name, expected.len(), dtype, &check)
 }
 
 /// A seed for the random generators, from a Python integer (an `int`, a
 /// numpy integer, anything with `__index__`): 0 to 2**64 - 1. Anything else
-/// raises `InvalidTypeError`, an integer out of that range
-/// `InvalidParameterError`.
+/// raises `InvalidTypeError`, a negative integer `InvalidParameterError`,
+/// one of 2**64 or more `IntegerOverflowError` (an `InvalidParameterError`
+/// and an `OverflowError`).
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct Seed(pub(crate) u64);
 
@@ -216,6 +371,13 @@ impl<'a, 'py> FromPyObject<'a, 'py> for Seed {
             return Ok(Self(seed));
         }
         match obj.call_method0(pyo3::intern!(py, "__index__")) {
+            // Beyond 64 bits, as Python's own conversion says it.
+            Ok(value) if value.gt(0).unwrap_or(false) => Err(Exception::IntegerOverflow.err(
+                py,
+                format!(
+                    "invalid parameter `seed` = {value}: expected an integer from 0 to 2**64 - 1"
+                ),
+            )),
             Ok(value) => Err(Exception::InvalidParameter.err(
                 py,
                 format!(
@@ -258,17 +420,19 @@ pub(crate) fn cell(py: Python<'_>, grid: &Grid, row: i64, col: i64) -> PyResult<
 }
 
 /// Rows of `K` numbers: a float64 numpy array of shape `(N, K)`, or a sequence
-/// of `N` sequences of `K` numbers. `what` describes one row for messages
-/// (`"(x, y)"`).
+/// of `N` sequences of `K` numbers, `N` at most [`MAX_VALUES`] / `K`. `what`
+/// describes one row for messages (`"(x, y)"`).
 pub(crate) fn rows<const K: usize>(
     obj: &Bound<'_, PyAny>,
     name: &str,
     what: &str,
 ) -> PyResult<Vec<[f64; K]>> {
     let py = obj.py();
+    let max_rows = MAX_VALUES / K;
     let expected = format!("float64 or float32 with shape (N, {K}), one {what} a row");
     if let Ok(array) = obj.cast::<PyUntypedArray>() {
-        let (values, shape) = float_values(array, name, 2, &expected)?;
+        let check = at_most(py, name, MAX_VALUES);
+        let (values, shape) = float_values(array, name, 2, &expected, &check)?;
         if shape[1] != K {
             return Err(Exception::ArrayShape.err(
                 py,
@@ -280,30 +444,21 @@ pub(crate) fn rows<const K: usize>(
             .map(|c| std::array::from_fn(|k| c[k]))
             .collect());
     }
-    let Ok(nested) = obj.extract::<Vec<Vec<f64>>>() else {
-        return Err(Exception::ArrayDtype.err(
+    let not_rows = || {
+        Exception::ArrayDtype.err(
             py,
             format!(
                 "{name} must be a {expected} numpy array or a sequence of {what}, got {}",
                 obj.get_type()
             ),
-        ));
+        )
     };
-    nested
-        .into_iter()
-        .enumerate()
-        .map(|(i, row)| {
-            <[f64; K]>::try_from(row.as_slice()).map_err(|_| {
-                Exception::ArrayShape.err(
-                    py,
-                    format!(
-                        "{name}[{i}] has {} numbers, expected {K}: {what}",
-                        row.len()
-                    ),
-                )
-            })
-        })
-        .collect()
+    let mut rows = Vec::new();
+    each_item(obj, name, max_rows, &not_rows, |i, row| {
+        rows.push(fixed_numbers::<K>(&row, &format!("{name}[{i}]"), what)?);
+        Ok(())
+    })?;
+    Ok(rows)
 }
 
 /// Poses: a float64 array of shape `(N, 3)` (or a sequence of `(x, y, theta)`).
@@ -334,26 +489,73 @@ pub(crate) fn finite_points(py: Python<'_>, points: &[[f64; 2]], name: &str) -> 
 /// also a pose `(x, y, theta)` whose heading is ignored. `name` names the
 /// argument in messages.
 pub(crate) fn point(obj: &Bound<'_, PyAny>, name: &str, heading_ok: bool) -> PyResult<[f64; 2]> {
-    let py = obj.py();
-    let fail = |e: PyErr| {
-        let what = if heading_ok {
-            "(x, y) or a pose (x, y, theta)"
-        } else {
-            "(x, y)"
-        };
-        sequence_error(
-            py,
-            &e,
-            format!("{name} must be a sequence of two numbers {what}: {e}"),
-        )
+    let expected = match heading_ok {
+        true => "a sequence of two numbers (x, y) or a pose (x, y, theta)",
+        false => "a sequence of two numbers (x, y)",
     };
-    match obj.extract::<Vec<f64>>() {
-        Ok(v) if v.len() == 2 || (heading_ok && v.len() == 3) => Ok([v[0], v[1]]),
-        Ok(v) => Err(fail(PyValueError::new_err(format!(
-            "got {} numbers",
-            v.len()
-        )))),
-        Err(e) => Err(fail(e)),
+    let values = number_sequence(obj, name, 3, expected)?;
+    match *values.as_slice() {
+        [x, y] => Ok([x, y]),
+        [x, y, _] if heading_ok => Ok([x, y]),
+        _ => Err(Exception::ArrayShape.err(
+            obj.py(),
+            format!("{name} must be {expected}, got {} numbers", values.len()),
+        )),
+    }
+}
+
+/// An argument converted as pyo3 converts `T`, its failures raised as
+/// covmap's errors: a value of the wrong type `InvalidTypeError`, an
+/// integer beyond `T`'s range `IntegerOverflowError`, a tuple of the wrong
+/// length `ArrayShapeError`. Used as `#[pyo3(from_py_with = convert::arg)]`
+/// on the arguments of the functions and methods; pyo3 then notes the
+/// argument's name on the exception, which `CovmapError.add_note` puts into
+/// its message.
+pub(crate) fn arg<'a, 'py, T: FromPyObject<'a, 'py>>(obj: &'a Bound<'py, PyAny>) -> PyResult<T> {
+    obj.extract::<T>()
+        .map_err(|e| as_covmap_error(obj, e.into(), std::any::type_name::<T>()))
+}
+
+/// A conversion's error `err` for `obj` (meant as a `target`) as a covmap
+/// error: errors already covmap's pass unchanged.
+pub(crate) fn as_covmap_error(obj: &Bound<'_, PyAny>, err: PyErr, target: &str) -> PyErr {
+    let py = obj.py();
+    if crate::errors::is_covmap_error(py, &err) {
+        return err;
+    }
+    // The message alone: the class is covmap's now.
+    let said = err.value(py).to_string();
+    if err.is_instance_of::<PyOverflowError>(py) {
+        let limit = if target.contains("u64") || target.contains("usize") {
+            "an integer from 0 to 2**64 - 1"
+        } else if target.contains("i64") {
+            "an integer from -2**63 to 2**63 - 1"
+        } else {
+            "a float64, at most about 1.8e308"
+        };
+        let value = obj
+            .repr()
+            .map_or_else(|_| "the value".to_owned(), |r| shortened(&r.to_string()));
+        Exception::IntegerOverflow.err(
+            py,
+            format!("{value} is out of range: expected {limit} ({said})"),
+        )
+    } else if err.is_instance_of::<PyTypeError>(py) {
+        Exception::InvalidType.err(py, format!("{said} (got {})", obj.get_type()))
+    } else if err.is_instance_of::<PyUnicodeError>(py) {
+        Exception::InvalidValue.err(py, said)
+    } else if err.is_instance_of::<PyValueError>(py) {
+        Exception::ArrayShape.err(py, said)
+    } else {
+        err
+    }
+}
+
+/// `text` cut to at most 60 characters for a message.
+fn shortened(text: &str) -> String {
+    match text.char_indices().nth(60) {
+        Some((end, _)) => format!("{}...", &text[..end]),
+        None => text.to_owned(),
     }
 }
 

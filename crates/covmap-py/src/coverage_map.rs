@@ -40,7 +40,11 @@ pub(crate) struct PyCoverageMap(pub(crate) CoverageMap);
 impl PyCoverageMap {
     #[new]
     #[pyo3(signature = (grid, bins=16))]
-    fn new(py: Python<'_>, grid: &Bound<'_, PyGrid>, bins: i64) -> PyResult<Self> {
+    fn new(
+        py: Python<'_>,
+        #[pyo3(from_py_with = crate::convert::arg)] grid: Bound<'_, PyGrid>,
+        #[pyo3(from_py_with = crate::convert::arg)] bins: i64,
+    ) -> PyResult<Self> {
         let bins = convert::bins(py, bins)?;
         CoverageMap::with_bins(grid.get().0, bins)
             .map(Self)
@@ -53,7 +57,7 @@ impl PyCoverageMap {
     #[classmethod]
     fn from_histograms(
         _cls: &Bound<'_, PyType>,
-        grid: &Bound<'_, PyGrid>,
+        #[pyo3(from_py_with = crate::convert::arg)] grid: Bound<'_, PyGrid>,
         histograms: &Bound<'_, PyAny>,
     ) -> PyResult<Self> {
         let py = histograms.py();
@@ -87,15 +91,15 @@ impl PyCoverageMap {
             py,
             self.0.grid(),
             self.0.bins(),
-            self.0.histograms().to_vec(),
+            self.0.try_histograms_vec().or_raise(py)?,
         )
     }
     /// One cell's histogram: float32, ``(bins,)``.
     fn histogram<'py>(
         &self,
         py: Python<'py>,
-        row: i64,
-        col: i64,
+        #[pyo3(from_py_with = crate::convert::arg)] row: i64,
+        #[pyo3(from_py_with = crate::convert::arg)] col: i64,
     ) -> PyResult<Bound<'py, PyArray1<f32>>> {
         let cell = convert::cell(py, self.0.grid(), row, col)?;
         let h = self.0.histogram(cell).or_raise(py)?;
@@ -105,16 +109,16 @@ impl PyCoverageMap {
     /// The maximum-likelihood map: each cell's most probable coverage value,
     /// float32, ``(rows, cols)``.
     fn ml<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray2<f32>>> {
-        cell_array(py, self.0.grid(), self.0.ml())
+        cell_array(py, self.0.grid(), self.0.try_ml().or_raise(py)?)
     }
     /// The mean map: each cell's expected coverage, float32, ``(rows, cols)``.
     fn mean<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray2<f32>>> {
-        cell_array(py, self.0.grid(), self.0.mean())
+        cell_array(py, self.0.grid(), self.0.try_mean().or_raise(py)?)
     }
     /// The entropy map in nats (``ln(bins)`` at the prior, 0 when certain),
     /// float32, ``(rows, cols)``.
     fn entropy<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray2<f32>>> {
-        cell_array(py, self.0.grid(), self.0.entropy())
+        cell_array(py, self.0.grid(), self.0.try_entropy().or_raise(py)?)
     }
 
     /// Which cells some evidence reached (a reading, or the robot touching an
@@ -122,7 +126,7 @@ impl PyCoverageMap {
     /// ``(rows, cols)``. Unknown is a value of its own: an unobserved cell
     /// reads 0 on ``ml()``, as an empty cell does, and this tells them apart.
     fn observed<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray2<bool>>> {
-        cell_array(py, self.0.grid(), self.0.observed())
+        cell_array(py, self.0.grid(), self.0.try_observed().or_raise(py)?)
     }
 
     /// Integrate one scan taken from ``pose = (x, y, theta)`` (metres, radians):
@@ -162,7 +166,7 @@ impl PyCoverageMap {
     fn integrate_log(
         &mut self,
         py: Python<'_>,
-        log: &Bound<'_, crate::log::PyLog>,
+        #[pyo3(from_py_with = crate::convert::arg)] log: Bound<'_, crate::log::PyLog>,
         model: &Bound<'_, PyAny>,
         progress: crate::log::ProgressArg,
     ) -> PyResult<usize> {
@@ -179,8 +183,12 @@ impl PyCoverageMap {
     /// scan that updates a cell counts as one measurement of it. Off by
     /// default; turning it on (again) starts an empty history. Pickling and
     /// copying keep the history.
-    fn track_history(&mut self, on: bool) {
-        self.0.track_history(on);
+    fn track_history(
+        &mut self,
+        py: Python<'_>,
+        #[pyo3(from_py_with = crate::convert::arg)] on: bool,
+    ) -> PyResult<()> {
+        self.0.try_track_history(on).or_raise(py)
     }
     /// Whether the entropy history is kept.
     #[getter]
@@ -190,14 +198,14 @@ impl PyCoverageMap {
     /// How many scans updated each cell since the history was turned on:
     /// uint32, ``(rows, cols)`` (all zero while it is off).
     fn measurements<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray2<u32>>> {
-        let values = self.0.measurement_counts();
+        let values = self.0.try_measurement_counts().or_raise(py)?;
         cell_array(py, self.0.grid(), values)
     }
     /// Whether each cell's entropy changed by less than 0.001 nats over its
     /// last five measurements: bool, ``(rows, cols)`` (all ``False`` while the
     /// history is off or shorter).
     fn stagnated<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray2<bool>>> {
-        let values = self.0.stagnation();
+        let values = self.0.try_stagnation().or_raise(py)?;
         cell_array(py, self.0.grid(), values)
     }
 
@@ -216,7 +224,11 @@ impl PyCoverageMap {
     /// CRC-32. Written atomically: a reader never sees half a file, and a
     /// failed write leaves ``path`` as it was (``FileIOError``). Runs with
     /// the GIL released.
-    fn save(&self, py: Python<'_>, path: std::path::PathBuf) -> PyResult<()> {
+    fn save(
+        &self,
+        py: Python<'_>,
+        #[pyo3(from_py_with = crate::convert::arg)] path: std::path::PathBuf,
+    ) -> PyResult<()> {
         let map = &self.0;
         let bytes = py.detach(|| map.to_file_bytes()).or_raise(py)?;
         py.detach(|| covmap::sim::write_atomic(&path, &bytes))
@@ -227,7 +239,10 @@ impl PyCoverageMap {
     /// version) raises ``FileFormatError``, one that cannot be read
     /// ``FileIOError``; never a wrong map. Runs with the GIL released.
     #[staticmethod]
-    fn load(py: Python<'_>, path: std::path::PathBuf) -> PyResult<Self> {
+    fn load(
+        py: Python<'_>,
+        #[pyo3(from_py_with = crate::convert::arg)] path: std::path::PathBuf,
+    ) -> PyResult<Self> {
         let bytes = py.detach(|| covmap::sim::read_bytes(&path)).or_raise(py)?;
         py.detach(|| CoverageMap::from_file_bytes(&bytes))
             .map(Self)
@@ -242,8 +257,8 @@ impl PyCoverageMap {
     fn ros_occupancy<'py>(
         &self,
         py: Python<'py>,
-        source: &str,
-        unknown_within_nats: f64,
+        #[pyo3(from_py_with = crate::convert::arg)] source: &str,
+        #[pyo3(from_py_with = crate::convert::arg)] unknown_within_nats: f64,
     ) -> PyResult<Bound<'py, PyArray2<i8>>> {
         let value = crate::ros_map::coverage_value(py, source)?;
         let data = self
@@ -267,12 +282,12 @@ impl PyCoverageMap {
     fn to_ros_map(
         &self,
         py: Python<'_>,
-        yaml_path: std::path::PathBuf,
-        mode: &str,
-        occupied_thresh: f64,
-        free_thresh: f64,
-        source: &str,
-        unknown_within_nats: f64,
+        #[pyo3(from_py_with = crate::convert::arg)] yaml_path: std::path::PathBuf,
+        #[pyo3(from_py_with = crate::convert::arg)] mode: &str,
+        #[pyo3(from_py_with = crate::convert::arg)] occupied_thresh: f64,
+        #[pyo3(from_py_with = crate::convert::arg)] free_thresh: f64,
+        #[pyo3(from_py_with = crate::convert::arg)] source: &str,
+        #[pyo3(from_py_with = crate::convert::arg)] unknown_within_nats: f64,
     ) -> PyResult<()> {
         let value = crate::ros_map::coverage_value(py, source)?;
         let data = self

@@ -44,6 +44,10 @@ pub(crate) enum Exception {
     InvalidValue,
     /// An argument of the wrong type (a `TypeError`).
     InvalidType,
+    /// An integer argument beyond what covmap takes (an `OverflowError`).
+    IntegerOverflow,
+    /// Memory for a map or a result could not be had (a `MemoryError`).
+    OutOfMemory,
 }
 
 impl Exception {
@@ -70,6 +74,8 @@ impl Exception {
             Self::UnknownWorld => "UnknownWorldError",
             Self::InvalidValue => "InvalidValueError",
             Self::InvalidType => "InvalidTypeError",
+            Self::IntegerOverflow => "IntegerOverflowError",
+            Self::OutOfMemory => "OutOfMemoryError",
         }
     }
 
@@ -94,6 +100,7 @@ impl Exception {
             CovmapError::InScan { source, .. } => Self::of(source),
             CovmapError::Io { .. } => Self::FileIO,
             CovmapError::Parse { .. } | CovmapError::InvalidMapFile(_) => Self::FileFormat,
+            CovmapError::OutOfMemory { .. } => Self::OutOfMemory,
             // The core enum is non-exhaustive: a new variant is still a CovmapError.
             _ => Self::Base,
         }
@@ -134,6 +141,13 @@ impl Exception {
         };
         build().unwrap_or_else(|failed| failed)
     }
+}
+
+/// Whether `err` is already one of covmap's exceptions.
+pub(crate) fn is_covmap_error(py: Python<'_>, err: &PyErr) -> bool {
+    Exception::Base
+        .class(py)
+        .is_ok_and(|base| err.get_type(py).is_subclass(&base).unwrap_or(false))
 }
 
 /// A core error as the matching Python exception.

@@ -148,14 +148,14 @@ macro_rules! run_keywords {
                 seed: Seed,
                 sensor: Option<&Bound<'_, PyAny>>,
                 model: Option<&Bound<'_, PyAny>>,
-                resolution: f64,
-                bins: i64,
-                epsilon: f64,
-                robot_radius_m: f64,
-                candidate_stride_m: f64,
-                scan_spacing_m: f64,
-                max_path_m: f64,
-                max_steps: i64,
+                #[pyo3(from_py_with = crate::convert::arg)] resolution: f64,
+                #[pyo3(from_py_with = crate::convert::arg)] bins: i64,
+                #[pyo3(from_py_with = crate::convert::arg)] epsilon: f64,
+                #[pyo3(from_py_with = crate::convert::arg)] robot_radius_m: f64,
+                #[pyo3(from_py_with = crate::convert::arg)] candidate_stride_m: f64,
+                #[pyo3(from_py_with = crate::convert::arg)] scan_spacing_m: f64,
+                #[pyo3(from_py_with = crate::convert::arg)] max_path_m: f64,
+                #[pyo3(from_py_with = crate::convert::arg)] max_steps: i64,
             ),
             keywords: (Keywords {
                 start, seed, sensor, model, resolution, bins, epsilon, robot_radius_m,
@@ -204,11 +204,11 @@ macro_rules! explore_function {
         #[allow(clippy::too_many_arguments, reason = "one keyword argument per setting")]
         pub(crate) fn explore<'py>(
             py: Python<'py>,
-            world: &Bound<'py, PyWorld>,
+            #[pyo3(from_py_with = crate::convert::arg)] world: Bound<'py, PyWorld>,
             strategy: &Bound<'py, PyAny>,
             $($param)*
         ) -> PyResult<Bound<'py, PyAny>> {
-            let (mut run, strategy) = start_run(py, world, strategy, &$keywords)?;
+            let (mut run, strategy) = start_run(py, &world, strategy, &$keywords)?;
             let epsilon = run.exploration().config().epsilon;
             let run = py
                 .detach(move || {
@@ -280,11 +280,11 @@ macro_rules! exploration_methods {
             #[allow(clippy::too_many_arguments, reason = "one keyword argument per setting")]
             fn new(
                 py: Python<'_>,
-                world: &Bound<'_, PyWorld>,
+                #[pyo3(from_py_with = crate::convert::arg)] world: Bound<'_, PyWorld>,
                 strategy: &Bound<'_, PyAny>,
                 $($param)*
             ) -> PyResult<Self> {
-                let (run, strategy) = start_run(py, world, strategy, &$keywords)?;
+                let (run, strategy) = start_run(py, &world, strategy, &$keywords)?;
                 Ok(Self { run, strategy })
             }
 

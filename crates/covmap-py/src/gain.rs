@@ -30,13 +30,13 @@ use crate::sensor::any_model;
 )]
 pub(crate) fn expected_information_gain<'py>(
     py: Python<'py>,
-    map: PyRef<'py, PyCoverageMap>,
+    #[pyo3(from_py_with = crate::convert::arg)] map: PyRef<'py, PyCoverageMap>,
     poses: &Bound<'py, PyAny>,
     bearings: &Bound<'py, PyAny>,
     model: &Bound<'py, PyAny>,
-    method: &str,
-    range_step_m: Option<f64>,
-    stop_coverage: &str,
+    #[pyo3(from_py_with = crate::convert::arg)] method: &str,
+    #[pyo3(from_py_with = crate::convert::arg)] range_step_m: Option<f64>,
+    #[pyo3(from_py_with = crate::convert::arg)] stop_coverage: &str,
 ) -> PyResult<Bound<'py, PyArray1<f64>>> {
     let method = convert::gain_method(py, method)?;
     let options = GainOptions {
@@ -44,7 +44,7 @@ pub(crate) fn expected_information_gain<'py>(
         stop_coverage: convert::stop_coverage(py, stop_coverage)?,
     };
     let poses = convert::poses(poses, "poses")?;
-    let bearings = convert::readings(bearings, "bearings")?;
+    let bearings = convert::readings(bearings, "bearings", covmap::sim::MAX_BEAMS)?;
     let model = any_model(model)?;
     let map = &map.0;
     let gains = py

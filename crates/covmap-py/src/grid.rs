@@ -39,8 +39,8 @@ impl PyGrid {
     fn new(
         py: Python<'_>,
         origin: &Bound<'_, PyAny>,
-        resolution: f64,
-        shape: [i64; 2],
+        #[pyo3(from_py_with = crate::convert::arg)] resolution: f64,
+        #[pyo3(from_py_with = crate::convert::arg)] shape: [i64; 2],
     ) -> PyResult<Self> {
         let origin = convert::point(origin, "origin", false)?;
         let [rows, cols] = shape.map(|n| usize::try_from(n).ok());
@@ -60,7 +60,11 @@ impl PyGrid {
     /// rounded up to whole cells of side ``resolution``.
     #[staticmethod]
     #[pyo3(signature = (bounds, *, resolution))]
-    fn covering(py: Python<'_>, bounds: [f64; 4], resolution: f64) -> PyResult<Self> {
+    fn covering(
+        py: Python<'_>,
+        #[pyo3(from_py_with = crate::convert::arg)] bounds: [f64; 4],
+        #[pyo3(from_py_with = crate::convert::arg)] resolution: f64,
+    ) -> PyResult<Self> {
         let [x_min, y_min, x_max, y_max] = bounds;
         Grid::covering(x_min, y_min, x_max, y_max, resolution)
             .map(Self)
@@ -102,18 +106,30 @@ impl PyGrid {
     /// Whether the world point lies in a cell of the grid: the rectangle with
     /// its upper edges excluded, up to rounding (a point on an upper edge may
     /// round into the last cell).
-    fn contains(&self, x: f64, y: f64) -> bool {
+    fn contains(
+        &self,
+        #[pyo3(from_py_with = crate::convert::arg)] x: f64,
+        #[pyo3(from_py_with = crate::convert::arg)] y: f64,
+    ) -> bool {
         self.0.contains(x, y)
     }
     /// The ``(row, col)`` of the cell containing a world point, or ``None``
     /// outside the grid.
-    fn world_to_cell(&self, x: f64, y: f64) -> Option<(usize, usize)> {
+    fn world_to_cell(
+        &self,
+        #[pyo3(from_py_with = crate::convert::arg)] x: f64,
+        #[pyo3(from_py_with = crate::convert::arg)] y: f64,
+    ) -> Option<(usize, usize)> {
         self.0.world_to_cell(x, y).map(|c| (c.row, c.col))
     }
     /// World position ``(x, y)`` of a cell's centre, metres (the cell need not
     /// lie inside the grid: a negative index counts on past the first row or
     /// column).
-    fn cell_center(&self, row: i64, col: i64) -> (f64, f64) {
+    fn cell_center(
+        &self,
+        #[pyo3(from_py_with = crate::convert::arg)] row: i64,
+        #[pyo3(from_py_with = crate::convert::arg)] col: i64,
+    ) -> (f64, f64) {
         let ([ox, oy], r) = (self.0.origin_m(), self.0.resolution_m());
         (ox + (col as f64 + 0.5) * r, oy + (row as f64 + 0.5) * r)
     }

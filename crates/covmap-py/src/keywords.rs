@@ -89,7 +89,7 @@ macro_rules! keyword_class {
             #[allow(clippy::too_many_arguments, reason = "one keyword argument per setting")]
             fn new(
                 py: ::pyo3::Python<'_>,
-                $($setting: Option<$keyword>),*
+                $(#[pyo3(from_py_with = $crate::convert::arg)] $setting: Option<$keyword>),*
             ) -> ::pyo3::PyResult<Self> {
                 $build(py, $keywords { $($setting),* })
             }

@@ -3,6 +3,7 @@
 //! Thin wrappers only: every method converts its arguments, calls the core and
 //! converts the result. The Python package around it lives in `python/covmap`.
 #![warn(missing_docs)]
+#![cfg_attr(not(test), deny(clippy::unwrap_used, clippy::expect_used))]
 
 mod convert;
 mod coverage_map;

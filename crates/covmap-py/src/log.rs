@@ -39,7 +39,11 @@ fn bearings_from(obj: &Bound<'_, PyAny>, scans: usize) -> PyResult<Bearings> {
         }
         return Ok(Bearings::PerScan(values));
     }
-    Ok(Bearings::Fixed(convert::readings(obj, "bearings")?))
+    Ok(Bearings::Fixed(convert::readings(
+        obj,
+        "bearings",
+        convert::MAX_VALUES,
+    )?))
 }
 
 /// Poses `(N, 3)` and ranges `(N, B)`, a row of ranges a pose.
@@ -74,15 +78,15 @@ impl PyLog {
         poses: &Bound<'_, PyAny>,
         ranges: &Bound<'_, PyAny>,
         bearings: &Bound<'_, PyAny>,
-        max_range_m: f64,
+        #[pyo3(from_py_with = crate::convert::arg)] max_range_m: f64,
         timestamps: Option<&Bound<'_, PyAny>>,
-        sensor_offset: (f64, f64, f64),
+        #[pyo3(from_py_with = crate::convert::arg)] sensor_offset: (f64, f64, f64),
     ) -> PyResult<Self> {
         let (poses, ranges) = scans(py, poses, ranges)?;
         let n = poses.len();
         let bearings = bearings_from(bearings, n)?;
         let timestamps = match timestamps {
-            Some(t) => convert::readings(t, "timestamps")?,
+            Some(t) => convert::readings(t, "timestamps", convert::MAX_VALUES)?,
             None => (0..n).map(|i| i as f64).collect(),
         };
         let offset = Pose::from([sensor_offset.0, sensor_offset.1, sensor_offset.2]);
@@ -103,9 +107,9 @@ impl PyLog {
     #[pyo3(signature = (path, *, max_range_m=None, laser="front"))]
     fn from_carmen(
         py: Python<'_>,
-        path: PathBuf,
-        max_range_m: Option<f64>,
-        laser: &str,
+        #[pyo3(from_py_with = crate::convert::arg)] path: PathBuf,
+        #[pyo3(from_py_with = crate::convert::arg)] max_range_m: Option<f64>,
+        #[pyo3(from_py_with = crate::convert::arg)] laser: &str,
     ) -> PyResult<Self> {
         let laser = match laser {
             "front" => CarmenLaser::Front,
@@ -138,15 +142,15 @@ impl PyLog {
     #[pyo3(signature = (poses_path, measurements_path, *, bearings_deg, length_unit_m=1.0, angle_unit_rad=1.0, max_range_m))]
     fn from_sonar_text(
         py: Python<'_>,
-        poses_path: PathBuf,
-        measurements_path: PathBuf,
+        #[pyo3(from_py_with = crate::convert::arg)] poses_path: PathBuf,
+        #[pyo3(from_py_with = crate::convert::arg)] measurements_path: PathBuf,
         bearings_deg: &Bound<'_, PyAny>,
-        length_unit_m: f64,
-        angle_unit_rad: f64,
-        max_range_m: f64,
+        #[pyo3(from_py_with = crate::convert::arg)] length_unit_m: f64,
+        #[pyo3(from_py_with = crate::convert::arg)] angle_unit_rad: f64,
+        #[pyo3(from_py_with = crate::convert::arg)] max_range_m: f64,
     ) -> PyResult<Self> {
         let options = SonarTextOptions {
-            bearings_rad: convert::readings(bearings_deg, "bearings_deg")?
+            bearings_rad: convert::readings(bearings_deg, "bearings_deg", covmap::sim::MAX_BEAMS)?
                 .into_iter()
                 .map(f64::to_radians)
                 .collect(),
@@ -171,15 +175,15 @@ impl PyLog {
         py: Python<'_>,
         poses: &Bound<'_, PyAny>,
         ranges: &Bound<'_, PyAny>,
-        angle_min: f64,
-        angle_increment: f64,
-        range_min: f64,
-        range_max: f64,
+        #[pyo3(from_py_with = crate::convert::arg)] angle_min: f64,
+        #[pyo3(from_py_with = crate::convert::arg)] angle_increment: f64,
+        #[pyo3(from_py_with = crate::convert::arg)] range_min: f64,
+        #[pyo3(from_py_with = crate::convert::arg)] range_max: f64,
         timestamps: Option<&Bound<'_, PyAny>>,
     ) -> PyResult<Self> {
         let (poses, ranges) = scans(py, poses, ranges)?;
         let timestamps = timestamps
-            .map(|t| convert::readings(t, "timestamps"))
+            .map(|t| convert::readings(t, "timestamps", convert::MAX_VALUES))
             .transpose()?;
         let fan = LaserScanFan {
             angle_min_rad: angle_min,
@@ -277,7 +281,11 @@ impl PyLog {
     /// ``(x_min, y_min, x_max, y_max)`` covering every pose and every beam's
     /// end point, each beam cut at ``reach_m`` metres (no-echo beams end at
     /// the maximum range); ``None`` for an empty log.
-    fn extent(&self, py: Python<'_>, reach_m: f64) -> PyResult<Option<(f64, f64, f64, f64)>> {
+    fn extent(
+        &self,
+        py: Python<'_>,
+        #[pyo3(from_py_with = crate::convert::arg)] reach_m: f64,
+    ) -> PyResult<Option<(f64, f64, f64, f64)>> {
         let bounds = self.0.extent(reach_m).or_raise(py)?;
         Ok(bounds.map(|[a, b, c, d]| (a, b, c, d)))
     }
@@ -350,7 +358,10 @@ impl PyLog {
 
     /// Unpickling support: the log saved by ``__reduce__`` (validated).
     #[staticmethod]
-    fn _from_state(py: Python<'_>, state: &Bound<'_, PyBytes>) -> PyResult<Self> {
+    fn _from_state(
+        py: Python<'_>,
+        #[pyo3(from_py_with = crate::convert::arg)] state: Bound<'_, PyBytes>,
+    ) -> PyResult<Self> {
         serde_json::from_slice(state.as_bytes())
             .map(Self)
             .map_err(|e| Exception::InvalidValue.err(py, format!("not a saved log: {e}")))

@@ -5,7 +5,7 @@ use numpy::PyArray2;
 use pyo3::prelude::*;
 use pyo3::types::PyBytes;
 
-use crate::convert::cell_array;
+use crate::convert::{self, cell_array};
 use crate::errors::{Exception, OrRaise};
 use crate::grid::PyGrid;
 use crate::scan::Scan;
@@ -22,8 +22,11 @@ pub(crate) struct PyOccupancyGrid(pub(crate) OccupancyGrid);
 #[pymethods]
 impl PyOccupancyGrid {
     #[new]
-    fn new(grid: &Bound<'_, PyGrid>) -> Self {
-        Self(OccupancyGrid::new(grid.get().0))
+    fn new(
+        py: Python<'_>,
+        #[pyo3(from_py_with = crate::convert::arg)] grid: Bound<'_, PyGrid>,
+    ) -> PyResult<Self> {
+        OccupancyGrid::try_new(grid.get().0).map(Self).or_raise(py)
     }
 
     /// The grid.
@@ -62,7 +65,7 @@ impl PyOccupancyGrid {
     fn integrate_log(
         &mut self,
         py: Python<'_>,
-        log: &Bound<'_, crate::log::PyLog>,
+        #[pyo3(from_py_with = crate::convert::arg)] log: Bound<'_, crate::log::PyLog>,
         model: &Bound<'_, PyAny>,
         progress: crate::log::ProgressArg,
     ) -> PyResult<usize> {
@@ -76,23 +79,31 @@ impl PyOccupancyGrid {
 
     /// Probability of occupancy, float32, ``(rows, cols)``.
     fn probabilities<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray2<f32>>> {
-        cell_array(py, self.0.grid(), self.0.probabilities())
+        cell_array(py, self.0.grid(), self.0.try_probabilities().or_raise(py)?)
     }
     /// Log-odds of occupancy, float32, ``(rows, cols)``.
     fn log_odds<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray2<f32>>> {
-        cell_array(py, self.0.grid(), self.0.log_odds().to_vec())
+        cell_array(
+            py,
+            self.0.grid(),
+            convert::copied(py, self.0.log_odds(), "the log-odds")?,
+        )
     }
     /// How many beams intercepted each cell (up to its end point), float32,
     /// ``(rows, cols)``.
     fn counts<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray2<f32>>> {
-        cell_array(py, self.0.grid(), self.0.counts().counts().to_vec())
+        cell_array(
+            py,
+            self.0.grid(),
+            convert::copied(py, self.0.counts().counts(), "the scan counts")?,
+        )
     }
 
     /// Which cells some evidence reached (a beam intercepted them, or the
     /// robot touched an obstacle there): bool, ``(rows, cols)``. The others are
     /// unknown, whatever ``probabilities()`` reads there (0.5).
     fn observed<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray2<bool>>> {
-        cell_array(py, self.0.grid(), self.0.observed())
+        cell_array(py, self.0.grid(), self.0.try_observed().or_raise(py)?)
     }
 
     /// The grid as ``nav_msgs/OccupancyGrid`` data: int8 ``(rows, cols)``,
@@ -109,10 +120,10 @@ impl PyOccupancyGrid {
     fn to_ros_map(
         &self,
         py: Python<'_>,
-        yaml_path: std::path::PathBuf,
-        mode: &str,
-        occupied_thresh: f64,
-        free_thresh: f64,
+        #[pyo3(from_py_with = crate::convert::arg)] yaml_path: std::path::PathBuf,
+        #[pyo3(from_py_with = crate::convert::arg)] mode: &str,
+        #[pyo3(from_py_with = crate::convert::arg)] occupied_thresh: f64,
+        #[pyo3(from_py_with = crate::convert::arg)] free_thresh: f64,
     ) -> PyResult<()> {
         let grid = *self.0.grid();
         let data = self.0.ros_occupancy();

@@ -30,7 +30,10 @@ fn ends(start: &Bound<'_, PyAny>, goal: &Bound<'_, PyAny>) -> PyResult<([f64; 2]
 impl PyRobot {
     #[new]
     #[pyo3(signature = (*, radius_m=0.25))]
-    fn new(py: Python<'_>, radius_m: f64) -> PyResult<Self> {
+    fn new(
+        py: Python<'_>,
+        #[pyo3(from_py_with = crate::convert::arg)] radius_m: f64,
+    ) -> PyResult<Self> {
         Robot::new(radius_m).map(Self).or_raise(py)
     }
 
@@ -55,7 +58,11 @@ impl PyRobot {
 
     /// Whether the disc at ``pose`` overlaps or touches an obstacle of
     /// ``world``. A pose with a non-finite position collides.
-    fn collides(&self, world: &Bound<'_, PyWorld>, pose: &Bound<'_, PyAny>) -> PyResult<bool> {
+    fn collides(
+        &self,
+        #[pyo3(from_py_with = crate::convert::arg)] world: Bound<'_, PyWorld>,
+        pose: &Bound<'_, PyAny>,
+    ) -> PyResult<bool> {
         let [x, y] = convert::point(pose, "pose", true)?;
         Ok(self
             .0
@@ -66,7 +73,7 @@ impl PyRobot {
     /// obstacle (either end in contact counts).
     fn move_collides(
         &self,
-        world: &Bound<'_, PyWorld>,
+        #[pyo3(from_py_with = crate::convert::arg)] world: Bound<'_, PyWorld>,
         start: &Bound<'_, PyAny>,
         goal: &Bound<'_, PyAny>,
     ) -> PyResult<bool> {
@@ -80,7 +87,7 @@ impl PyRobot {
     /// raises ``InvalidValueError``.
     fn free_travel(
         &self,
-        world: &Bound<'_, PyWorld>,
+        #[pyo3(from_py_with = crate::convert::arg)] world: Bound<'_, PyWorld>,
         start: &Bound<'_, PyAny>,
         goal: &Bound<'_, PyAny>,
     ) -> PyResult<f64> {
@@ -97,7 +104,7 @@ impl PyRobot {
     fn clearance<'py>(
         &self,
         py: Python<'py>,
-        world: &Bound<'py, PyWorld>,
+        #[pyo3(from_py_with = crate::convert::arg)] world: Bound<'py, PyWorld>,
         points: &Bound<'py, PyAny>,
     ) -> PyResult<Bound<'py, PyArray1<f64>>> {
         let points = convert::rows::<2>(points, "points", "point (x, y)")?;

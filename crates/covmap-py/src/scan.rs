@@ -25,8 +25,8 @@ impl Scan {
     ) -> PyResult<Self> {
         Ok(Self {
             pose: convert::pose(pose)?,
-            ranges: convert::readings(ranges, "ranges")?,
-            bearings: convert::readings(bearings, "bearings")?,
+            ranges: convert::readings(ranges, "ranges", covmap::sim::MAX_BEAMS)?,
+            bearings: convert::readings(bearings, "bearings", covmap::sim::MAX_BEAMS)?,
             model: any_model(model)?,
         })
     }

@@ -116,10 +116,10 @@ macro_rules! sensor_model_class {
                     fn kernel<'py>(
                         &self,
                         py: Python<'py>,
-                        cell_distance: f64,
-                        measured_distance: f64,
-                        resolution: f64,
-                        bins: i64,
+                        #[pyo3(from_py_with = crate::convert::arg)] cell_distance: f64,
+                        #[pyo3(from_py_with = crate::convert::arg)] measured_distance: f64,
+                        #[pyo3(from_py_with = crate::convert::arg)] resolution: f64,
+                        #[pyo3(from_py_with = crate::convert::arg)] bins: i64,
                     ) -> PyResult<Option<Bound<'py, PyArray1<f32>>>> {
                         let distances = (cell_distance, measured_distance);
                         kernel_array(py, &self.0, distances, resolution, bins)
@@ -137,9 +137,11 @@ macro_rules! sensor_model_class {
                     #[classmethod]
                     fn from_dict<'py>(
                         cls: &Bound<'py, PyType>,
-                        d: &Bound<'py, PyDict>,
+                        #[pyo3(from_py_with = crate::convert::arg)] d: Bound<'py, PyDict>,
                     ) -> PyResult<Bound<'py, PyAny>> {
-                        cls.call((), Some(d))
+                        // An unknown or non-string key: a covmap error, as any bad setting.
+                        cls.call((), Some(&d))
+                            .map_err(|e| crate::convert::as_covmap_error(d.as_any(), e, "a dict"))
                     }
                     fn __hash__(&self) -> u64 {
                         hash_f64s(self.fields().into_iter().map(|(_, v)| v), &[])

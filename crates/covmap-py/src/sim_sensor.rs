@@ -104,22 +104,22 @@ macro_rules! range_sensor_class {
             /// ``SonarRing``, ``LaserModel()`` for a ``Laser``). The same seed gives
             /// the same readings.
             #[pyo3(signature = (world, pose, *, seed=Seed(0)), text_signature = "($self, world, pose, *, seed=0)")]
-            fn simulate<'py>(&self, py: Python<'py>, world: &Bound<'py, PyWorld>, pose: &Bound<'py, PyAny>, seed: Seed) -> PyResult<Readings<'py>> {
-                scan_one(py, &self.0, world, pose, seed.0)
+            fn simulate<'py>(&self, py: Python<'py>, #[pyo3(from_py_with = crate::convert::arg)] world: Bound<'py, PyWorld>, pose: &Bound<'py, PyAny>, seed: Seed) -> PyResult<Readings<'py>> {
+                scan_one(py, &self.0, &world, pose, seed.0)
             }
             /// One scan from each pose of ``poses`` (float64 ``(N, 3)``): the ranges
             /// as float64 ``(N, n)``. Scan ``i`` draws from its own stream ``i`` of
             /// ``seed`` (scan 0 equals ``simulate(world, poses[0], seed=seed)``), so
             /// the result depends on the seed alone; scans run in parallel.
             #[pyo3(signature = (world, poses, *, seed=Seed(0)), text_signature = "($self, world, poses, *, seed=0)")]
-            fn simulate_path<'py>(&self, py: Python<'py>, world: &Bound<'py, PyWorld>, poses: &Bound<'py, PyAny>, seed: Seed) -> PyResult<Bound<'py, PyArray2<f64>>> {
-                scan_many(py, &self.0, world, poses, seed.0)
+            fn simulate_path<'py>(&self, py: Python<'py>, #[pyo3(from_py_with = crate::convert::arg)] world: Bound<'py, PyWorld>, poses: &Bound<'py, PyAny>, seed: Seed) -> PyResult<Bound<'py, PyArray2<f64>>> {
+                scan_many(py, &self.0, &world, poses, seed.0)
             }
             /// ``simulate_path``'s scans as a ``Log``: scan ``i`` from
             /// ``poses[i]`` at time ``i`` seconds, this sensor's bearings and
             /// maximum range, ready for ``CoverageMap.integrate_log``.
             #[pyo3(signature = (world, poses, *, seed=Seed(0)), text_signature = "($self, world, poses, *, seed=0)")]
-            fn record(&self, py: Python<'_>, world: &Bound<'_, PyWorld>, poses: &Bound<'_, PyAny>, seed: Seed) -> PyResult<crate::log::PyLog> {
+            fn record(&self, py: Python<'_>, #[pyo3(from_py_with = crate::convert::arg)] world: Bound<'_, PyWorld>, poses: &Bound<'_, PyAny>, seed: Seed) -> PyResult<crate::log::PyLog> {
                 let poses = convert::poses(poses, "poses")?;
                 let world: &World = &world.get().0;
                 py.detach(|| covmap::sim::record(&self.0, world, &poses, seed.0))
@@ -163,21 +163,21 @@ range_sensor_class! {
         fn new(
             py: Python<'_>,
             bearings_rad: Option<&Bound<'_, PyAny>>,
-            opening_angle_rad: Option<f64>,
-            max_range_m: Option<f64>,
-            min_range_m: Option<f64>,
-            rays_per_cone: Option<i64>,
-            noise_std_m: Option<f64>,
-            noise_std_per_m: Option<f64>,
-            outlier_probability: Option<f64>,
-            multipath_probability: Option<f64>,
-            critical_angle_wall_rad: Option<f64>,
-            critical_angle_glass_rad: Option<f64>,
+            #[pyo3(from_py_with = crate::convert::arg)] opening_angle_rad: Option<f64>,
+            #[pyo3(from_py_with = crate::convert::arg)] max_range_m: Option<f64>,
+            #[pyo3(from_py_with = crate::convert::arg)] min_range_m: Option<f64>,
+            #[pyo3(from_py_with = crate::convert::arg)] rays_per_cone: Option<i64>,
+            #[pyo3(from_py_with = crate::convert::arg)] noise_std_m: Option<f64>,
+            #[pyo3(from_py_with = crate::convert::arg)] noise_std_per_m: Option<f64>,
+            #[pyo3(from_py_with = crate::convert::arg)] outlier_probability: Option<f64>,
+            #[pyo3(from_py_with = crate::convert::arg)] multipath_probability: Option<f64>,
+            #[pyo3(from_py_with = crate::convert::arg)] critical_angle_wall_rad: Option<f64>,
+            #[pyo3(from_py_with = crate::convert::arg)] critical_angle_glass_rad: Option<f64>,
         ) -> PyResult<Self> {
             let d = SonarRing::default();
             let ring = SonarRing {
                 bearings_rad: match bearings_rad {
-                    Some(b) => convert::readings(b, "bearings_rad")?,
+                    Some(b) => convert::readings(b, "bearings_rad", covmap::sim::MAX_BEAMS)?,
                     None => d.bearings_rad,
                 },
                 opening_angle_rad: opening_angle_rad.unwrap_or(d.opening_angle_rad),
@@ -223,7 +223,7 @@ range_sensor_class! {
         /// ``count`` sensors evenly spaced around the robot, the first straight
         /// ahead, with the default error model.
         #[staticmethod]
-        fn ring(py: Python<'_>, count: i64) -> PyResult<Self> {
+        fn ring(py: Python<'_>, #[pyo3(from_py_with = crate::convert::arg)] count: i64) -> PyResult<Self> {
             let n = self::count(py, "count", count)?;
             checked(py, SonarRing::ring(n)).map(Self)
         }
@@ -235,7 +235,7 @@ range_sensor_class! {
         }
         /// The same ring with the opening angle and maximum range of ``model``, so
         /// that the simulated cone is the one the map assumes.
-        fn with_model(&self, model: &Bound<'_, PySonarModel>) -> Self {
+        fn with_model(&self, #[pyo3(from_py_with = crate::convert::arg)] model: Bound<'_, PySonarModel>) -> Self {
             Self(self.0.clone().with_model(&model.get().0))
         }
 
@@ -314,11 +314,11 @@ range_sensor_class! {
         #[pyo3(signature = (beams=None, fov_rad=None, *, bearings_rad=None, max_range_m=None, noise_std_m=None))]
         fn new(
             py: Python<'_>,
-            beams: Option<i64>,
-            fov_rad: Option<f64>,
+            #[pyo3(from_py_with = crate::convert::arg)] beams: Option<i64>,
+            #[pyo3(from_py_with = crate::convert::arg)] fov_rad: Option<f64>,
             bearings_rad: Option<&Bound<'_, PyAny>>,
-            max_range_m: Option<f64>,
-            noise_std_m: Option<f64>,
+            #[pyo3(from_py_with = crate::convert::arg)] max_range_m: Option<f64>,
+            #[pyo3(from_py_with = crate::convert::arg)] noise_std_m: Option<f64>,
         ) -> PyResult<Self> {
             let mut laser = match bearings_rad {
                 Some(_) if beams.is_some() || fov_rad.is_some() => {
@@ -327,7 +327,7 @@ range_sensor_class! {
                         "give either beams and fov_rad or bearings_rad, not both",
                     ));
                 }
-                Some(b) => Laser::with_bearings(convert::readings(b, "bearings_rad")?),
+                Some(b) => Laser::with_bearings(convert::readings(b, "bearings_rad", covmap::sim::MAX_BEAMS)?),
                 None => {
                     let beams = count(py, "beams", beams.unwrap_or(361))?;
                     Laser::new(beams, fov_rad.unwrap_or(std::f64::consts::PI)).or_raise(py)?

@@ -51,7 +51,10 @@ impl PyStrategy {
     /// another value, NaN included, raises ``InvalidParameterError``.
     #[staticmethod]
     #[pyo3(signature = (alpha=0.5))]
-    fn coverage(py: Python<'_>, alpha: f64) -> PyResult<Self> {
+    fn coverage(
+        py: Python<'_>,
+        #[pyo3(from_py_with = crate::convert::arg)] alpha: f64,
+    ) -> PyResult<Self> {
         Strategy::coverage(alpha).map(Self).or_raise(py)
     }
 
@@ -61,7 +64,11 @@ impl PyStrategy {
     /// ``InvalidParameterError``.
     #[staticmethod]
     #[pyo3(signature = (n=50, discount_beyond_m=None))]
-    fn counting(py: Python<'_>, n: i64, discount_beyond_m: Option<f64>) -> PyResult<Self> {
+    fn counting(
+        py: Python<'_>,
+        #[pyo3(from_py_with = crate::convert::arg)] n: i64,
+        #[pyo3(from_py_with = crate::convert::arg)] discount_beyond_m: Option<f64>,
+    ) -> PyResult<Self> {
         let Ok(n) = u32::try_from(n) else {
             return Err(Exception::InvalidParameter.err(
                 py,

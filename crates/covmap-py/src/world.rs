@@ -49,22 +49,21 @@ impl PyWorld {
         polygons: &Bound<'_, PyAny>,
         materials: Option<&Bound<'_, PyAny>>,
     ) -> PyResult<Self> {
-        let lists: Vec<Bound<'_, PyAny>> = polygons
-            .try_iter()
-            .and_then(|it| it.collect::<PyResult<_>>())
-            .map_err(|_| {
-                Exception::InvalidType.err(
-                    py,
-                    format!(
-                        "polygons must be a list of (N, 2) vertex arrays, got {}",
-                        polygons.get_type()
-                    ),
-                )
-            })?;
-        // PyO3 refuses a lone string here (a sequence of letters, not names).
+        let not_polygons = || {
+            Exception::InvalidType.err(
+                py,
+                format!(
+                    "polygons must be a list of (N, 2) vertex arrays, got {}",
+                    polygons.get_type()
+                ),
+            )
+        };
+        let lists = convert::items(polygons, "polygons", convert::MAX_VALUES, &not_polygons)?;
+        // No more names read than there are polygons (pyo3 would reserve
+        // what a sequence's len() claims).
         let materials = materials
             .map(|m| {
-                m.extract::<Vec<String>>().map_err(|_| {
+                let not_names = || {
                     Exception::InvalidType.err(
                         py,
                         format!(
@@ -72,7 +71,23 @@ impl PyWorld {
                             m.get_type()
                         ),
                     )
-                })
+                };
+                if let Ok(n) = m.len()
+                    && n != lists.len()
+                    && !m.is_instance_of::<pyo3::types::PyString>()
+                {
+                    return Err(SimError::LengthMismatch {
+                        what: "materials and polygons",
+                        left: n,
+                        right: lists.len(),
+                    })
+                    .or_raise(py);
+                }
+                let names = convert::items(m, "materials", lists.len(), &not_names)?;
+                names
+                    .iter()
+                    .map(|n| n.extract::<String>().map_err(|_| not_names()))
+                    .collect::<PyResult<Vec<String>>>()
             })
             .transpose()?;
         let materials = match materials {
@@ -122,7 +137,10 @@ impl PyWorld {
     /// (the paper's Fig. 3), ``"office"``, ``"partial"`` (Fig. 1). An unknown
     /// name raises ``UnknownWorldError``.
     #[staticmethod]
-    fn builtin(py: Python<'_>, name: &str) -> PyResult<Self> {
+    fn builtin(
+        py: Python<'_>,
+        #[pyo3(from_py_with = crate::convert::arg)] name: &str,
+    ) -> PyResult<Self> {
         World::builtin(name).map(Self).or_raise(py)
     }
 
@@ -150,10 +168,10 @@ impl PyWorld {
     #[pyo3(signature = (path, *, wall_thickness_m=0.1, resolution=None, origin=None))]
     fn from_file(
         py: Python<'_>,
-        path: PathBuf,
-        wall_thickness_m: f64,
-        resolution: Option<f64>,
-        origin: Option<(f64, f64)>,
+        #[pyo3(from_py_with = crate::convert::arg)] path: PathBuf,
+        #[pyo3(from_py_with = crate::convert::arg)] wall_thickness_m: f64,
+        #[pyo3(from_py_with = crate::convert::arg)] resolution: Option<f64>,
+        #[pyo3(from_py_with = crate::convert::arg)] origin: Option<(f64, f64)>,
     ) -> PyResult<Self> {
         let origin = origin.unwrap_or((0.0, 0.0));
         let ext = extension(&path);
@@ -198,7 +216,10 @@ impl PyWorld {
     }
     /// Unpickling support: the world of a GeoJSON text (``to_geojson``).
     #[staticmethod]
-    fn _from_geojson(py: Python<'_>, text: &str) -> PyResult<Self> {
+    fn _from_geojson(
+        py: Python<'_>,
+        #[pyo3(from_py_with = crate::convert::arg)] text: &str,
+    ) -> PyResult<Self> {
         World::from_geojson_str(text, "pickled world")
             .map(Self)
             .or_raise(py)
@@ -267,11 +288,11 @@ impl PyWorld {
     fn coverage<'py>(
         &self,
         py: Python<'py>,
-        grid: &Bound<'py, PyGrid>,
+        #[pyo3(from_py_with = crate::convert::arg)] grid: Bound<'py, PyGrid>,
     ) -> PyResult<Bound<'py, PyArray2<f64>>> {
         let grid = grid.get().0;
         let world = &self.0;
-        let values = py.detach(|| world.coverage(&grid));
+        let values = py.detach(|| world.try_coverage(&grid)).or_raise(py)?;
         cell_array(py, &grid, values)
     }
 
@@ -290,16 +311,16 @@ impl PyWorld {
         py: Python<'py>,
         origins: &Bound<'py, PyAny>,
         angles: &Bound<'py, PyAny>,
-        max_range_m: f64,
-        return_incidence: bool,
+        #[pyo3(from_py_with = crate::convert::arg)] max_range_m: f64,
+        #[pyo3(from_py_with = crate::convert::arg)] return_incidence: bool,
     ) -> PyResult<Bound<'py, PyAny>> {
-        let angles = convert::readings(angles, "angles")?;
+        let angles = convert::readings(angles, "angles", convert::MAX_VALUES)?;
         let single = match origins.cast::<numpy::PyUntypedArray>() {
             Ok(a) => numpy::PyUntypedArrayMethods::ndim(a) == 1,
             Err(_) => origins.extract::<[f64; 2]>().is_ok(),
         };
         let origins = if single {
-            let p = convert::readings(origins, "origins")?;
+            let p = convert::readings(origins, "origins", convert::MAX_VALUES)?;
             let Ok(p) = <[f64; 2]>::try_from(p.as_slice()) else {
                 return Err(Exception::ArrayShape.err(
                     py,
@@ -324,13 +345,22 @@ impl PyWorld {
     }
 
     /// Whether the point ``(x, y)`` lies inside an obstacle.
-    fn contains(&self, x: f64, y: f64) -> bool {
+    fn contains(
+        &self,
+        #[pyo3(from_py_with = crate::convert::arg)] x: f64,
+        #[pyo3(from_py_with = crate::convert::arg)] y: f64,
+    ) -> bool {
         self.0.contains_point([x, y])
     }
     /// Distance from ``(x, y)`` to the nearest obstacle, metres: 0 inside
     /// one, infinite in an empty world. A coordinate that is not finite
     /// raises ``InvalidValueError``.
-    fn distance_to_obstacle(&self, py: Python<'_>, x: f64, y: f64) -> PyResult<f64> {
+    fn distance_to_obstacle(
+        &self,
+        py: Python<'_>,
+        #[pyo3(from_py_with = crate::convert::arg)] x: f64,
+        #[pyo3(from_py_with = crate::convert::arg)] y: f64,
+    ) -> PyResult<f64> {
         convert::finite_points(py, &[[x, y]], "(x, y)")?;
         Ok(self.0.distance_to_obstacle_m([x, y]))
     }

@@ -27,6 +27,7 @@
 //! from a seeded [`SimRng`]. parry2d types never appear in the API: points are
 //! `[f64; 2]` in metres.
 #![warn(missing_docs)]
+#![cfg_attr(not(test), deny(clippy::unwrap_used, clippy::expect_used))]
 
 mod builtin;
 mod error;

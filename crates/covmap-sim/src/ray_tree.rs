@@ -29,6 +29,12 @@ use crate::material::Material;
 pub(crate) const RAY_PIECE_M: f64 = 2.0;
 /// The most pieces one edge is cut into (2 km of edge at [`RAY_PIECE_M`]).
 pub(crate) const MAX_PIECES: usize = 1024;
+/// The most pieces a whole world is cut into beyond one per edge: where its
+/// edges at [`RAY_PIECE_M`] would make more, every piece is made longer by
+/// the same factor. A world's ray caster thus holds at most its edge count
+/// plus 2^20 pieces (about 150 bytes each with the hierarchy over them),
+/// however long its edges are.
+pub(crate) const MAX_EXTRA_PIECES: usize = 1 << 20;
 
 /// Marks a child link as a piece index rather than a node index (a world
 /// would need billions of pieces to reach it).
@@ -158,6 +164,29 @@ pub(crate) struct RayTree {
     stack_len: usize,
 }
 
+/// The pieces an edge of `length_m` is cut into at pieces of `piece_m`.
+fn pieces_of(length_m: f64, piece_m: f64) -> usize {
+    (length_m / piece_m).ceil().clamp(1.0, MAX_PIECES as f64) as usize
+}
+
+/// The length of the pieces edges of `lengths_m` are cut into: [`RAY_PIECE_M`],
+/// or, where that would make more than [`MAX_EXTRA_PIECES`] pieces beyond
+/// one an edge, the least power-of-two multiple of it that makes no more.
+fn piece_length_m(lengths_m: impl Iterator<Item = f64> + Clone) -> f64 {
+    let extra = |piece_m: f64| -> usize {
+        lengths_m
+            .clone()
+            .map(|l| pieces_of(l, piece_m) - 1)
+            .fold(0usize, usize::saturating_add)
+    };
+    let mut piece_m = RAY_PIECE_M;
+    // Ends: at a piece of f64::MAX every edge is one piece.
+    while extra(piece_m) > MAX_EXTRA_PIECES && piece_m < f64::MAX / 2.0 {
+        piece_m *= 2.0;
+    }
+    piece_m
+}
+
 /// Reusable scratch space for [`RayTree::first_hit_with`]: a batch of rays
 /// shares one.
 #[derive(Clone, Debug, Default)]
@@ -167,14 +196,17 @@ impl RayTree {
     /// The tree over `edges` (`[start, end, material]` each, non-degenerate),
     /// each cut into pieces no longer than [`RAY_PIECE_M`], but into no more
     /// than [`MAX_PIECES`] (an edge kilometres long gets longer pieces, not
-    /// unbounded memory).
+    /// unbounded memory), and all together into no more than one a edge
+    /// plus [`MAX_EXTRA_PIECES`] (many long edges get longer pieces too).
     pub(crate) fn new(edges: impl IntoIterator<Item = ([f64; 2], [f64; 2], Material)>) -> Self {
+        let edges: Vec<_> = edges
+            .into_iter()
+            .map(|(a, b, material)| (Vector::new(a[0], a[1]), Vector::new(b[0], b[1]), material))
+            .collect();
+        let piece_m = piece_length_m(edges.iter().map(|(a, b, _)| (*b - *a).length()));
         let (mut lines, mut faces) = (Vec::new(), Vec::new());
         for (a, b, material) in edges {
-            let (a, b) = (Vector::new(a[0], a[1]), Vector::new(b[0], b[1]));
-            let count = ((b - a).length() / RAY_PIECE_M)
-                .ceil()
-                .clamp(1.0, MAX_PIECES as f64) as usize;
+            let count = pieces_of((b - a).length(), piece_m);
             for k in 0..count {
                 // Cut points computed from both ends, so the pieces meet exactly.
                 let at = |t: usize| {

@@ -34,7 +34,7 @@ pub trait RangeSensor {
     /// non-finite pose.
     fn scan<R: Rng + ?Sized>(&self, world: &World, pose: &Pose, rng: &mut R) -> Result<Scan> {
         self.validate()?;
-        check_pose(pose)?;
+        check_pose(pose, self.bearings_rad())?;
         let origin_m = [pose.x_m, pose.y_m];
         let ranges_m = self
             .bearings_rad()
@@ -72,7 +72,7 @@ pub fn simulate<S: RangeSensor + Sync>(
 ) -> Result<Vec<Scan>> {
     sensor.validate()?;
     for p in poses {
-        check_pose(p)?;
+        check_pose(p, sensor.bearings_rad())?;
     }
     let one =
         |(i, pose): (usize, &Pose)| sensor.scan(world, pose, &mut sim_rng_stream(seed, i as u64));
@@ -111,16 +111,46 @@ pub fn record<S: RangeSensor + Sync>(
     )?)
 }
 
-/// Errors unless every component of the pose is finite.
-pub(crate) fn check_pose(pose: &Pose) -> Result<()> {
-    Ok(pose.check_finite()?)
+/// Errors unless every component of the pose is finite and every beam
+/// direction from it (heading plus one of `bearings_rad`) is: the poses
+/// and bearings a map's `integrate` refuses are refused here too.
+pub(crate) fn check_pose(pose: &Pose, bearings_rad: &[f64]) -> Result<()> {
+    pose.check_finite()?;
+    Ok(pose.check_bearings(bearings_rad)?)
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::SimError;
     use crate::laser::Laser;
     use crate::sonar::SonarRing;
+    use covmap_core::CovmapError;
+
+    #[test]
+    fn a_heading_whose_beams_overflow_is_refused_as_integrate_refuses_it() {
+        let world = World::builtin("corridor").unwrap();
+        let laser = Laser::with_bearings(vec![1e308, 0.0]);
+        let pose = Pose::new(1.0, 1.0, 1e308);
+        let err = laser
+            .scan(&world, &pose, &mut sim_rng_stream(1, 0))
+            .unwrap_err();
+        assert!(
+            matches!(
+                err,
+                SimError::Core(CovmapError::InvalidBearing { index: 0, .. })
+            ),
+            "{err}"
+        );
+        assert!(simulate(&laser, &world, &[pose], 1).is_err());
+        let mut map =
+            covmap_core::CoverageMap::new(covmap_core::Grid::new([0.0, 0.0], 0.1, 30, 30).unwrap());
+        let model = covmap_core::LaserModel::default();
+        assert!(
+            map.integrate(&pose, &[1.0, 1.0], laser.bearings_rad(), &model)
+                .is_err()
+        );
+    }
 
     #[test]
     fn parallel_simulation_equals_the_sequential_loop() {

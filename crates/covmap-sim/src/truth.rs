@@ -24,7 +24,7 @@
 //! above another) and coincident or overlapping polygons are handled by the
 //! parity walk without special cases.
 
-use covmap_core::Grid;
+use covmap_core::{CovmapError, Grid, memory};
 
 use crate::polygon::Polygon;
 use crate::world::World;
@@ -44,14 +44,29 @@ impl World {
     /// let c = world.coverage(&grid);
     /// assert_eq!(c, vec![0.5, 1.0, 0.0, 0.5]);
     /// ```
+    ///
+    /// # Panics
+    /// If the result (8 bytes a cell) or the edges' column buckets cannot be
+    /// allocated ([`World::try_coverage`] returns an error instead).
     pub fn coverage(&self, grid: &Grid) -> Vec<f64> {
-        coverage(self.polygons(), grid, cfg!(feature = "parallel"))
+        self.try_coverage(grid).unwrap_or_else(|e| panic!("{e}"))
+    }
+
+    /// [`World::coverage`], or [`CovmapError::OutOfMemory`] (as
+    /// [`crate::SimError::Core`]) where the result (8 bytes a cell) or the
+    /// edges' column buckets (4 bytes for each column an edge spans) cannot
+    /// be allocated.
+    pub fn try_coverage(&self, grid: &Grid) -> crate::Result<Vec<f64>> {
+        Ok(coverage(self.polygons(), grid, cfg!(feature = "parallel"))?)
     }
 
     /// [`World::coverage`] on one thread (the reference the parallel path is
     /// tested against).
+    ///
+    /// # Panics
+    /// As [`World::coverage`].
     pub fn coverage_sequential(&self, grid: &Grid) -> Vec<f64> {
-        coverage(self.polygons(), grid, false)
+        coverage(self.polygons(), grid, false).unwrap_or_else(|e| panic!("{e}"))
     }
 }
 
@@ -90,8 +105,10 @@ struct Local {
     polygon: u32,
 }
 
-fn coverage(polygons: &[Polygon], grid: &Grid, parallel: bool) -> Vec<f64> {
+fn coverage(polygons: &[Polygon], grid: &Grid, parallel: bool) -> Result<Vec<f64>, CovmapError> {
     let (rows, cols) = grid.shape();
+    // The result first: a grid too large for it fails before any work.
+    let mut out = memory::try_filled(0.0f64, rows * cols, "the ground truth")?;
     let [gx0, gy0, gx1, gy1] = grid.bounds_m();
     let col_x = |c: usize| grid.origin_m()[0] + c as f64 * grid.resolution_m();
 
@@ -157,7 +174,7 @@ fn coverage(polygons: &[Polygon], grid: &Grid, parallel: bool) -> Vec<f64> {
         *s = acc;
         acc += n;
     }
-    let mut bucket = vec![0u32; acc];
+    let mut bucket = memory::try_filled(0u32, acc, "the ground truth's column buckets")?;
     let mut fill = start.clone();
     for (i, range) in ranges.iter().enumerate() {
         if let Some((first, last)) = *range {
@@ -176,13 +193,12 @@ fn coverage(polygons: &[Polygon], grid: &Grid, parallel: bool) -> Vec<f64> {
     };
 
     let cell_area = grid.resolution_m() * grid.resolution_m();
-    let mut out = vec![0.0; rows * cols];
     for (c, entries) in per_column.into_iter().enumerate() {
         for (row, area) in entries {
             out[row as usize * cols + c] = (area / cell_area).clamp(0.0, 1.0);
         }
     }
-    out
+    Ok(out)
 }
 
 /// The covered area of every cell of column `c`, as `(row, m^2)` pairs.

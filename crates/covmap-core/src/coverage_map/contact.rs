@@ -99,11 +99,19 @@ impl CoverageMap {
     /// evidence brought back exactly to uniform would read unobserved; no
     /// kernel of the sensor models does that.)
     pub fn observed(&self) -> Vec<bool> {
-        self.data
-            .chunks_exact(self.bins)
-            .map(|h| h.iter().any(|&p| p != h[0]))
-            .collect()
+        self.cells().map(observed).collect()
     }
+
+    /// [`CoverageMap::observed`], or [`crate::CovmapError::OutOfMemory`]
+    /// where the result cannot be allocated.
+    pub fn try_observed(&self) -> crate::Result<Vec<bool>> {
+        crate::memory::try_collect(self.cells().map(observed), "the observed cells")
+    }
+}
+
+/// Whether a histogram has moved from the uniform prior.
+fn observed(h: &[f32]) -> bool {
+    h.iter().any(|&p| p != h[0])
 }
 
 #[cfg(test)]

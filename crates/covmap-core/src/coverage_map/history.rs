@@ -6,6 +6,7 @@ use crate::error::{CovmapError, Result};
 use crate::footprint::visit;
 use crate::grid::Cell;
 use crate::histogram;
+use crate::memory;
 use crate::pose::Pose;
 use crate::sensor::SensorModel;
 
@@ -68,6 +69,10 @@ impl CoverageMap {
     /// measurement of it, however many of its beams do. Off by default: it
     /// costs an entropy per touched cell per scan. Turning it on starts an
     /// empty history.
+    ///
+    /// # Panics
+    /// If the history (36 bytes a cell) cannot be allocated
+    /// ([`CoverageMap::try_track_history`] returns an error instead).
     pub fn track_history(&mut self, on: bool) {
         self.history = on.then(|| {
             Box::new(History {
@@ -77,6 +82,26 @@ impl CoverageMap {
                 scan: 0,
             })
         });
+    }
+
+    /// [`CoverageMap::track_history`], or [`crate::CovmapError::OutOfMemory`]
+    /// where the history cannot be allocated (the map is then unchanged).
+    pub fn try_track_history(&mut self, on: bool) -> Result<()> {
+        let cells = self.grid.len();
+        self.history = match on {
+            false => None,
+            true => Some(Box::new(History {
+                entropies: memory::try_filled(
+                    [0.0; STAGNATION_MEASUREMENTS + 1],
+                    cells,
+                    "the entropy history",
+                )?,
+                count: memory::try_filled(0, cells, "the measurement counts")?,
+                stamp: memory::try_filled(0, cells, "the history's scan stamps")?,
+                scan: 0,
+            })),
+        };
+        Ok(())
     }
 
     /// Whether the history is kept.
@@ -172,6 +197,24 @@ impl CoverageMap {
     /// [`CoverageMap::stagnated`] for every cell, row-major.
     pub fn stagnation(&self) -> Vec<bool> {
         (0..self.grid.len()).map(|i| self.stagnated_at(i)).collect()
+    }
+
+    /// [`CoverageMap::stagnation`], or [`crate::CovmapError::OutOfMemory`]
+    /// where the result cannot be allocated.
+    pub fn try_stagnation(&self) -> Result<Vec<bool>> {
+        let stagnated = (0..self.grid.len()).map(|i| self.stagnated_at(i));
+        memory::try_collect(stagnated, "the stagnated cells")
+    }
+
+    /// [`CoverageMap::measurement_counts`], or
+    /// [`crate::CovmapError::OutOfMemory`] where the result cannot be allocated.
+    pub fn try_measurement_counts(&self) -> Result<Vec<u32>> {
+        match &self.history {
+            Some(history) => {
+                memory::try_collect(history.count.iter().copied(), "the measurement counts")
+            }
+            None => memory::try_filled(0, self.grid.len(), "the measurement counts"),
+        }
     }
 
     /// [`CoverageMap::stagnated`] by row-major index (below `grid.len()`).

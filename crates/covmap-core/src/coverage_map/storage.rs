@@ -8,6 +8,7 @@ use crate::aligned::Aligned;
 use crate::error::{CovmapError, Result};
 use crate::grid::{Cell, Grid};
 use crate::histogram::{self, DEFAULT_BINS};
+use crate::memory;
 use crate::sensor::{KernelTable, RangeModel};
 
 /// A grid whose every cell holds a histogram over how much of it is covered.
@@ -53,6 +54,10 @@ impl CoverageMap {
     /// # Panics
     /// If the histograms (64 bytes a cell) cannot be allocated;
     /// [`Self::with_bins`] returns an error instead.
+    #[allow(
+        clippy::expect_used,
+        reason = "documented under Panics; with_bins is the fallible form"
+    )]
     pub fn new(grid: Grid) -> Self {
         Self::with_bins(grid, DEFAULT_BINS)
             .expect("the default bin count is valid and the map fits in memory")
@@ -66,12 +71,14 @@ impl CoverageMap {
         histogram::check_bins(bins)?;
         let p = 1.0 / bins as f32;
         let data = Aligned::try_filled(p, grid.len() * bins).ok_or_else(|| {
-            CovmapError::InvalidGrid(format!(
-                "{} x {} cells of {bins} bins need {} bytes, more than can be allocated",
-                grid.rows(),
-                grid.cols(),
-                grid.len() as u128 * bins as u128 * 4
-            ))
+            memory::out_of_memory::<f32>(
+                &format!(
+                    "a coverage map of {} x {} cells of {bins} bins",
+                    grid.rows(),
+                    grid.cols()
+                ),
+                grid.len() * bins,
+            )
         })?;
         Ok(Self {
             grid,
@@ -157,26 +164,49 @@ impl CoverageMap {
     /// use [`CoverageMap::entropy`] (`ln(bins)` at the prior) to tell unknown
     /// cells from empty ones.
     pub fn ml(&self) -> Vec<f32> {
-        let scale = 1.0 / (self.bins - 1) as f32;
-        self.data
-            .chunks_exact(self.bins)
-            .map(|h| histogram::argmax(h) as f32 * scale)
-            .collect()
+        self.cells().map(ml_value(self.bins)).collect()
     }
     /// The mean map: each cell's expected coverage.
     pub fn mean(&self) -> Vec<f32> {
-        self.data
-            .chunks_exact(self.bins)
-            .map(histogram::mean)
-            .collect()
+        self.cells().map(histogram::mean).collect()
     }
     /// The entropy map, nats: `ln(bins)` at the prior, 0 when certain.
     pub fn entropy(&self) -> Vec<f32> {
-        self.data
-            .chunks_exact(self.bins)
-            .map(histogram::entropy)
-            .collect()
+        self.cells().map(histogram::entropy).collect()
     }
+
+    /// [`CoverageMap::ml`], or [`CovmapError::OutOfMemory`] where the
+    /// result (4 bytes a cell) cannot be allocated.
+    pub fn try_ml(&self) -> Result<Vec<f32>> {
+        memory::try_collect(self.cells().map(ml_value(self.bins)), "the ML map")
+    }
+    /// [`CoverageMap::mean`], or [`CovmapError::OutOfMemory`] where the
+    /// result cannot be allocated.
+    pub fn try_mean(&self) -> Result<Vec<f32>> {
+        memory::try_collect(self.cells().map(histogram::mean), "the mean map")
+    }
+    /// [`CoverageMap::entropy`], or [`CovmapError::OutOfMemory`] where the
+    /// result cannot be allocated.
+    pub fn try_entropy(&self) -> Result<Vec<f32>> {
+        memory::try_collect(self.cells().map(histogram::entropy), "the entropy map")
+    }
+    /// A copy of [`CoverageMap::histograms`], or
+    /// [`CovmapError::OutOfMemory`] where it cannot be allocated.
+    pub fn try_histograms_vec(&self) -> Result<Vec<f32>> {
+        memory::try_collect(self.data.iter().copied(), "the histograms")
+    }
+
+    /// Each cell's histogram, row-major.
+    pub(super) fn cells(&self) -> std::slice::ChunksExact<'_, f32> {
+        self.data.chunks_exact(self.bins)
+    }
+}
+
+/// A histogram's most probable coverage value with `bins` bins (ties to the
+/// lower bin).
+fn ml_value(bins: usize) -> impl Fn(&[f32]) -> f32 {
+    let scale = 1.0 / (bins - 1) as f32;
+    move |h| histogram::argmax(h) as f32 * scale
 }
 
 /// The kernel table for `range` on `grid` with `bins` bins: `cached` when it

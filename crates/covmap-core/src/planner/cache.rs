@@ -352,6 +352,7 @@ impl Planner {
     ) -> Result<Plan> {
         let start = check_pose(map.grid(), pose)?;
         let changed_cells = cache.see(map);
+        #[allow(clippy::expect_used, reason = "`see` has just set it")]
         let seen = cache.seen.as_ref().expect("the map was seen");
         let blocked = self.blocked_of(
             map.bins(),
@@ -512,11 +513,19 @@ impl PlanningCache {
                 evaluator.beam_reads(&pose, bearing, tiles)
             });
             for ((&(k, j), gain), reads) in jobs.iter().zip(gains).zip(reads) {
+                #[allow(
+                    clippy::expect_used,
+                    reason = "every touched slot was inserted before its beams were queued"
+                )]
                 let kept = state.gains.get_mut(&slot(k)).expect("kept above");
                 (kept.beams[j], kept.reads[j], kept.fresh[j]) = (gain, reads, true);
             }
             // The candidates' gains, from their beams' as `evaluate` sums them.
             for &k in &touched {
+                #[allow(
+                    clippy::expect_used,
+                    reason = "every touched slot was inserted before its beams were queued"
+                )]
                 let kept = state.gains.get_mut(&slot(k)).expect("kept above");
                 kept.gain = beam_sum(&poses[k], bearings, &kept.beams);
             }
@@ -527,6 +536,10 @@ impl PlanningCache {
     /// The kept gain of each candidate at `poses` (in `cells`), after
     /// [`Self::gains`] has kept them all.
     fn gathered(&self, cells: &[usize], poses: &[Pose]) -> Vec<f64> {
+        #[allow(
+            clippy::expect_used,
+            reason = "called only after `gains` has kept them"
+        )]
         let state = self.gains.as_ref().expect("gains kept");
         (0..poses.len())
             .map(|k| state.gains[&(cells[k], poses[k].theta_rad.to_bits())].gain)

@@ -35,6 +35,8 @@
 use std::io::Cursor;
 use std::path::Path;
 
+use covmap_core::memory;
+
 use super::{parse_error, read_bytes, read_text};
 use crate::error::{Result, check_param};
 use crate::material::Material;
@@ -236,6 +238,13 @@ fn parse_ros_yaml(text: &str, path: &Path) -> Result<(String, ImageOptions)> {
 /// The most pixels an image file may declare (2^30).
 pub const MAX_IMAGE_PIXELS: usize = 1 << 30;
 
+/// The most rectangles an occupancy image may become (2^20): each is an
+/// obstacle polygon of four edges, so that a world loaded from an image
+/// holds a bounded number of polygons (and its ray caster of pieces), however
+/// the pixels fall. A checkerboard of 1450 x 1450 pixels passes it; real
+/// occupancy maps, whose walls are runs of pixels, stay far below.
+pub const MAX_IMAGE_RECTANGLES: usize = 1 << 20;
+
 /// The largest factor by which deflate (PNG's compression) expands data.
 const DEFLATE_MAX_RATIO: usize = 1032;
 
@@ -284,7 +293,11 @@ fn decode_png(bytes: &[u8], path: &Path) -> Result<Grey> {
         .output_buffer_size()
         .filter(|&size| size <= max_bytes)
         .ok_or_else(too_large)?;
-    let mut buf = vec![0u8; size];
+    let mut buf = memory::try_filled(
+        0u8,
+        size,
+        &format!("{}: the PNG's decoded pixels", path.display()),
+    )?;
     let info = reader.next_frame(&mut buf).map_err(err)?;
     let channels = match info.color_type {
         png::ColorType::Grayscale => 1,
@@ -297,7 +310,10 @@ fn decode_png(bytes: &[u8], path: &Path) -> Result<Grey> {
     };
     // Colour channels averaged; alpha ignored.
     let colours = if channels >= 3 { 3 } else { 1 };
-    let mut values = Vec::with_capacity(width * height);
+    let mut values = memory::try_with_capacity(
+        width * height,
+        &format!("{}: the PNG's grey values", path.display()),
+    )?;
     for row in buf.chunks(info.line_size).take(height) {
         for px in row.chunks_exact(channels).take(width) {
             let sum: u32 = px[..colours].iter().map(|&v| v as u32).sum();
@@ -372,7 +388,10 @@ fn decode_pgm(bytes: &[u8], path: &Path) -> Result<Grey> {
     let scale = 1.0 / maxval as f64;
     // Every pixel takes at least a byte of the file: a header that promises
     // more than the file holds reserves no more than the file could fill.
-    let mut values = Vec::with_capacity(count.min(bytes.len()));
+    let mut values = memory::try_with_capacity(
+        count.min(bytes.len()),
+        &format!("{}: the PGM's grey values", path.display()),
+    )?;
     if binary {
         // Exactly one whitespace byte ends the header.
         if !bytes.get(pos).is_some_and(u8::is_ascii_whitespace) {
@@ -479,6 +498,16 @@ fn world_from_grey(grey: &Grey, o: &ImageOptions, path: &Path) -> Result<World> 
                 next.push((c0, c1, top));
                 k += 1;
             } else {
+                if rects.len() == MAX_IMAGE_RECTANGLES {
+                    return Err(parse_error(
+                        path,
+                        format!("pixel ({c0}, {top})"),
+                        format!(
+                            "the occupied pixels make more than {MAX_IMAGE_RECTANGLES} rectangles, \
+                             the most a world from an image may hold"
+                        ),
+                    ));
+                }
                 rects.push((c0, c1, top, row - 1));
             }
         }

@@ -173,3 +173,20 @@ fn nan_rays_miss() {
         assert_eq!(tree.first_hit_with(&Ray::new(o, d), 30.0, &mut stack), None);
     }
 }
+
+#[test]
+fn many_long_edges_are_cut_into_a_bounded_number_of_pieces() {
+    // 4096 edges of 2 km: 1024 pieces each at 2 m, 4 million in all.
+    let edges: Vec<_> = (0..4096)
+        .map(|i| {
+            let y = f64::from(i);
+            ([0.0, y], [2000.0, y], Material::Wall)
+        })
+        .collect();
+    let tree = RayTree::new(edges.clone());
+    let pieces = tree.lines.len();
+    assert!(pieces <= edges.len() + MAX_EXTRA_PIECES, "{pieces}");
+    assert!(pieces > MAX_EXTRA_PIECES / 4, "{pieces}");
+    // One such edge alone is cut at 2 m, as before.
+    assert_eq!(RayTree::new(edges[..1].to_vec()).lines.len(), 1000);
+}

@@ -23,12 +23,19 @@ pub(crate) struct Lines {
 }
 
 /// The lines of the file at `path`, gunzipped if it starts with gzip's
-/// magic bytes.
+/// magic bytes. Only a regular file is read: a device or a pipe is refused
+/// before it is opened, so that it can neither block the open nor stream
+/// without end.
 pub(crate) fn open(path: &Path) -> Result<Lines> {
-    let file = File::open(path).map_err(|e| CovmapError::Io {
+    let io = |reason: String| CovmapError::Io {
         file: path.display().to_string(),
-        reason: e.to_string(),
-    })?;
+        reason,
+    };
+    let metadata = std::fs::metadata(path).map_err(|e| io(e.to_string()))?;
+    if !metadata.is_file() {
+        return Err(io("not a regular file".to_owned()));
+    }
+    let file = File::open(path).map_err(|e| io(e.to_string()))?;
     lines(file, &path.display().to_string())
 }
 
@@ -168,6 +175,17 @@ mod tests {
             out.push(s.to_string());
         }
         Ok(out)
+    }
+
+    #[test]
+    fn a_device_or_a_directory_is_refused_before_it_is_opened() {
+        for path in ["/dev/zero", "/"] {
+            let Err(err) = open(Path::new(path)) else {
+                panic!("{path} was opened");
+            };
+            assert!(matches!(err, CovmapError::Io { .. }), "{err}");
+            assert!(err.to_string().contains("not a regular file"), "{err}");
+        }
     }
 
     #[test]

@@ -224,3 +224,23 @@ fn yaml_values_map_server_refuses_name_their_line() {
     let e = parse_ros_yaml("- a list\n", Path::new("m.yaml")).unwrap_err();
     assert!(e.to_string().starts_with("m.yaml, line 1"), "{e}");
 }
+
+#[test]
+fn a_checkerboard_of_more_rectangles_than_the_bound_is_refused() {
+    // 1450 x 1450 pixels, every other one occupied: 1,051,250 rectangles.
+    let side = 1450;
+    let pixels: Vec<u8> = (0..side * side)
+        .map(|i| {
+            if (i % side + i / side) % 2 == 0 {
+                0
+            } else {
+                255
+            }
+        })
+        .collect();
+    let bytes = pgm_p5(side, side, &pixels);
+    let err = World::from_image_bytes(&bytes, Path::new("board.pgm"), &ImageOptions::new(0.05))
+        .unwrap_err();
+    assert!(err.to_string().contains("rectangles"), "{err}");
+    assert!(err.to_string().contains("board.pgm"), "{err}");
+}

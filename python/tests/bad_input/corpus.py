@@ -1,0 +1,282 @@
+"""The bad-input corpus: calls of covmap's public API with arguments no
+caller should pass, each of which must either succeed or raise a
+:class:`covmap.CovmapError`, never panic, abort, hang, allocate without
+bound or raise an exception outside the hierarchy.
+
+A case is a line of Python run by ``runner.py`` in a namespace that
+``SETUP`` prepares (a small grid ``g``, maps ``m`` and ``o``, the corridor
+world ``w``, models, sensors, a log, files under ``tmp``). Most cases are
+generated: every argument of every public function and method, in turn,
+takes each of ``BAD_VALUES`` while the others keep a valid value. The rest
+are written out: one or more reproducers per class of the issue that
+brought this corpus (panics, aborts on allocation, headers trusted,
+unbounded work, endless or blocking reads, errors outside the hierarchy,
+rules that differ between places), with the exception class they must
+raise.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+#: The namespace every case runs in (``tmp`` is a fresh directory).
+SETUP = """
+import math, os, pickle
+import numpy as np
+import covmap
+g = covmap.Grid(origin=(0.0, 0.0), resolution=0.1, shape=(20, 30))
+m = covmap.CoverageMap(g)
+o = covmap.OccupancyGrid(g)
+w = covmap.World.builtin("corridor")
+small = covmap.World([[(0.0, 0.0), (1.0, 0.0), (1.0, 1.0)]])
+laser_model = covmap.LaserModel()
+sonar_model = covmap.SonarModel()
+laser = covmap.Laser(beams=9)
+ring = covmap.SonarRing.ring(8)
+planner = covmap.Planner()
+robot = covmap.Robot()
+P = (1.0, 1.0, 0.3)
+R = np.array([1.0, 2.0, 0.5])
+B = np.array([0.0, 1.0, 2.0])
+POSES = np.array([[1.0, 1.0, 0.0], [1.2, 1.0, 0.1]])
+log = covmap.Log(POSES, np.ones((2, 3)), B, max_range_m=5.0)
+strategy = covmap.Strategy.coverage()
+"""
+
+#: Values no argument expects: extreme numbers, wrong types, sequences of
+#: the wrong length or of a huge claimed length, arrays that claim far more
+#: elements than their memory holds.
+BAD_VALUES: dict[str, str] = {
+    "zero": "0",
+    "negative": "-1",
+    "negative float": "-0.5",
+    "nan": "math.nan",
+    "inf": "math.inf",
+    "-inf": "-math.inf",
+    "1e308": "1e308",
+    "-1e308": "-1e308",
+    "2**63": "2**63",
+    "2**64": "2**64",
+    "-2**63-1": "-2**63 - 1",
+    "10**400": "10**400",
+    "str": "'x'",
+    "bytes": "b'x'",
+    "None": "None",
+    "object": "object()",
+    "empty tuple": "()",
+    "one number": "(1.0,)",
+    "four numbers": "(1.0, 2.0, 3.0, 4.0)",
+    "nan tuple": "(math.nan, math.nan, math.nan)",
+    "huge range": "range(2**62)",
+    "huger range": "range(2**64)",
+    "nested": "[[1.0], [2.0]]",
+    "empty array": "np.zeros(0)",
+    "int array": "np.arange(3)",
+    "2-D array": "np.zeros((2, 2))",
+    "broadcast array": "np.broadcast_to(1.0, (2**40,))",
+    "broadcast rows": "np.broadcast_to(1.0, (2**38, 3))",
+    "numpy nan": "np.float64('nan')",
+    "numpy int64 max": "np.int64(2**63 - 1)",
+    "dict": "{'a': 1}",
+    "grid": "g",
+    "map": "m",
+}
+
+#: Every public function and method: the expression called, and its
+#: arguments as (name, a valid value, how it is passed: "pos" or "kw").
+API: list[tuple[str, list[tuple[str, str, str]]]] = [
+    ("covmap.Grid", [("origin", "(0.0, 0.0)", "kw"), ("resolution", "0.1", "kw"), ("shape", "(20, 30)", "kw")]),
+    ("covmap.Grid.covering", [("bounds", "(0.0, 0.0, 3.0, 2.0)", "pos"), ("resolution", "0.1", "kw")]),
+    ("g.contains", [("x", "1.0", "pos"), ("y", "1.0", "pos")]),
+    ("g.world_to_cell", [("x", "1.0", "pos"), ("y", "1.0", "pos")]),
+    ("g.cell_center", [("row", "1", "pos"), ("col", "1", "pos")]),
+    ("laser_model.kernel", [("cell_distance", "1.0", "pos"), ("measured_distance", "1.0", "pos"), ("resolution", "0.05", "kw"), ("bins", "16", "kw")]),
+    ("covmap.SonarModel.from_dict", [("d", "sonar_model.to_dict()", "pos")]),
+    ("covmap.SonarModel", [(k, "None", "kw") for k in ("max_range_m", "band_m", "sigma_min", "sigma_per_m", "sigma_end", "xi_min", "xi_per_m", "opening_angle_rad")]),
+    ("covmap.LaserModel", [(k, "None", "kw") for k in ("max_range_m", "band_m", "sigma_min", "sigma_per_m", "sigma_end", "xi_min", "xi_per_m")]),
+    ("covmap.CoverageMap", [("grid", "g", "pos"), ("bins", "16", "pos")]),
+    ("covmap.CoverageMap.from_histograms", [("grid", "g", "pos"), ("histograms", "m.histograms", "pos")]),
+    ("m.histogram", [("row", "1", "pos"), ("col", "1", "pos")]),
+    ("m.integrate", [("pose", "P", "pos"), ("ranges", "R", "pos"), ("bearings", "B", "pos"), ("model", "laser_model", "pos")]),
+    ("m.integrate_log", [("log", "log", "pos"), ("model", "laser_model", "pos"), ("progress", "False", "kw")]),
+    ("m.save", [("path", "os.path.join(tmp, 'm.npz')", "pos")]),
+    ("covmap.CoverageMap.load", [("path", "os.path.join(tmp, 'missing.npz')", "pos")]),
+    ("m.ros_occupancy", [("source", "'ml'", "kw"), ("unknown_within_nats", "0.05", "kw")]),
+    ("m.to_ros_map", [("yaml_path", "os.path.join(tmp, 'map.yaml')", "pos"), ("mode", "'trinary'", "kw"), ("occupied_thresh", "0.65", "kw"), ("free_thresh", "0.196", "kw"), ("source", "'ml'", "kw"), ("unknown_within_nats", "0.05", "kw")]),
+    ("m.track_history", [("on", "False", "pos")]),
+    ("covmap.Log", [("poses", "POSES", "pos"), ("ranges", "np.ones((2, 3))", "pos"), ("bearings", "B", "pos"), ("max_range_m", "5.0", "kw"), ("timestamps", "None", "kw"), ("sensor_offset", "(0.0, 0.0, 0.0)", "kw")]),
+    ("covmap.Log.from_carmen", [("path", "os.path.join(tmp, 'missing.log')", "pos"), ("max_range_m", "None", "kw")]),
+    ("covmap.Log.from_sonar_text", [("poses_path", "os.path.join(tmp, 'p.txt')", "pos"), ("measurements_path", "os.path.join(tmp, 'z.txt')", "pos"), ("bearings_deg", "[0.0, 90.0]", "kw"), ("length_unit_m", "1.0", "kw"), ("angle_unit_rad", "1.0", "kw"), ("max_range_m", "5.0", "kw")]),
+    ("covmap.Log.from_laser_scans", [("poses", "POSES", "pos"), ("ranges", "np.ones((2, 3))", "pos"), ("angle_min", "-0.5", "kw"), ("angle_increment", "0.5", "kw"), ("range_min", "0.1", "kw"), ("range_max", "5.0", "kw"), ("timestamps", "None", "kw")]),
+    ("log.extent", [("reach_m", "1.0", "pos")]),
+    ("log.with_sensor_offset", [("offset", "(0.1, 0.0, 0.0)", "pos")]),
+    ("log.__getitem__", [("key", "slice(0, 1)", "pos")]),
+    ("covmap.Log._from_state", [("state", "b'{}'", "pos")]),
+    ("covmap.OccupancyGrid", [("grid", "g", "pos")]),
+    ("o.integrate", [("pose", "P", "pos"), ("ranges", "R", "pos"), ("bearings", "B", "pos"), ("model", "laser_model", "pos")]),
+    ("o.integrate_log", [("log", "log", "pos"), ("model", "laser_model", "pos"), ("progress", "False", "kw")]),
+    ("o.to_ros_map", [("yaml_path", "os.path.join(tmp, 'occ.yaml')", "pos"), ("mode", "'trinary'", "kw"), ("occupied_thresh", "0.65", "kw"), ("free_thresh", "0.196", "kw")]),
+    ("covmap.expected_information_gain", [("map", "m", "pos"), ("poses", "POSES", "pos"), ("bearings", "B", "pos"), ("model", "laser_model", "pos"), ("method", "'fast'", "pos"), ("range_step_m", "None", "kw"), ("stop_coverage", "'ml'", "kw")]),
+    ("covmap.Planner", [(k, "None", "kw") for k in ("alpha", "robot_radius_m", "candidate_stride_m", "min_travel_m", "min_gain_nats", "blocked_coverage", "unknown_entropy_fraction", "unknown_is_free", "epsilon", "range_step_m", "stop_coverage")]),
+    ("planner.next_viewpoint", [("map", "m", "pos"), ("pose", "P", "pos"), ("bearings", "B", "pos"), ("model", "laser_model", "pos")]),
+    ("planner.status", [("map", "m", "pos"), ("pose", "P", "pos")]),
+    ("planner.free_space", [("map", "m", "pos")]),
+    ("planner.path_costs", [("map", "m", "pos"), ("pose", "P", "pos")]),
+    ("covmap.World", [("polygons", "[[(0.0, 0.0), (1.0, 0.0), (1.0, 1.0)]]", "pos"), ("materials", "None", "pos")]),
+    ("covmap.World.builtin", [("name", "'corridor'", "pos")]),
+    ("covmap.World.from_file", [("path", "os.path.join(tmp, 'missing.png')", "pos"), ("wall_thickness_m", "0.1", "kw"), ("resolution", "None", "kw"), ("origin", "None", "kw")]),
+    ("w.coverage", [("grid", "g", "pos")]),
+    ("w.cast", [("origins", "(1.0, 1.0)", "pos"), ("angles", "B", "pos"), ("max_range_m", "5.0", "pos"), ("return_incidence", "False", "kw")]),
+    ("w.contains", [("x", "1.0", "pos"), ("y", "1.0", "pos")]),
+    ("w.distance_to_obstacle", [("x", "1.0", "pos"), ("y", "1.0", "pos")]),
+    ("covmap.World._from_geojson", [("text", "'{}'", "pos")]),
+    ("laser.simulate", [("world", "w", "pos"), ("pose", "P", "pos"), ("seed", "0", "kw")]),
+    ("laser.simulate_path", [("world", "w", "pos"), ("poses", "POSES", "pos"), ("seed", "0", "kw")]),
+    ("laser.record", [("world", "w", "pos"), ("poses", "POSES", "pos"), ("seed", "0", "kw")]),
+    ("ring.simulate", [("world", "w", "pos"), ("pose", "P", "pos"), ("seed", "0", "kw")]),
+    ("ring.simulate_path", [("world", "w", "pos"), ("poses", "POSES", "pos"), ("seed", "0", "kw")]),
+    ("covmap.SonarRing", [(k, "None", "kw") for k in ("bearings_rad", "opening_angle_rad", "max_range_m", "min_range_m", "rays_per_cone", "noise_std_m", "noise_std_per_m", "outlier_probability", "multipath_probability", "critical_angle_wall_rad", "critical_angle_glass_rad")]),
+    ("covmap.SonarRing.ring", [("count", "8", "pos")]),
+    ("ring.with_model", [("model", "sonar_model", "pos")]),
+    ("covmap.Laser", [("beams", "None", "pos"), ("fov_rad", "None", "pos"), ("bearings_rad", "None", "kw"), ("max_range_m", "None", "kw"), ("noise_std_m", "None", "kw")]),
+    ("covmap.Robot", [("radius_m", "0.25", "kw")]),
+    ("robot.collides", [("world", "w", "pos"), ("pose", "(1.0, 1.0)", "pos")]),
+    ("robot.move_collides", [("world", "w", "pos"), ("start", "(1.0, 1.0)", "pos"), ("goal", "(2.0, 1.0)", "pos")]),
+    ("robot.free_travel", [("world", "w", "pos"), ("start", "(1.0, 1.0)", "pos"), ("goal", "(2.0, 1.0)", "pos")]),
+    ("robot.clearance", [("world", "w", "pos"), ("points", "[(1.0, 1.0)]", "pos")]),
+    ("covmap._native.write_atomic", [("path", "os.path.join(tmp, 'out.bin')", "pos"), ("data", "b'abc'", "pos")]),
+    ("covmap.Strategy.coverage", [("alpha", "0.5", "pos")]),
+    ("covmap.Strategy.counting", [("n", "50", "pos"), ("discount_beyond_m", "None", "pos")]),
+    # A run kept short by each of its limits (steps, path), so that an
+    # argument set to an extreme value cannot make it long.
+    ("covmap.explore", [("world", "small", "pos"), ("strategy", "strategy", "pos"), ("start", "None", "kw"), ("seed", "0", "kw"), ("sensor", "None", "kw"), ("model", "None", "kw"), ("resolution", "0.1", "kw"), ("bins", "16", "kw"), ("epsilon", "0.65", "kw"), ("robot_radius_m", "0.1", "kw"), ("candidate_stride_m", "0.5", "kw"), ("scan_spacing_m", "0.25", "kw"), ("max_path_m", "1.0", "kw"), ("max_steps", "2", "kw")]),
+    ("covmap.Exploration", [("world", "small", "pos"), ("strategy", "strategy", "pos"), ("resolution", "0.1", "kw"), ("bins", "16", "kw"), ("max_path_m", "1.0", "kw"), ("max_steps", "2", "kw")]),
+]
+
+#: Arguments whose extreme values make a valid call run long without being
+#: wrong (a seed is any integer): their values are drawn from the numbers.
+_SLOW = {("covmap.explore", "resolution"), ("covmap.Exploration", "resolution")}
+
+
+@dataclass(frozen=True)
+class Case:
+    """One call: ``code`` run in ``SETUP``'s namespace. ``expect`` is
+    ``"either"`` (success or a CovmapError) or the name of the covmap class
+    the call must raise; ``builtin`` a builtin exception it must also be,
+    ``mentions`` text its message must hold. ``alone``: run in a process of
+    its own (it may take the interpreter down)."""
+
+    id: str
+    code: str
+    expect: str = "either"
+    builtin: str | None = None
+    mentions: str | None = None
+    alone: bool = False
+
+
+def _call(function: str, args: list[tuple[str, str, str]]) -> str:
+    positional = [v for _, v, how in args if how == "pos"]
+    keywords = [f"{n}={v}" for n, v, how in args if how == "kw"]
+    return f"{function}({', '.join(positional + keywords)})"
+
+
+def generated() -> list[Case]:
+    """Every argument of every API entry with every bad value."""
+    cases = []
+    for function, args in API:
+        for i, (name, _, how) in enumerate(args):
+            for label, value in BAD_VALUES.items():
+                if (function, name) in _SLOW and label in ("zero", "1e308", "negative float"):
+                    continue
+                bad = list(args)
+                bad[i] = (name, value, how)
+                cases.append(Case(f"{function}({name}={label})", _call(function, bad)))
+    return cases
+
+
+#: The written cases: the issue's reproducers, and the hostile files.
+WRITTEN: list[Case] = [
+    # Rust panics reaching Python: sequences reserved by their len().
+    Case("integrate ranges range(2**62)", "m.integrate((1., 1., 0.), range(2**62), np.zeros(3), covmap.LaserModel())", "ArrayShapeError", "ValueError", "65536", alone=True),
+    Case("integrate ranges range(2**31)", "m.integrate((1., 1., 0.), range(2**31), np.zeros(3), covmap.LaserModel())", "ArrayShapeError", "ValueError", "ranges", alone=True),
+    Case("integrate bearings lying __len__", "m.integrate(P, R, type('L', (list,), {'__len__': lambda s: 2**40})([0.0, 1.0, 2.0]), laser_model)", "ArrayShapeError", "ValueError", "bearings", alone=True),
+    Case("pose range(2**62)", "m.integrate(range(2**62), R, B, laser_model)", "ArrayShapeError", "ValueError", "pose", alone=True),
+    Case("point range(2**62)", "robot.collides(w, range(2**62))", "ArrayShapeError", "ValueError", "pose", alone=True),
+    Case("poses rows range(2**62)", "laser.simulate_path(w, [range(2**62)])", "ArrayShapeError", "ValueError", "poses[0]", alone=True),
+    Case("polygon vertices range(2**62)", "covmap.World([range(2**62)])", "CovmapError", None, None, alone=True),
+    Case("broadcast ranges", "m.integrate(P, np.broadcast_to(1.0, (2**40,)), B, laser_model)", "ArrayShapeError", "ValueError", "ranges", alone=True),
+    Case("broadcast histograms", "covmap.CoverageMap.from_histograms(g, np.broadcast_to(np.float32(1), (20, 30, 2**30)))", "ArrayShapeError", "ValueError", "histograms", alone=True),
+    Case("broadcast log ranges", "covmap.Log(POSES, np.broadcast_to(1.0, (2, 2**40)), B, max_range_m=5.0)", "ArrayShapeError", "ValueError", "ranges", alone=True),
+    # Out of memory raises instead of aborting (under the runner's limit).
+    Case("occupancy grid of 46340 x 46340 cells", "covmap.OccupancyGrid(covmap.Grid(origin=(0., 0.), resolution=0.05, shape=(46340, 46340)))", "OutOfMemoryError", "MemoryError", "bytes", alone=True),
+    Case("coverage map of 46340 x 46340 cells", "covmap.CoverageMap(covmap.Grid(origin=(0., 0.), resolution=0.05, shape=(46340, 46340)))", "OutOfMemoryError", "MemoryError", "bytes", alone=True),
+    Case("ground truth of 46340 x 46340 cells", "w.coverage(covmap.Grid(origin=(0., 0.), resolution=0.05, shape=(46340, 46340)))", "OutOfMemoryError", "MemoryError", "ground truth", alone=True),
+    Case("read-outs of a large map", "big = covmap.CoverageMap(covmap.Grid(origin=(0., 0.), resolution=0.05, shape=(8192, 8192)), 2)\nfor f in (big.ml, big.mean, big.entropy, big.observed, lambda: big.histograms, big.measurements, big.stagnated):\n    try:\n        f()\n    except covmap.OutOfMemoryError:\n        pass\nbig.track_history(True)", "OutOfMemoryError", "MemoryError", "bytes", alone=True),
+    Case("occupancy read-outs of a large grid", "big = covmap.OccupancyGrid(covmap.Grid(origin=(0., 0.), resolution=0.05, shape=(8192, 8192)))\nhold = []\nwhile True:\n    hold += [big.probabilities(), big.log_odds(), big.counts(), big.observed()]", "OutOfMemoryError", "MemoryError", "bytes", alone=True),
+    # Decoders trust headers: a 74-byte PNG claiming 100000 x 100000 pixels.
+    Case("png header of 100000 x 100000 pixels", "import struct, zlib\ndef chunk(t, d):\n    return struct.pack('>I', len(d)) + t + d + struct.pack('>I', zlib.crc32(t + d))\np = os.path.join(tmp, 'huge.png')\nopen(p, 'wb').write(b'\\x89PNG\\r\\n\\x1a\\n' + chunk(b'IHDR', struct.pack('>IIBBBBB', 100000, 100000, 8, 0, 0, 0, 0)) + chunk(b'IDAT', zlib.compress(b'')) + chunk(b'IEND', b''))\ncovmap.World.from_file(p, resolution=0.05)", "FileFormatError", "ValueError", "huge.png", alone=True),
+    Case("png of 2**30 pixels within deflate's bound", "import struct, zlib\ndef chunk(t, d):\n    return struct.pack('>I', len(d)) + t + d + struct.pack('>I', zlib.crc32(t + d))\nz = zlib.compressobj(9)\nrow = bytes(32769)\ndata = b''.join(z.compress(row) for _ in range(32768)) + z.flush()\np = os.path.join(tmp, 'big.png')\nopen(p, 'wb').write(b'\\x89PNG\\r\\n\\x1a\\n' + chunk(b'IHDR', struct.pack('>IIBBBBB', 32768, 32768, 8, 0, 0, 0, 0)) + chunk(b'IDAT', data) + chunk(b'IEND', b''))\ncovmap.World.from_file(p, resolution=0.05)", "OutOfMemoryError", "MemoryError", "big.png", alone=True),
+    Case("checkerboard image of more rectangles than the bound", "p = os.path.join(tmp, 'board.pgm')\nside = 1450\nrow = bytes((0, 255)) * (side // 2)\nopen(p, 'wb').write(f'P5\\n{side} {side}\\n255\\n'.encode() + b''.join(row if r % 2 == 0 else row[1:] + row[:1] for r in range(side)))\ncovmap.World.from_file(p, resolution=1000.0)", "FileFormatError", "ValueError", "rectangles", alone=True),
+    Case("pgm header of 100000 x 100000 pixels", "p = os.path.join(tmp, 'huge.pgm')\nopen(p, 'wb').write(b'P5\\n100000 100000\\n255\\n' + b'\\0' * 16)\ncovmap.World.from_file(p, resolution=0.05)", "FileFormatError", "ValueError", "huge.pgm", alone=True),
+    Case("pgm header of 2**64 pixels", "p = os.path.join(tmp, 'h.pgm')\nopen(p, 'wb').write(b'P5\\n18446744073709551617 3\\n255\\n\\0\\0\\0')\ncovmap.World.from_file(p, resolution=0.05)", "FileFormatError", "ValueError", "h.pgm", alone=True),
+    Case("truncated png", "p = os.path.join(tmp, 't.png')\nfrom PIL import Image\nImage.new('L', (20, 20), 255).save(p)\ndata = open(p, 'rb').read()\nopen(p, 'wb').write(data[:len(data) // 2])\ncovmap.World.from_file(p, resolution=0.05)", "FileFormatError", "ValueError", "t.png"),
+    Case("corrupted png", "p = os.path.join(tmp, 'c.png')\nfrom PIL import Image\nImage.new('L', (20, 20), 255).save(p)\ndata = bytearray(open(p, 'rb').read())\ndata[40] ^= 0xFF\nopen(p, 'wb').write(bytes(data))\ncovmap.World.from_file(p, resolution=0.05)", "FileFormatError", "ValueError", "c.png"),
+    Case("truncated map file", "p = os.path.join(tmp, 'm.npz')\nm.save(p)\ndata = open(p, 'rb').read()\nopen(p, 'wb').write(data[:len(data) // 2])\ncovmap.CoverageMap.load(p)", "FileFormatError", "ValueError", "m.npz"),
+    Case("corrupted map file", "p = os.path.join(tmp, 'm2.npz')\nm.save(p)\ndata = bytearray(open(p, 'rb').read())\ndata[len(data) // 2] ^= 0xFF\nopen(p, 'wb').write(bytes(data))\ncovmap.CoverageMap.load(p)", "FileFormatError", "ValueError", "m2.npz"),
+    Case("truncated carmen log", "p = os.path.join(tmp, 't.log')\nopen(p, 'w').write('FLASER 3 1.0 1.0')\ncovmap.Log.from_carmen(p)", "FileFormatError", "ValueError", "t.log"),
+    Case("carmen beam count 2**64", "p = os.path.join(tmp, 'n.log')\nopen(p, 'w').write('FLASER 18446744073709551616 1.0\\n')\ncovmap.Log.from_carmen(p)", "FileFormatError", "ValueError", "n.log"),
+    Case("geojson garbage", "covmap.World._from_geojson('{\"type\": \"FeatureCollection\", \"features\": [' * 1000)", "FileFormatError", "ValueError"),
+    # Endless streams and files that never open.
+    Case("world from /dev/zero", "covmap.World.from_file('/dev/zero')", "CovmapError", None, "/dev/zero", alone=True),
+    Case("map from /dev/zero", "covmap.CoverageMap.load('/dev/zero')", "CovmapError", None, "/dev/zero", alone=True),
+    Case("carmen log from /dev/zero", "covmap.Log.from_carmen('/dev/zero')", "CovmapError", None, "/dev/zero", alone=True),
+    Case("sonar text from /dev/zero", "covmap.Log.from_sonar_text('/dev/zero', '/dev/zero', bearings_deg=[0.0], max_range_m=5.0)", "CovmapError", None, "/dev/zero", alone=True),
+    Case("world from a fifo", "p = os.path.join(tmp, 'fifo.png')\nos.mkfifo(p)\ncovmap.World.from_file(p)", "CovmapError", None, "fifo", alone=True),
+    Case("map from a fifo", "p = os.path.join(tmp, 'fifo.npz')\nos.mkfifo(p)\ncovmap.CoverageMap.load(p)", "CovmapError", None, "fifo", alone=True),
+    Case("carmen log from a fifo", "p = os.path.join(tmp, 'fifo.log')\nos.mkfifo(p)\ncovmap.Log.from_carmen(p)", "CovmapError", None, "fifo", alone=True),
+    Case("world from a directory", "covmap.World.from_file(tmp)", "CovmapError"),
+    Case("carmen log from a directory", "covmap.Log.from_carmen(tmp)", "CovmapError"),
+    Case("huge sparse carmen log", "p = os.path.join(tmp, 'sparse.log')\nwith open(p, 'wb') as f:\n    f.truncate(2**40)\ncovmap.Log.from_carmen(p)", "CovmapError", None, "sparse.log", alone=True),
+    Case("huge sparse map file", "p = os.path.join(tmp, 'sparse.npz')\nwith open(p, 'wb') as f:\n    f.truncate(2**40)\ncovmap.CoverageMap.load(p)", "CovmapError", None, "sparse.npz", alone=True),
+    Case("carmen line without end", "p = os.path.join(tmp, 'long.log')\nopen(p, 'w').write('#' * (8 << 20))\ncovmap.Log.from_carmen(p)", "CovmapError", None, "long.log", alone=True),
+    # Work that grows without bound: long edges, images at large resolution.
+    Case("checkerboard scaled up", "squares = [[(x * 1e5, y * 1e5), ((x + 1) * 1e5, y * 1e5), ((x + 1) * 1e5, (y + 1) * 1e5), (x * 1e5, (y + 1) * 1e5)] for x in range(0, 64, 2) for y in range(0, 64, 2)]\nbig = covmap.World(squares)\nbig.cast((1.0, -1.0), [1.0], 1e7)", "either", alone=True),
+    Case("image at 1000 m a pixel", "p = os.path.join(tmp, 'board.png')\nfrom PIL import Image\nim = Image.new('L', (256, 256), 255)\nfor x in range(0, 256, 2):\n    for y in range(0, 256, 2):\n        im.putpixel((x, y), 0)\nim.save(p)\nbig = covmap.World.from_file(p, resolution=1000.0)\nbig.cast((1.0, -1.0), [1.0], 1e7)", "either", alone=True),
+    # Errors outside the hierarchy.
+    Case("bins 2**63", "covmap.CoverageMap(g, 2**63)", "IntegerOverflowError", "OverflowError", "bins"),
+    Case("bins 2**64 as numpy", "covmap.CoverageMap(g, np.uint64(2**64 - 1))", "IntegerOverflowError", "OverflowError", "bins"),
+    Case("cell 2**63", "m.histogram(2**63, 0)", "IntegerOverflowError", "OverflowError", "row"),
+    Case("resolution str", "covmap.Grid(origin=(0., 0.), resolution='0.1', shape=(4, 4))", "InvalidTypeError", "TypeError", "resolution"),
+    Case("shape of three", "covmap.Grid(origin=(0., 0.), resolution=0.1, shape=(4, 4, 4))", "ArrayShapeError", "ValueError", "shape"),
+    Case("bounds of three", "covmap.Grid.covering((0., 0., 1.), resolution=0.1)", "ArrayShapeError", "ValueError", "bounds"),
+    Case("grid of the wrong type", "covmap.CoverageMap('grid')", "InvalidTypeError", "TypeError", "grid"),
+    Case("planner alpha str", "covmap.Planner(alpha='x')", "InvalidTypeError", "TypeError", "alpha"),
+    Case("sensor setting str", "covmap.LaserModel(max_range_m='x')", "InvalidTypeError", "TypeError", "max_range_m"),
+    Case("seed 2**64", "laser.simulate(w, P, seed=2**64)", "IntegerOverflowError", "OverflowError", "seed"),
+    Case("float 10**400", "g.contains(10**400, 1.0)", "IntegerOverflowError", "OverflowError", "x"),
+    # Rules that differ between places: what integrate refuses, the
+    # simulated sensors refuse; bounds that overflow.
+    Case("laser from a heading whose beams overflow", "covmap.Laser(bearings_rad=[1e308, 0.0]).simulate(w, (1.0, 1.0, 1e308))", "InvalidBearingError", "ValueError", "bearing"),
+    Case("sonar ring from a heading whose beams overflow", "covmap.SonarRing(bearings_rad=[1e308, 0.0]).simulate_path(w, [(1.0, 1.0, 1e308)])", "InvalidBearingError", "ValueError", "bearing"),
+    Case("integrate from a heading whose beams overflow", "m.integrate((1.0, 1.0, 1e308), [1.0, 1.0], [1e308, 0.0], laser_model)", "InvalidBearingError", "ValueError", "bearing"),
+    Case("grid whose bounds overflow", "covmap.Grid(origin=(1.7e308, 0.0), resolution=1e300, shape=(1, 10000000))", "InvalidGridError", "ValueError", "overflow"),
+    Case("covering bounds that overflow", "covmap.Grid.covering((-1e308, -1e308, 1e308, 1e308), resolution=1e300)", "InvalidGridError", "ValueError"),
+    # Python package: sweeps and the command line.
+    Case("dask client of 10**9 workers", "with covmap.dask_client(workers=10**9):\n    pass", "InvalidParameterError", "ValueError", "workers"),
+    Case("dask client of a nan timeout", "with covmap.dask_client('tcp://127.0.0.1:9', timeout_s=math.nan):\n    pass", "InvalidParameterError", "ValueError", "timeout_s"),
+    Case("dask client of a str timeout", "with covmap.dask_client('tcp://127.0.0.1:9', timeout_s='1'):\n    pass", "InvalidParameterError", "ValueError", "timeout_s"),
+    Case("dask client of neither", "with covmap.dask_client():\n    pass", "InvalidTypeError", "TypeError"),
+    Case("sweep of a bad progress", "covmap.sweep([{'world': 'corridor'}], progress='yes')", "InvalidTypeError", "TypeError", "progress"),
+    Case("sweep of a bad executor", "covmap.sweep([{'world': 'corridor', 'strategy': 'coverage'}], executor=3)", "InvalidExecutorError", "ValueError"),
+    Case("real-time factor of a str speed", "covmap.explore(small, strategy, resolution=0.1, max_steps=1).real_time_factor('fast')", "InvalidParameterError", "ValueError", "speed_m_s"),
+    Case("real-time factor of an infinite speed", "covmap.explore(small, strategy, resolution=0.1, max_steps=1).real_time_factor(math.inf)", "InvalidParameterError", "ValueError", "speed_m_s"),
+    Case("sweep of a non-list", "covmap.sweep(3)", "CovmapError"),
+    Case("sweep spec of a bad seed", "covmap.sweep([{'world': 'corridor', 'seed': 2**64}])", "CovmapError"),
+    Case("sweep spec of a bad key", "covmap.sweep([{'world': 'corridor', 'nonsense': 1}])", "InvalidSpecError", "ValueError"),
+    Case("sweep spec of a bad world", "covmap.sweep([{'world': 3}])", "CovmapError"),
+]
+
+
+def cases() -> list[Case]:
+    """The whole corpus."""
+    return generated() + WRITTEN

@@ -1,0 +1,60 @@
+"""Runs a batch of the bad-input corpus in this process, under an
+address-space limit: ``python runner.py CASES.json LIMIT_BYTES``.
+
+Prints one JSON line per case: ``{"start": id}`` before it runs (so that a
+process that dies is known to have died in it), then its outcome: whether
+it raised, the exception's class, the names of its bases, its message, and
+whether a map of the namespace changed although the call raised.
+"""
+
+from __future__ import annotations
+
+import json
+import resource
+import sys
+import tempfile
+import traceback
+from typing import Any
+
+sys.path.insert(0, __file__.rsplit("/", 1)[0])
+
+from corpus import SETUP  # noqa: E402
+
+
+def snapshot(namespace: dict[str, Any]) -> tuple[bytes, ...]:
+    """The state of the namespace's maps, to tell whether an error changed them."""
+    m, o = namespace["m"], namespace["o"]
+    return (m.histograms.tobytes(), o.log_odds().tobytes(), o.counts().tobytes())
+
+
+def main() -> None:
+    cases = json.loads(open(sys.argv[1]).read())
+    limit = int(sys.argv[2])
+    namespace: dict[str, Any] = {"tmp": tempfile.mkdtemp(prefix="covmap-bad-input-")}
+    exec(SETUP, namespace)
+    # After the setup: the limit is for the cases.
+    resource.setrlimit(resource.RLIMIT_AS, (limit, limit))
+    covmap = namespace["covmap"]
+    out = sys.stdout
+    for case in cases:
+        print(json.dumps({"start": case["id"]}), file=out, flush=True)
+        before = snapshot(namespace)
+        result: dict[str, Any] = {"id": case["id"], "raised": False}
+        try:
+            exec(case["code"], dict(namespace))
+        except BaseException as e:  # noqa: BLE001 (every outcome is reported)
+            result.update(
+                raised=True,
+                type=type(e).__name__,
+                bases=[c.__name__ for c in type(e).__mro__],
+                covmap=isinstance(e, covmap.CovmapError),
+                message=str(e)[:500],
+                changed=snapshot(namespace) != before,
+            )
+            if not isinstance(e, covmap.CovmapError):
+                result["traceback"] = traceback.format_exc()[-1500:]
+        print(json.dumps(result), file=out, flush=True)
+
+
+if __name__ == "__main__":
+    main()
