@@ -1148,7 +1148,7 @@ def fit_sensor_model(
     *,
     grid: Grid | None = None,
     parameters: Sequence[str] | None = None,
-    bounds: Sequence[tuple[str, tuple[float, float]]] | None = None,
+    bounds: Sequence[tuple[str, tuple[float, float]]] | dict[str, tuple[float, float]] | None = None,
     max_evaluations: int = 300,
     restarts: int = 2,
     seed: int = 0,

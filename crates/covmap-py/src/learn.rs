@@ -38,6 +38,55 @@ fn truth_values(py: Python<'_>, truth: &Bound<'_, PyAny>, grid: &Grid) -> PyResu
     Ok(values)
 }
 
+/// The most names a `parameters` or `bounds` argument may hold (a model has
+/// a dozen parameters).
+const MAX_NAMES: usize = 64;
+
+/// A `parameters` argument: a sequence of parameter names, if given.
+pub(crate) fn parameter_names(obj: Option<&Bound<'_, PyAny>>) -> PyResult<Option<Vec<String>>> {
+    let Some(obj) = obj else { return Ok(None) };
+    let py = obj.py();
+    let not_names = || {
+        Exception::InvalidType.err(
+            py,
+            format!(
+                "parameters must be a sequence of parameter names, got {}",
+                obj.get_type()
+            ),
+        )
+    };
+    convert::items(obj, "parameters", MAX_NAMES, &not_names)?
+        .iter()
+        .map(convert::arg::<String>)
+        .collect::<PyResult<Vec<_>>>()
+        .map(Some)
+}
+
+/// A `bounds` argument: `(name, (low, high))` pairs (or a dict of them).
+fn parameter_bounds(obj: Option<&Bound<'_, PyAny>>) -> PyResult<Vec<(String, [f64; 2])>> {
+    let Some(obj) = obj else {
+        return Ok(Vec::new());
+    };
+    let py = obj.py();
+    let pairs = match obj.cast::<PyDict>() {
+        Ok(d) => d.items().into_any(),
+        Err(_) => obj.clone(),
+    };
+    let not_pairs = || {
+        Exception::InvalidType.err(
+            py,
+            format!(
+                "bounds must be (name, (low, high)) pairs or a dict of them, got {}",
+                obj.get_type()
+            ),
+        )
+    };
+    convert::items(&pairs, "bounds", MAX_NAMES, &not_pairs)?
+        .iter()
+        .map(|item| convert::arg::<(String, (f64, f64))>(item).map(|(n, (lo, hi))| (n, [lo, hi])))
+        .collect()
+}
+
 /// A cell mask for `grid`, if given: a bool array of shape `(rows, cols)`.
 fn mask(cells: Option<&Bound<'_, PyAny>>, grid: &Grid) -> PyResult<Option<Vec<bool>>> {
     cells
@@ -55,7 +104,7 @@ fn mask(cells: Option<&Bound<'_, PyAny>>, grid: &Grid) -> PyResult<Option<Vec<bo
 #[pyo3(signature = (map, truth, *, cells=None))]
 pub(crate) fn log_likelihood(
     py: Python<'_>,
-    map: &Bound<'_, PyCoverageMap>,
+    #[pyo3(from_py_with = crate::convert::arg)] map: Bound<'_, PyCoverageMap>,
     truth: &Bound<'_, PyAny>,
     cells: Option<&Bound<'_, PyAny>>,
 ) -> PyResult<f64> {
@@ -94,16 +143,16 @@ pub(crate) fn log_likelihood(
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn fit_sensor_model(
     py: Python<'_>,
-    log: &Bound<'_, PyLog>,
+    #[pyo3(from_py_with = crate::convert::arg)] log: Bound<'_, PyLog>,
     truth: &Bound<'_, PyAny>,
     model: &Bound<'_, PyAny>,
-    grid: Option<&Bound<'_, PyGrid>>,
-    parameters: Option<Vec<String>>,
-    bounds: Option<Vec<(String, (f64, f64))>>,
-    max_evaluations: i64,
-    restarts: i64,
+    #[pyo3(from_py_with = crate::convert::arg)] grid: Option<Bound<'_, PyGrid>>,
+    parameters: Option<Bound<'_, PyAny>>,
+    bounds: Option<Bound<'_, PyAny>>,
+    #[pyo3(from_py_with = crate::convert::arg)] max_evaluations: i64,
+    #[pyo3(from_py_with = crate::convert::arg)] restarts: i64,
     seed: Seed,
-    bins: i64,
+    #[pyo3(from_py_with = crate::convert::arg)] bins: i64,
     cells: Option<&Bound<'_, PyAny>>,
     progress: ProgressArg,
 ) -> PyResult<PySensorFit> {
@@ -127,12 +176,8 @@ pub(crate) fn fit_sensor_model(
         })
     };
     let options = FitOptions {
-        parameters,
-        bounds: bounds
-            .unwrap_or_default()
-            .into_iter()
-            .map(|(n, (lo, hi))| (n, [lo, hi]))
-            .collect(),
+        parameters: parameter_names(parameters.as_ref())?,
+        bounds: parameter_bounds(bounds.as_ref())?,
         max_evaluations: count("max_evaluations", max_evaluations)?,
         restarts: count("restarts", restarts)?,
         seed: seed.0,

@@ -14,6 +14,10 @@ use crate::error::{CovmapError, Result};
 use crate::grid::Grid;
 use crate::log::Log;
 
+/// The most evaluations a fit may be asked for (a day's work here at 70 ms
+/// each is about a million; a fit of 11 parameters converges in hundreds).
+pub const MAX_EVALUATIONS: usize = 100_000;
+
 /// What a fit scores models on: a recorded drive, the grid its maps are
 /// built on, and the ground-truth coverage of that grid's cells (row-major),
 /// scored over every cell or those where `cells` is true.
@@ -120,7 +124,7 @@ pub struct SensorFit<M> {
 /// Before any evaluation: [`CovmapError::InvalidSetting`] for an empty log,
 /// an unknown or repeated parameter name, bounds of a parameter not fitted,
 /// bounds that are not finite and increasing, bounds excluding the starting
-/// value, no evaluations or no restarts; [`CovmapError::LengthMismatch`]
+/// value, no evaluations, more than [`MAX_EVALUATIONS`], or no restarts; [`CovmapError::LengthMismatch`]
 /// and [`CovmapError::InvalidParameter`] for a truth or mask of the wrong
 /// size or a truth value outside `[0, 1]`; the model's and the bin count's
 /// own errors. Then the errors of building the starting model's map (a scan
@@ -208,8 +212,14 @@ impl<'a, M: Fittable> Search<'a, M> {
         if data.log.is_empty() {
             return Err(setting("log", "the log holds no scans".into()));
         }
-        if options.max_evaluations == 0 {
-            return Err(setting("max_evaluations", "0: at least 1 is needed".into()));
+        if !(1..=MAX_EVALUATIONS).contains(&options.max_evaluations) {
+            return Err(setting(
+                "max_evaluations",
+                format!(
+                    "{}: expected 1 to {MAX_EVALUATIONS}",
+                    options.max_evaluations
+                ),
+            ));
         }
         if !(1..=256).contains(&options.restarts) {
             return Err(setting(

@@ -38,6 +38,6 @@ mod likelihood;
 mod parameters;
 mod point;
 
-pub use fit::{FitData, FitEvaluation, FitOptions, SensorFit, fit_sensor_model};
+pub use fit::{FitData, FitEvaluation, FitOptions, MAX_EVALUATIONS, SensorFit, fit_sensor_model};
 pub use likelihood::{check_truth, log_likelihood};
 pub use parameters::{Fittable, Parameter};

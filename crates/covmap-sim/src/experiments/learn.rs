@@ -39,7 +39,12 @@ pub fn survey_drive(
     scans: usize,
 ) -> Result<Vec<Pose>> {
     check_param("step_m", step_m, step_m > 0.01, "a step longer than 1 cm")?;
-    check_param("scans", scans as f64, scans > 0, "at least one scan")?;
+    check_param(
+        "scans",
+        scans as f64,
+        (1..=MAX_DRIVE_SCANS).contains(&scans),
+        "1 to 100000 scans",
+    )?;
     let robot = Robot::new(robot_radius_m)?;
     let clearance = clearances(world, grid, &robot);
     let start = choose_start(grid, &clearance, robot_radius_m, seed)?;
@@ -106,6 +111,35 @@ pub struct LearnConfig {
     /// Whether the fit scores the training drive's judged cells only
     /// ([`Drive::judged`]) rather than every cell of its grid.
     pub judged_only: bool,
+}
+
+/// The most scans a drive of [`learn`] may have.
+pub const MAX_DRIVE_SCANS: usize = 100_000;
+
+impl LearnConfig {
+    /// Errors, naming the value, unless the drives' setting is usable:
+    /// 1 to [`MAX_DRIVE_SCANS`] scans, a step of more than 1 cm and at most
+    /// 10 m, cells of 1 cm to 1 m.
+    pub fn validate(&self) -> Result<()> {
+        check_param(
+            "scans",
+            self.scans as f64,
+            (1..=MAX_DRIVE_SCANS).contains(&self.scans),
+            "1 to 100000 scans",
+        )?;
+        check_param(
+            "step_m",
+            self.step_m,
+            self.step_m > 0.01 && self.step_m <= 10.0,
+            "a step of more than 1 cm and at most 10 m",
+        )?;
+        check_param(
+            "resolution_m",
+            self.resolution_m,
+            (0.01..=1.0).contains(&self.resolution_m),
+            "a cell size from 0.01 to 1 m",
+        )
+    }
 }
 
 impl Default for LearnConfig {
@@ -272,6 +306,7 @@ pub struct LearnReport {
 /// For an unknown world, an invalid drive setting, and as
 /// [`fit_sensor_model`].
 pub fn learn(config: &LearnConfig, progress: &(dyn Fn(usize) + Sync)) -> Result<LearnReport> {
+    config.validate()?;
     let drive = (config.scans, config.step_m, config.resolution_m);
     let train = Drive::simulate(&config.train_world, &config.model, drive, config.train_seed)?;
     let test = Drive::simulate(&config.test_world, &config.model, drive, config.test_seed)?;

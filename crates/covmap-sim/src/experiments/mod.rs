@@ -4,4 +4,6 @@ mod fig3;
 mod learn;
 
 pub use fig3::{Fig3Config, Fig3Report, MapErrors, corridor_path, fig3, fig3_with};
-pub use learn::{Drive, DriveScore, LearnConfig, LearnReport, learn, survey_drive};
+pub use learn::{
+    Drive, DriveScore, LearnConfig, LearnReport, MAX_DRIVE_SCANS, learn, survey_drive,
+};
