@@ -1247,6 +1247,13 @@ class SensorFit:
         """Every evaluation in order: a dict of the fitted parameters and
         ``log_likelihood``.
         """
+    def __reduce__(self) -> tuple[Any, tuple[bytes]]:
+        """Pickle support: rebuilt by ``SensorFit._from_state`` from JSON bytes
+        (every float64 exact).
+        """
+    @staticmethod
+    def _from_state(state: bytes) -> SensorFit:
+        """Unpickling support: the fit saved by ``__reduce__`` (checked)."""
 
 def write_atomic(path: _Path, data: bytes) -> None:
     """Write ``data`` to ``path`` atomically: a temporary file of a short name of

@@ -231,3 +231,16 @@ def test_the_learned_laser_model_meets_the_goals_on_an_unseen_drive() -> None:
     assert new["log_likelihood"] > default["log_likelihood"]
     assert new["judged_log_likelihood"] > default["judged_log_likelihood"]
     assert new["mean_error"] < 0.08 and new["mean_error"] < new["occupancy_error"]
+
+
+def test_a_fit_pickles_exactly_and_a_tampered_one_is_refused() -> None:
+    import pickle
+
+    log, world, grid = corridor_drive(20)
+    fit = covmap.fit_sensor_model(log, world, covmap.SonarModel(), grid=grid, parameters=["xi_min"], max_evaluations=6)
+    again = pickle.loads(pickle.dumps(fit))
+    assert again.trace == fit.trace and again.model == fit.model and again.bounds == fit.bounds
+    assert (again.log_likelihood, again.evaluations) == (fit.log_likelihood, fit.evaluations)
+    for bad in (b"{}", b"not json", pickle.dumps(fit).replace(b"xi_min", b"xi_max")):
+        with pytest.raises(covmap.CovmapError):
+            pickle.loads(bad) if bad.startswith(b"\x80") else covmap.SensorFit._from_state(bad)

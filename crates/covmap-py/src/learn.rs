@@ -4,10 +4,13 @@
 use std::sync::Mutex;
 
 use covmap::Grid;
+use covmap::SensorModel;
 use covmap::exploration::AnySensorModel;
-use covmap::learn::{FitData, FitOptions, SensorFit, fit_sensor_model as fit};
+use covmap::learn::{
+    FitData, FitEvaluation, FitOptions, Fittable, SensorFit, fit_sensor_model as fit,
+};
 use pyo3::prelude::*;
-use pyo3::types::{PyDict, PyList};
+use pyo3::types::{PyBytes, PyDict, PyList};
 
 use crate::convert::{self, Seed};
 use crate::coverage_map::PyCoverageMap;
@@ -233,6 +236,19 @@ pub(crate) fn with_progress<T, R: OrRaise<T> + Send>(
     result.or_raise(py)
 }
 
+/// A `SensorFit` as pickling saves it.
+#[derive(serde::Serialize, serde::Deserialize)]
+#[serde(deny_unknown_fields)]
+struct SavedFit {
+    model: AnySensorModel,
+    parameters: Vec<String>,
+    bounds: Vec<[f64; 2]>,
+    log_likelihood: f64,
+    initial_log_likelihood: f64,
+    evaluations: usize,
+    trace: Vec<(Vec<f64>, f64)>,
+}
+
 /// What ``fit_sensor_model`` found: ``model`` (the best model, the starting
 /// one if nothing scored higher), ``log_likelihood`` and
 /// ``initial_log_likelihood`` (the starting model's), ``evaluations`` (maps
@@ -293,6 +309,79 @@ impl PySensorFit {
         }
         Ok(list)
     }
+    /// Pickle support: rebuilt by ``SensorFit._from_state`` from JSON bytes
+    /// (every float64 exact).
+    fn __reduce__<'py>(
+        &self,
+        py: Python<'py>,
+    ) -> PyResult<(Bound<'py, PyAny>, (Bound<'py, PyBytes>,))> {
+        let f = &self.0;
+        let saved = SavedFit {
+            model: f.model,
+            parameters: f.parameters.iter().map(|p| p.to_string()).collect(),
+            bounds: f.bounds.clone(),
+            log_likelihood: f.log_likelihood,
+            initial_log_likelihood: f.initial_log_likelihood,
+            evaluations: f.evaluations,
+            trace: f
+                .trace
+                .iter()
+                .map(|e| (e.values.clone(), e.log_likelihood))
+                .collect(),
+        };
+        let state = serde_json::to_vec(&saved)
+            .map_err(|e| Exception::Base.err(py, format!("cannot save the fit: {e}")))?;
+        let restore = py.get_type::<Self>().getattr("_from_state")?;
+        Ok((restore, (PyBytes::new(py, &state),)))
+    }
+
+    /// Unpickling support: the fit saved by ``__reduce__`` (checked).
+    #[staticmethod]
+    fn _from_state(
+        py: Python<'_>,
+        #[pyo3(from_py_with = crate::convert::arg)] state: Bound<'_, PyBytes>,
+    ) -> PyResult<Self> {
+        let bad = |why: String| Exception::InvalidValue.err(py, format!("not a saved fit: {why}"));
+        let saved: SavedFit =
+            serde_json::from_slice(state.as_bytes()).map_err(|e| bad(e.to_string()))?;
+        saved.model.validate().or_raise(py)?;
+        let known = saved.model.parameters();
+        let parameters = saved
+            .parameters
+            .iter()
+            .map(|n| {
+                known
+                    .iter()
+                    .find(|p| p.name == n.as_str())
+                    .map(|p| p.name)
+                    .ok_or_else(|| bad(format!("unknown parameter `{n}`")))
+            })
+            .collect::<PyResult<Vec<_>>>()?;
+        let n = parameters.len();
+        if saved.bounds.len() != n
+            || saved.evaluations != saved.trace.len()
+            || saved.trace.iter().any(|(v, _)| v.len() != n)
+        {
+            return Err(bad("the parameters, bounds and trace do not match".into()));
+        }
+        Ok(Self(SensorFit {
+            model: saved.model,
+            parameters,
+            bounds: saved.bounds,
+            log_likelihood: saved.log_likelihood,
+            initial_log_likelihood: saved.initial_log_likelihood,
+            evaluations: saved.evaluations,
+            trace: saved
+                .trace
+                .into_iter()
+                .map(|(values, log_likelihood)| FitEvaluation {
+                    values,
+                    log_likelihood,
+                })
+                .collect(),
+        }))
+    }
+
     fn __repr__(&self) -> String {
         format!(
             "SensorFit(log_likelihood={:.1}, initial_log_likelihood={:.1}, evaluations={})",
