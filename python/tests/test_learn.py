@@ -71,21 +71,20 @@ def test_fit_bad_input_is_refused_before_any_evaluation() -> None:
     def progress(done: int, total: int) -> None:
         calls.append(done)
 
-    cases: list[dict[str, Any]] = [
-        {"parameters": ["sigma_min", "nonsense"]},
-        {"parameters": ["max_range_m"]},
-        {"parameters": ["xi_min", "xi_min"]},
-        {"parameters": ["xi_min"], "bounds": [("xi_min", (0.5, 1.0))]},
-        {"parameters": ["xi_min"], "bounds": [("sigma_min", (0.0, 1.0))]},
-        {"parameters": ["xi_min"], "bounds": [("xi_min", (1.0, 0.5))]},
-        {"max_evaluations": 0},
-        {"restarts": 0},
+    cases: list[tuple[dict[str, Any], str]] = [
+        ({"parameters": ["sigma_min", "nonsense"]}, "nonsense"),
+        ({"parameters": ["max_range_m"]}, "max_range_m"),
+        ({"parameters": ["xi_min", "xi_min"]}, "named twice"),
+        ({"parameters": ["xi_min"], "bounds": [("xi_min", (0.5, 1.0))]}, "excludes the starting value"),
+        ({"parameters": ["xi_min"], "bounds": [("sigma_min", (0.0, 1.0))]}, "not fitted"),
+        ({"parameters": ["xi_min"], "bounds": {"xi_min": (1.0, 0.5)}}, "increasing"),
+        ({"max_evaluations": 0}, "max_evaluations"),
+        ({"restarts": 0}, "restarts"),
     ]
-    for kwargs in cases:
+    for kwargs, mention in cases:
         with pytest.raises(covmap.InvalidParameterError) as e:
             covmap.fit_sensor_model(log, world, covmap.SonarModel(), grid=grid, progress=progress, **kwargs)
-        named = kwargs.get("parameters", [""])[-1] if "parameters" in kwargs else ""
-        assert named in str(e.value)
+        assert mention in str(e.value), (kwargs, str(e.value))
     assert "nonsense" in str(pytest.raises(covmap.CovmapError, covmap.fit_sensor_model, log, world,
                                            covmap.SonarModel(), grid=grid, parameters=["nonsense"]).value)
     with pytest.raises(covmap.CovmapError):

@@ -173,8 +173,8 @@ impl PyCoverageMap {
         let model = crate::sensor::any_model(model)?;
         let log = &log.get().0;
         let map = &mut self.0;
-        crate::log::integrate_log_showing(py, log.len(), progress, |show| {
-            map.integrate_log_with_progress(log, &model, show)
+        crate::log::with_progress(py, progress, (log.len(), " scans"), |show| {
+            map.integrate_log_with_progress(log, &model, &mut |done| show(done))
         })
     }
 

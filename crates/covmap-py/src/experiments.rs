@@ -115,7 +115,8 @@ pub(crate) fn run_learn<'py>(
         },
         judged_only,
     };
-    let report = crate::learn::with_progress(py, progress, max_evaluations, |show| {
+    let steps = (max_evaluations, " evaluations");
+    let report = crate::log::with_progress(py, progress, steps, |show| {
         experiments::learn(&config, show)
     })?;
     let out = PyDict::new(py);

@@ -1,8 +1,6 @@
 //! `covmap.log_likelihood`, `covmap.fit_sensor_model` and `SensorFit`:
 //! learning the sensor model by maximum likelihood.
 
-use std::sync::Mutex;
-
 use covmap::Grid;
 use covmap::SensorModel;
 use covmap::exploration::AnySensorModel;
@@ -16,7 +14,7 @@ use crate::convert::{self, Seed};
 use crate::coverage_map::PyCoverageMap;
 use crate::errors::{Exception, OrRaise};
 use crate::grid::PyGrid;
-use crate::log::{ProgressArg, PyLog, progress_display};
+use crate::log::{ProgressArg, PyLog, with_progress};
 use crate::sensor::{any_model, model_object};
 use crate::world::PyWorld;
 
@@ -196,44 +194,11 @@ pub(crate) fn fit_sensor_model(
         truth: &truth,
         cells: cells.as_deref(),
     };
-    let result = with_progress(py, progress, options.max_evaluations, |show| {
+    let steps = (options.max_evaluations, " evaluations");
+    let result = with_progress(py, progress, steps, |show| {
         fit(&data, &start, &options, show)
     })?;
     Ok(PySensorFit(result))
-}
-
-/// Run `work` (a fit, which reports its evaluations so far from the
-/// threads it runs on) with the GIL released, showing progress over `total`
-/// evaluations as `progress` asks; an exception the display raises is
-/// raised after the work is done.
-pub(crate) fn with_progress<T, R: OrRaise<T> + Send>(
-    py: Python<'_>,
-    progress: ProgressArg,
-    total: usize,
-    work: impl FnOnce(&(dyn Fn(usize) + Sync)) -> R + Send,
-) -> PyResult<T> {
-    let display = progress_display(py, progress, total, " evaluations")?;
-    let state: Mutex<(usize, Option<PyErr>)> = Mutex::new((0, None));
-    let result = py.detach(|| {
-        work(&|done| {
-            let Some(d) = &display else { return };
-            let mut state = state.lock().unwrap_or_else(|e| e.into_inner());
-            if state.1.is_none() && done > state.0 {
-                let step = done - state.0;
-                state.0 = done;
-                if let Err(e) = Python::attach(|py| d.show(py, done, step, total)) {
-                    state.1 = Some(e);
-                }
-            }
-        })
-    });
-    if let Some(d) = &display {
-        d.close(py)?;
-    }
-    if let Some(e) = state.into_inner().unwrap_or_else(|e| e.into_inner()).1 {
-        return Err(e);
-    }
-    result.or_raise(py)
 }
 
 /// A `SensorFit` as pickling saves it.
@@ -329,10 +294,7 @@ impl PySensorFit {
                 .map(|e| (e.values.clone(), e.log_likelihood))
                 .collect(),
         };
-        let state = serde_json::to_vec(&saved)
-            .map_err(|e| Exception::Base.err(py, format!("cannot save the fit: {e}")))?;
-        let restore = py.get_type::<Self>().getattr("_from_state")?;
-        Ok((restore, (PyBytes::new(py, &state),)))
+        crate::pickling::reduce::<Self, _>(py, &saved, "fit")
     }
 
     /// Unpickling support: the fit saved by ``__reduce__`` (checked).
@@ -342,8 +304,7 @@ impl PySensorFit {
         #[pyo3(from_py_with = crate::convert::arg)] state: Bound<'_, PyBytes>,
     ) -> PyResult<Self> {
         let bad = |why: String| Exception::InvalidValue.err(py, format!("not a saved fit: {why}"));
-        let saved: SavedFit =
-            serde_json::from_slice(state.as_bytes()).map_err(|e| bad(e.to_string()))?;
+        let saved: SavedFit = crate::pickling::restored(py, state.as_bytes(), "fit")?;
         saved.model.validate().or_raise(py)?;
         let known = saved.model.parameters();
         let parameters = saved

@@ -17,6 +17,7 @@ mod keywords;
 mod learn;
 mod log;
 mod occupancy;
+mod pickling;
 mod plan;
 mod planner;
 mod robot;

@@ -2,11 +2,13 @@
 //! contents as numpy arrays.
 
 use std::path::PathBuf;
+use std::sync::Mutex;
 
 use covmap::log::laser_scan::LaserScanFan;
 use covmap::{Bearings, CarmenLaser, CarmenOptions, Log, Pose, SonarTextOptions};
 use numpy::ndarray::Array2;
 use numpy::{IntoPyArray, PyArray1, PyArray2};
+
 use pyo3::prelude::*;
 use pyo3::types::{PyBytes, PySlice};
 
@@ -350,10 +352,7 @@ impl PyLog {
         &self,
         py: Python<'py>,
     ) -> PyResult<(Bound<'py, PyAny>, (Bound<'py, PyBytes>,))> {
-        let state = serde_json::to_vec(&self.0)
-            .map_err(|e| Exception::Base.err(py, format!("cannot save the log: {e}")))?;
-        let restore = py.get_type::<Self>().getattr("_from_state")?;
-        Ok((restore, (PyBytes::new(py, &state),)))
+        crate::pickling::reduce::<Self, _>(py, &self.0, "log")
     }
 
     /// Unpickling support: the log saved by ``__reduce__`` (validated).
@@ -362,16 +361,14 @@ impl PyLog {
         py: Python<'_>,
         #[pyo3(from_py_with = crate::convert::arg)] state: Bound<'_, PyBytes>,
     ) -> PyResult<Self> {
-        serde_json::from_slice(state.as_bytes())
-            .map(Self)
-            .map_err(|e| Exception::InvalidValue.err(py, format!("not a saved log: {e}")))
+        crate::pickling::restored(py, state.as_bytes(), "log").map(Self)
     }
 }
 
 /// How `integrate_log` shows its progress: nothing, a bar (tqdm's if it is
 /// installed, else a line on standard error that rewrites itself), or the
 /// caller's `progress(done, total)`.
-pub(crate) enum Progress {
+enum Progress {
     Bar(Option<Py<PyAny>>, &'static str),
     Call(Py<PyAny>),
 }
@@ -383,17 +380,6 @@ pub(crate) enum ProgressArg {
     Flag(bool),
     /// Called as `progress(done, total)`.
     Call(Py<PyAny>),
-}
-
-/// The display `progress` asks for, over `total` steps counted in `unit`
-/// (a word with a leading space, for the bar).
-pub(crate) fn progress_display(
-    py: Python<'_>,
-    progress: ProgressArg,
-    total: usize,
-    unit: &'static str,
-) -> PyResult<Option<Progress>> {
-    Progress::new(py, progress, total, unit)
 }
 
 impl Progress {
@@ -446,7 +432,7 @@ impl Progress {
         }
     }
 
-    pub(crate) fn close(&self, py: Python<'_>) -> PyResult<()> {
+    fn close(&self, py: Python<'_>) -> PyResult<()> {
         match self {
             Self::Bar(Some(bar), _) => bar.call_method0(py, "close").map(drop),
             Self::Bar(None, _) => py
@@ -459,30 +445,30 @@ impl Progress {
     }
 }
 
-/// Run `integrate(progress)` (a map's `integrate_log_with_progress`) with
-/// the GIL released, showing progress as `progress` asks about once a
-/// percent of the log's `total` scans; an exception the display raises is
-/// raised after the log is integrated.
-pub(crate) fn integrate_log_showing<T: Send>(
+/// Run `work` with the GIL released, showing progress over `total` steps
+/// counted in `unit` (a word with a leading space) as `progress` asks,
+/// about once a percent: `work` reports the steps done so far, from any of
+/// the threads it runs on (a log's scans, a fit's evaluations). An exception
+/// the display raises is raised after the work is done.
+pub(crate) fn with_progress<T, R: OrRaise<T> + Send>(
     py: Python<'_>,
-    total: usize,
     progress: ProgressArg,
-    integrate: impl FnOnce(&mut dyn FnMut(usize)) -> covmap::Result<T> + Send,
+    (total, unit): (usize, &'static str),
+    work: impl FnOnce(&(dyn Fn(usize) + Sync)) -> R + Send,
 ) -> PyResult<T> {
-    let display = Progress::new(py, progress, total, " scans")?;
+    let display = Progress::new(py, progress, total, unit)?;
     let every = (total / 100).max(1);
-    let mut shown = 0;
-    let mut failed: Option<PyErr> = None;
+    // The steps shown so far, and the display's error if it raised.
+    let state: Mutex<(usize, Option<PyErr>)> = Mutex::new((0, None));
     let result = py.detach(|| {
-        integrate(&mut |done| {
-            if let Some(d) = &display
-                && failed.is_none()
-                && (done % every == 0 || done == total)
-            {
-                let step = done - shown;
-                shown = done;
+        work(&|done| {
+            let Some(d) = &display else { return };
+            let mut state = state.lock().unwrap_or_else(|e| e.into_inner());
+            if state.1.is_none() && done > state.0 && (done % every == 0 || done == total) {
+                let step = done - state.0;
+                state.0 = done;
                 if let Err(e) = Python::attach(|py| d.show(py, done, step, total)) {
-                    failed = Some(e);
+                    state.1 = Some(e);
                 }
             }
         })
@@ -490,7 +476,7 @@ pub(crate) fn integrate_log_showing<T: Send>(
     if let Some(d) = &display {
         d.close(py)?;
     }
-    if let Some(e) = failed {
+    if let Some(e) = state.into_inner().unwrap_or_else(|e| e.into_inner()).1 {
         return Err(e);
     }
     result.or_raise(py)

@@ -72,8 +72,8 @@ impl PyOccupancyGrid {
         let model = crate::sensor::any_model(model)?;
         let log = &log.get().0;
         let map = &mut self.0;
-        crate::log::integrate_log_showing(py, log.len(), progress, |show| {
-            map.integrate_log_with_progress(log, &model, show)
+        crate::log::with_progress(py, progress, (log.len(), " scans"), |show| {
+            map.integrate_log_with_progress(log, &model, &mut |done| show(done))
         })
     }
 
@@ -148,12 +148,7 @@ impl PyOccupancyGrid {
     /// Pickle and copy support: the model, log-odds and counts, as the
     /// core's serialised form (JSON bytes; every float32 value exact).
     fn __getstate__<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyBytes>> {
-        // Through a JSON value, which holds each float32 as the float64 it
-        // equals, so that the text round-trips every value exactly.
-        let state = serde_json::to_value(&self.0)
-            .and_then(|value| serde_json::to_vec(&value))
-            .map_err(|e| Exception::Base.err(py, format!("cannot save the occupancy grid: {e}")))?;
-        Ok(PyBytes::new(py, &state))
+        crate::pickling::state(py, &self.0, "occupancy grid")
     }
     /// Unpickling support: restore the state saved by ``__getstate__``
     /// (validated: a valid model, one log-odds value within its limit and one
@@ -164,9 +159,8 @@ impl PyOccupancyGrid {
             return Err(Exception::InvalidType
                 .err(py, format!("state must be bytes, got {}", state.get_type())));
         };
-        let restored: OccupancyGrid = serde_json::from_slice(bytes.as_bytes()).map_err(|e| {
-            Exception::InvalidValue.err(py, format!("not a saved occupancy grid: {e}"))
-        })?;
+        let restored: OccupancyGrid =
+            crate::pickling::restored(py, bytes.as_bytes(), "occupancy grid")?;
         if restored.grid() != self.0.grid() {
             return Err(Exception::InvalidValue.err(
                 py,

@@ -3,13 +3,19 @@
 //!
 //! `cargo run --release -p covmap-sim --example learn -- [--train corridor]
 //! [--test office] [--laser] [--evaluations 300] [--scans 300]
-//! [--parameters a,b,...]`
+//! [--parameters a,b,...] [--breakdown]`
+//!
+//! `--breakdown` also prints where the starting model's log-likelihood of
+//! the training drive comes from: the cells scoring below -20 nats (and how
+//! many of them a wall face cuts), and the likelihood of the same map with
+//! every bin floored at 1e-4 (and renormalised).
 
 use covmap_core::exploration::AnySensorModel;
 use covmap_sim::experiments::{LearnConfig, learn};
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let mut config = LearnConfig::default();
+    let mut breakdown = false;
     let mut args = std::env::args().skip(1);
     while let Some(a) = args.next() {
         let mut value = || args.next().ok_or(format!("{a} needs a value"));
@@ -19,6 +25,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             "--laser" => config.model = AnySensorModel::laser(),
             "--evaluations" => config.fit.max_evaluations = value()?.parse()?,
             "--judged" => config.judged_only = true,
+            "--breakdown" => breakdown = true,
             "--occlude" => config.fit.occlude_no_echo = true,
             "--restarts" => config.fit.restarts = value()?.parse()?,
             "--scans" => config.scans = value()?.parse()?,
@@ -66,5 +73,47 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             d.occupancy_error
         );
     }
+    if breakdown {
+        print_breakdown(&report.drives[0], &config.model)?;
+    }
+    Ok(())
+}
+
+/// Where `model`'s log-likelihood of `drive`'s truth comes from.
+fn print_breakdown(
+    drive: &covmap_sim::experiments::Drive,
+    model: &AnySensorModel,
+) -> Result<(), Box<dyn std::error::Error>> {
+    use covmap_core::CoverageMap;
+    use covmap_core::histogram::DEFAULT_BINS;
+    use covmap_core::learn::{cell_log_likelihoods, log_likelihood, map_of_log};
+    let map = map_of_log(&drive.fit_data(None), DEFAULT_BINS, model, false)?;
+    let scores = cell_log_likelihoods(&map, &drive.truth)?;
+    let total: f64 = scores.iter().sum();
+    let low: Vec<usize> = (0..scores.len()).filter(|&i| scores[i] < -20.0).collect();
+    let low_sum: f64 = low.iter().map(|&i| scores[i]).sum();
+    let cut = low
+        .iter()
+        .filter(|&&i| drive.truth[i] > 0.0 && drive.truth[i] < 1.0)
+        .count();
+    println!(
+        "breakdown ({}, starting model): log-likelihood {total:.0} over {} cells; {} cells below -20 nats ({:.1} %) make {low_sum:.0} ({:.0} % of it), {cut} of them cut by a wall face",
+        drive.world,
+        scores.len(),
+        low.len(),
+        100.0 * low.len() as f64 / scores.len() as f64,
+        100.0 * low_sum / total
+    );
+    let mut floored = map.histograms().to_vec();
+    for h in floored.chunks_exact_mut(DEFAULT_BINS) {
+        h.iter_mut().for_each(|v| *v = v.max(1e-4));
+        let sum: f32 = h.iter().sum();
+        h.iter_mut().for_each(|v| *v /= sum);
+    }
+    let floored = CoverageMap::from_histograms(drive.grid, DEFAULT_BINS, floored)?;
+    println!(
+        "  the same map, every bin floored at 1e-4: log-likelihood {:.0}",
+        log_likelihood(&floored, &drive.truth, None)?
+    );
     Ok(())
 }

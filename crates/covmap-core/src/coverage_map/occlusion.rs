@@ -18,13 +18,13 @@ impl CoverageMap {
     /// maximum range (they ignore it). The result is what
     /// [`CoverageMap::integrate_clipped`] takes. The scan is not validated:
     /// an invalid one gives reaches the update then refuses.
-    pub fn no_echo_reaches(
+    pub fn no_echo_reaches<M: SensorModel + ?Sized>(
         &self,
         covered: &[Cell],
         pose: &Pose,
         ranges: &[f64],
         bearings: &[f64],
-        model: &dyn SensorModel,
+        model: &M,
     ) -> Vec<f64> {
         let grid = self.grid();
         let (bins, histograms) = (self.bins(), self.histograms());

@@ -13,6 +13,7 @@ use crate::coverage_map::CoverageMap;
 use crate::error::{CovmapError, Result};
 use crate::grid::Grid;
 use crate::log::Log;
+use crate::sensor::SensorModel;
 
 /// The most evaluations a fit may be asked for (a day's work here at 70 ms
 /// each is about a million; a fit of 11 parameters converges in hundreds).
@@ -185,6 +186,28 @@ pub fn fit_sensor_model<M: Fittable>(
     })
 }
 
+/// The coverage map of `data.log` on `data.grid` with `bins` bins, built
+/// with `model` as a fit builds it: every scan in turn, no-echo readings
+/// occluded by the map if `occlude_no_echo`
+/// ([`CoverageMap::integrate_log_occluding`]).
+///
+/// # Errors
+/// As [`CoverageMap::with_bins`] and [`CoverageMap::integrate_log`].
+pub fn map_of_log<M: SensorModel + ?Sized>(
+    data: &FitData<'_>,
+    bins: usize,
+    model: &M,
+    occlude_no_echo: bool,
+) -> Result<CoverageMap> {
+    let mut map = CoverageMap::with_bins(data.grid, bins)?;
+    if occlude_no_echo {
+        map.integrate_log_occluding(data.log, model)?;
+    } else {
+        map.integrate_log(data.log, model)?;
+    }
+    Ok(map)
+}
+
 /// `u` in `[0, 1]` to a value within `bounds`.
 fn unscale(u: f64, [lo, hi]: [f64; 2]) -> f64 {
     lo + u * (hi - lo)
@@ -315,12 +338,7 @@ impl<'a, M: Fittable> Search<'a, M> {
 
     /// The log-likelihood of the truth under the map `model` builds.
     fn score(&self, model: &M) -> Result<f64> {
-        let mut map = CoverageMap::with_bins(self.data.grid, self.bins)?;
-        if self.occlude_no_echo {
-            map.integrate_log_occluding(self.data.log, model)?;
-        } else {
-            map.integrate_log(self.data.log, model)?;
-        }
+        let map = map_of_log(self.data, self.bins, model, self.occlude_no_echo)?;
         log_likelihood(&map, self.data.truth, self.data.cells)
     }
 

@@ -26,20 +26,37 @@ use crate::grid::Grid;
 /// a truth value that is NaN or outside `[0, 1]`.
 pub fn log_likelihood(map: &CoverageMap, truth: &[f64], cells: Option<&[bool]>) -> Result<f64> {
     check_truth(map.grid(), truth, cells)?;
+    Ok(cell_scores(map, truth)
+        .enumerate()
+        .filter(|(i, _)| cells.is_none_or(|c| c[*i]))
+        .map(|(_, score)| score)
+        .sum())
+}
+
+/// Each cell's term of [`log_likelihood`], row-major: the log-probability of
+/// its truth under its histogram. Where a few cells dominate the sum, these
+/// show which.
+///
+/// # Errors
+/// As [`log_likelihood`].
+pub fn cell_log_likelihoods(map: &CoverageMap, truth: &[f64]) -> Result<Vec<f64>> {
+    check_truth(map.grid(), truth, None)?;
+    Ok(cell_scores(map, truth).collect())
+}
+
+/// The cells' terms of checked inputs.
+fn cell_scores<'a>(map: &'a CoverageMap, truth: &'a [f64]) -> impl Iterator<Item = f64> + 'a {
     let bins = map.bins();
     let top = (bins - 1) as f64;
-    let mut sum = 0.0f64;
-    for (i, (h, &t)) in map.histograms().chunks_exact(bins).zip(truth).enumerate() {
-        if cells.is_some_and(|c| !c[i]) {
-            continue;
-        }
-        let x = t * top;
-        let b = (x.floor() as usize).min(bins - 2);
-        let f = x - b as f64;
-        let p = (1.0 - f) * f64::from(h[b]) + f * f64::from(h[b + 1]);
-        sum += p.ln();
-    }
-    Ok(sum)
+    map.histograms()
+        .chunks_exact(bins)
+        .zip(truth)
+        .map(move |(h, &t)| {
+            let x = t * top;
+            let b = (x.floor() as usize).min(bins - 2);
+            let f = x - b as f64;
+            ((1.0 - f) * f64::from(h[b]) + f * f64::from(h[b + 1])).ln()
+        })
 }
 
 /// Errors unless `truth` holds one coverage value in `[0, 1]` per cell of

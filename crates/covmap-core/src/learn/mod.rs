@@ -38,6 +38,8 @@ mod likelihood;
 mod parameters;
 mod point;
 
-pub use fit::{FitData, FitEvaluation, FitOptions, MAX_EVALUATIONS, SensorFit, fit_sensor_model};
-pub use likelihood::{check_truth, log_likelihood};
+pub use fit::{
+    FitData, FitEvaluation, FitOptions, MAX_EVALUATIONS, SensorFit, fit_sensor_model, map_of_log,
+};
+pub use likelihood::{cell_log_likelihoods, check_truth, log_likelihood};
 pub use parameters::{Fittable, Parameter};

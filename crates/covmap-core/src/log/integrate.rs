@@ -123,10 +123,7 @@ impl CoverageMap {
         model: &M,
         progress: &mut dyn FnMut(usize),
     ) -> Result<usize> {
-        let grid = *self.grid();
-        integrate_scans(&grid, log, model, progress, |s| {
-            self.integrate_clipped(&s.pose, &s.ranges, &s.bearings, model, &s.reaches)
-        })
+        self.integrate_log_as(log, model, progress, false)
     }
 
     /// [`CoverageMap::integrate_log`], each no-echo reading occluded by the
@@ -139,13 +136,29 @@ impl CoverageMap {
     ///
     /// # Errors
     /// As [`CoverageMap::integrate_log`].
-    pub fn integrate_log_occluding<M: SensorModel>(
+    pub fn integrate_log_occluding<M: SensorModel + ?Sized>(
         &mut self,
         log: &Log,
         model: &M,
     ) -> Result<usize> {
+        self.integrate_log_as(log, model, &mut |_| {}, true)
+    }
+
+    /// The log's scans integrated in turn, each no-echo reading reaching no
+    /// further than the log's maximum range and, if `occlude`, than the
+    /// nearest cell its footprint holds as covered.
+    fn integrate_log_as<M: SensorModel + ?Sized>(
+        &mut self,
+        log: &Log,
+        model: &M,
+        progress: &mut dyn FnMut(usize),
+        occlude: bool,
+    ) -> Result<usize> {
         let grid = *self.grid();
-        integrate_scans(&grid, log, model, &mut |_| {}, |s| {
+        integrate_scans(&grid, log, model, progress, |s| {
+            if !occlude {
+                return self.integrate_clipped(&s.pose, &s.ranges, &s.bearings, model, &s.reaches);
+            }
             let mut reaches = self.no_echo_reaches(&[], &s.pose, &s.ranges, &s.bearings, model);
             for (r, &log_reach) in reaches.iter_mut().zip(&s.reaches) {
                 *r = r.min(log_reach);

@@ -138,7 +138,7 @@ impl KernelTable {
             NO_ECHO_REGION
         };
         ReadingLookup {
-            free_base: free_region * (DISTANCE_STEPS + 1) * self.bins,
+            free_first: free_region * (DISTANCE_STEPS + 1),
             // step(d_l) = min(d_l, d) / step_s, rounded.
             inv_step_s: self.inv_step_s,
             d,
@@ -189,10 +189,10 @@ impl KernelTable {
 /// computed once per beam.
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct ReadingLookup {
-    /// Offset of the kernels this reading gives cells in free space: region
-    /// 0, or [`NO_ECHO_REGION`] for a no-echo reading that is not plain
-    /// free space.
-    free_base: usize,
+    /// Index of the first kernel of the region this reading gives cells in
+    /// free space: region 0, or [`NO_ECHO_REGION`] for a no-echo reading
+    /// that is not plain free space.
+    free_first: usize,
     inv_step_s: f64,
     d: f64,
     slice_per_m: f64,
@@ -229,14 +229,14 @@ impl ReadingLookup {
     /// cell of a no-echo reading): region 0, or the no-echo region.
     #[inline(always)]
     pub(crate) fn free_offset(&self, d_l: f64) -> usize {
-        self.free_base + self.free_step(d_l) * self.bins
+        self.free_kernel(d_l) * self.bins
     }
 
     /// The index of the kernel at [`ReadingLookup::free_offset`] among all
     /// the table's kernels.
     #[inline(always)]
     pub(crate) fn free_kernel(&self, d_l: f64) -> usize {
-        self.free_base / self.bins + self.free_step(d_l)
+        self.free_first + self.free_step(d_l)
     }
 
     /// The distance step of [`ReadingLookup::free_offset`]: the index of the

@@ -3,9 +3,12 @@
 //! default on both (`covmap learn`; paper section 5).
 
 use covmap_core::exploration::AnySensorModel;
-use covmap_core::learn::{FitData, FitOptions, SensorFit, fit_sensor_model, log_likelihood};
+use covmap_core::histogram::DEFAULT_BINS;
+use covmap_core::learn::{
+    FitData, FitOptions, SensorFit, fit_sensor_model, log_likelihood, map_of_log,
+};
 use covmap_core::planner::shortest_paths;
-use covmap_core::{CoverageMap, Grid, Log, OccupancyGrid, Pose};
+use covmap_core::{Grid, Log, OccupancyGrid, Pose};
 use rand::RngExt;
 
 use crate::error::{Result, check_param};
@@ -243,14 +246,9 @@ impl Drive {
 
     /// How well maps of this drive built with `model` match the truth (its
     /// no-echo readings occluded by the map if `occlude_no_echo`, see
-    /// [`CoverageMap::integrate_log_occluding`]).
+    /// [`covmap_core::CoverageMap::integrate_log_occluding`]).
     pub fn score(&self, model: &AnySensorModel, occlude_no_echo: bool) -> Result<DriveScore> {
-        let mut map = CoverageMap::new(self.grid);
-        if occlude_no_echo {
-            map.integrate_log_occluding(&self.log, model)?;
-        } else {
-            map.integrate_log(&self.log, model)?;
-        }
+        let map = map_of_log(&self.fit_data(None), DEFAULT_BINS, model, occlude_no_echo)?;
         let mean = map.mean();
         Ok(DriveScore {
             log_likelihood: log_likelihood(&map, &self.truth, None)?,
@@ -261,6 +259,18 @@ impl Drive {
             occupancy_error: self.error_where(&self.occupancy, |_| true),
             cells_reached: self.judged.iter().filter(|&&r| r).count(),
         })
+    }
+}
+
+impl Drive {
+    /// The drive as a fit takes it, scored over `cells` (all if `None`).
+    pub fn fit_data<'a>(&'a self, cells: Option<&'a [bool]>) -> FitData<'a> {
+        FitData {
+            log: &self.log,
+            grid: self.grid,
+            truth: &self.truth,
+            cells,
+        }
     }
 }
 
@@ -310,12 +320,7 @@ pub fn learn(config: &LearnConfig, progress: &(dyn Fn(usize) + Sync)) -> Result<
     let drive = (config.scans, config.step_m, config.resolution_m);
     let train = Drive::simulate(&config.train_world, &config.model, drive, config.train_seed)?;
     let test = Drive::simulate(&config.test_world, &config.model, drive, config.test_seed)?;
-    let data = FitData {
-        log: &train.log,
-        grid: train.grid,
-        truth: &train.truth,
-        cells: config.judged_only.then_some(&train.judged[..]),
-    };
+    let data = train.fit_data(config.judged_only.then_some(&train.judged[..]));
     let fit = fit_sensor_model(&data, &config.model, &config.fit, progress)?;
     let scores = |m: &AnySensorModel| -> Result<[DriveScore; 2]> {
         let occlude = config.fit.occlude_no_echo;

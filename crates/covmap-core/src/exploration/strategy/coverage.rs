@@ -66,9 +66,9 @@ pub(crate) const STALL_STEPS: usize = 20;
 
 /// The decision-theoretic strategy's state.
 pub(crate) struct Coverage {
+    /// The strategies' navigator (see [`navigator`]) with the candidates'
+    /// settings: its paths and free space are the navigator's.
     planner: Planner,
-    /// The planner with `alpha` irrelevant: reachability and free space.
-    navigator: Planner,
     /// The most cells of the region certain or stagnated at once so far.
     most_settled: usize,
     /// The region's entropy (nats) at each decision since that number last
@@ -106,7 +106,6 @@ impl Coverage {
         })?;
         Ok(Self {
             planner,
-            navigator,
             most_settled: 0,
             entropy_since_more_settled: Vec::new(),
             exhausted: Vec::new(),
@@ -172,15 +171,14 @@ impl Coverage {
     /// or the run has stagnated (see the module documentation).
     fn termination(&mut self, view: &View) -> Result<Option<Termination>> {
         let band_m = view.model.as_dyn().range_model().band_m;
-        // The planner's cache keeps the map's read-outs the region needs; its
-        // configuration is the navigator's where paths are concerned.
+        // The planner's cache keeps the map's read-outs the region needs.
         let reach =
             self.planner
                 .reachability_cached(&mut self.cache, view.planning_map, &view.pose)?;
         let region = region_of(&reach, view.planning_map.grid(), &self.planner, band_m);
         debug_assert_eq!(
             region,
-            reachable_region(&self.navigator, view.planning_map, &view.pose, band_m)?
+            reachable_region(&self.planner, view.planning_map, &view.pose, band_m)?
         );
         let epsilon = view.config.epsilon;
         let (mut certain, mut stagnated, mut open) = (0usize, 0usize, 0usize);

@@ -431,64 +431,61 @@ impl<const N: usize, const A: u8> FastBeam<'_, N, A> {
         free: ReadingLookup,
         weight: f64,
     ) {
-        {
-            if weight <= 0.0 {
-                return;
-            }
-            let prior = &self.beam.terms.prior[first..first + n];
-            let flags = match prior.first_chunk::<ROW_BLOCK>() {
-                Some(all) => u64::from_ne_bytes(*all),
-                None => u64::from(prior.iter().any(|&p| p != 0)),
-            };
-            if flags == u64::from_ne_bytes([1; ROW_BLOCK]) {
-                // The whole block is at the prior (common in unexplored
-                // space): its gains come from the table.
-                let gains = &self.beam.terms.prior_gain;
-                let block: [f64; ROW_BLOCK] =
-                    std::array::from_fn(|k| gains[free.free_kernel(d[k])]);
-                self.total += weight * pairwise_sum(&block);
-                return;
-            }
-            if flags != 0 {
-                // Cells at the prior take their gains from the table, summed
-                // pairwise over the block; the others are queued.
-                let mut gains = [0.0f64; ROW_BLOCK];
-                for k in 0..n {
-                    if prior[k] != 0 {
-                        gains[k] = self.beam.terms.prior_gain[free.free_kernel(d[k])];
-                    } else {
-                        self.prefetch(first + k);
-                        self.push(first + k, free.free_offset(d[k]), weight);
-                    }
-                }
-                self.total += weight * pairwise_sum(&gains);
-                return;
-            }
-            // Fewer than `BATCH` wait, so the block fits; the `min` only
-            // tells the compiler so.
-            let queue = &mut self.queue;
-            let at = queue.len.min(BATCH);
-            let slots = at..at + ROW_BLOCK;
-            for (k, ((cell, offset), job_weight)) in queue.cell[slots.clone()]
-                .iter_mut()
-                .zip(&mut queue.offset[slots.clone()])
-                .zip(&mut queue.weight[slots])
-                .enumerate()
-            {
-                (*cell, *offset, *job_weight) = (first + k, free.free_offset(d[k]), weight);
-            }
-            let entropies = &self.rows.entropy;
-            match entropies.get(first..first + ROW_BLOCK) {
-                Some(block) => queue.entropy[at..at + ROW_BLOCK].copy_from_slice(block),
-                None => queue.entropy[at..at + n].copy_from_slice(&entropies[first..first + n]),
-            }
-            queue.len = at + n;
+        if weight <= 0.0 {
+            return;
+        }
+        let prior = &self.beam.terms.prior[first..first + n];
+        let flags = match prior.first_chunk::<ROW_BLOCK>() {
+            Some(all) => u64::from_ne_bytes(*all),
+            None => u64::from(prior.iter().any(|&p| p != 0)),
+        };
+        if flags == u64::from_ne_bytes([1; ROW_BLOCK]) {
+            // The whole block is at the prior (common in unexplored
+            // space): its gains come from the table.
+            let gains = &self.beam.terms.prior_gain;
+            let block: [f64; ROW_BLOCK] = std::array::from_fn(|k| gains[free.free_kernel(d[k])]);
+            self.total += weight * pairwise_sum(&block);
+            return;
+        }
+        if flags != 0 {
+            // Cells at the prior take their gains from the table, summed
+            // pairwise over the block; the others are queued.
+            let mut gains = [0.0f64; ROW_BLOCK];
             for k in 0..n {
-                self.prefetch(first + k);
+                if prior[k] != 0 {
+                    gains[k] = self.beam.terms.prior_gain[free.free_kernel(d[k])];
+                } else {
+                    self.prefetch(first + k);
+                    self.push(first + k, free.free_offset(d[k]), weight);
+                }
             }
-            if self.queue.len >= BATCH {
-                self.flush();
-            }
+            self.total += weight * pairwise_sum(&gains);
+            return;
+        }
+        // Fewer than `BATCH` wait, so the block fits; the `min` only
+        // tells the compiler so.
+        let queue = &mut self.queue;
+        let at = queue.len.min(BATCH);
+        let slots = at..at + ROW_BLOCK;
+        for (k, ((cell, offset), job_weight)) in queue.cell[slots.clone()]
+            .iter_mut()
+            .zip(&mut queue.offset[slots.clone()])
+            .zip(&mut queue.weight[slots])
+            .enumerate()
+        {
+            (*cell, *offset, *job_weight) = (first + k, free.free_offset(d[k]), weight);
+        }
+        let entropies = &self.rows.entropy;
+        match entropies.get(first..first + ROW_BLOCK) {
+            Some(block) => queue.entropy[at..at + ROW_BLOCK].copy_from_slice(block),
+            None => queue.entropy[at..at + n].copy_from_slice(&entropies[first..first + n]),
+        }
+        queue.len = at + n;
+        for k in 0..n {
+            self.prefetch(first + k);
+        }
+        if self.queue.len >= BATCH {
+            self.flush();
         }
     }
 }
