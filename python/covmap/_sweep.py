@@ -62,6 +62,7 @@ from typing import TYPE_CHECKING, Any, Callable, Union
 
 import numpy as np
 
+from covmap._arguments import check_module
 from covmap._errors import (
     CovmapError,
     InvalidExecutorError,
@@ -264,9 +265,7 @@ def strategy_of(value: Any) -> Strategy:
         raise InvalidParameterError(f"unknown strategy {name!r}: expected one of {', '.join(builders)}")
     try:
         return builders[name](**keywords)
-    except TypeError as e:
-        if isinstance(e, CovmapError):
-            raise
+    except InvalidTypeError as e:  # an unknown keyword among them, or a value of the wrong type
         raise InvalidTypeError(f"strategy {name!r}: {e}") from None
 
 
@@ -595,3 +594,6 @@ def dask_client(
         raise SchedulerError(f"no Dask scheduler answered at {address!r} within {timeout_s:g} s: {e}") from None
     with client:
         yield client
+
+
+check_module(__name__)  # calls with the wrong arguments raise InvalidTypeError

@@ -16,6 +16,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from covmap._arguments import check_module
 from covmap._native import CoverageMap, Grid, LaserModel, OccupancyGrid
 
 if TYPE_CHECKING:
@@ -121,3 +122,6 @@ def table(runs: Sequence[Run]) -> str:
             f"{'yes' if r.ml_ok else 'NO':>15}  {'yes' if r.occupancy_ok else 'NO':>12}"
         )
     return "\n".join(lines)
+
+
+check_module(__name__)  # calls with the wrong arguments raise InvalidTypeError

@@ -12,6 +12,8 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
+from covmap._arguments import check_module
+
 if TYPE_CHECKING:
     import numpy as np
     import numpy.typing as npt
@@ -91,3 +93,6 @@ def table(result: Fig3Result, seed: int) -> str:
         f"(uniform prior: {result.log_likelihood_prior:.1f})"
     )
     return "\n".join(lines)
+
+
+check_module(__name__)  # calls with the wrong arguments raise InvalidTypeError

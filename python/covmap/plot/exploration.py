@@ -9,6 +9,7 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
+from covmap._arguments import check_module
 from covmap.plot.drawing import plot_map, plot_trajectory, plot_world, unknown_colormap
 from covmap.plot.figures import _figure_file
 
@@ -210,3 +211,5 @@ def plot_table1(t: Table1, path: Path) -> Path:
         ax.legend(fontsize=7)
     return path
 
+
+check_module(__name__)  # calls with the wrong arguments raise InvalidTypeError
