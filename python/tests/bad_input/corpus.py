@@ -7,7 +7,10 @@ A case is a line of Python run by ``runner.py`` in a namespace that
 ``SETUP`` prepares (a small grid ``g``, maps ``m`` and ``o``, the corridor
 world ``w``, models, sensors, a log, files under ``tmp``). Most cases are
 generated: every argument of every public function and method, in turn,
-takes each of ``BAD_VALUES`` while the others keep a valid value. The rest
+takes each of ``BAD_VALUES`` while the others keep a valid value; and
+every public callable, found by introspection (``public_callables``), is
+called with too many arguments, without a required one, with an unknown
+keyword and with an argument given twice (``arity_cases``). The rest
 are written out: one or more reproducers per class of the issue that
 brought this corpus (panics, aborts on allocation, headers trusted,
 unbounded work, endless or blocking reads, errors outside the hierarchy,
@@ -18,6 +21,7 @@ raise.
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import Any
 
 #: The namespace every case runs in (``tmp`` is a fresh directory).
 SETUP = """
@@ -280,6 +284,152 @@ WRITTEN: list[Case] = [
 ]
 
 
+#: An instance of each native class with public methods, for the arity
+#: cases of its methods (a name of ``SETUP``'s namespace, or an expression).
+INSTANCES: dict[str, str] = {
+    "Grid": "g",
+    "SonarModel": "sonar_model",
+    "LaserModel": "laser_model",
+    "CoverageMap": "m",
+    "OccupancyGrid": "o",
+    "Log": "log",
+    "Planner": "planner",
+    "World": "w",
+    "SonarRing": "ring",
+    "Laser": "laser",
+    "Robot": "robot",
+    "Exploration": "covmap.Exploration(small, strategy, resolution=0.1, max_path_m=1.0, max_steps=2)",
+}
+
+#: The package's public modules besides the native one: the functions and
+#: classes of their ``__all__`` (or, without one, the public names they
+#: define) are its API. Every module of ``covmap.experiments`` is added.
+PUBLIC_MODULES = ["covmap", "covmap.plot", "covmap.cli"]
+
+
+@dataclass(frozen=True)
+class PublicCallable:
+    """A public callable of the Python API: ``expression`` reaches it in
+    ``SETUP``'s namespace once ``module`` (if any) is imported; ``name`` is
+    what its errors must mention; ``signature`` is as ``expression`` is
+    called; ``no_constructor``: a native class that cannot be created."""
+
+    module: str | None
+    expression: str
+    name: str
+    signature: Any
+    no_constructor: bool = False
+
+
+def public_callables() -> list[PublicCallable]:
+    """Every public callable of the Python API, found by introspection: the
+    native module's functions, classes and their public methods, static and
+    class methods; the functions and classes (with theirs) of
+    ``PUBLIC_MODULES`` and ``covmap.experiments``. A native class with
+    public methods needs an instance in ``INSTANCES``."""
+    import importlib
+    import inspect
+    import pkgutil
+    import types
+
+    import covmap
+    import covmap._native as native
+    import covmap.experiments
+
+    found: list[PublicCallable] = []
+    seen: set[int] = set()
+
+    def add(target: Any, entry: PublicCallable) -> None:
+        if id(target) not in seen:
+            seen.add(id(target))
+            found.append(entry)
+
+    def members(cls: type, module: str | None, prefix: str, instance: str | None) -> None:
+        for name, member in vars(cls).items():
+            if name.startswith("_"):
+                continue
+            if isinstance(member, (staticmethod, classmethod)):
+                add(member, PublicCallable(module, f"{prefix}.{name}", name, inspect.signature(getattr(cls, name))))
+            elif isinstance(member, types.FunctionType):
+                signature = inspect.signature(member)
+                if instance is None:  # a Python class's method, called on the class
+                    add(member, PublicCallable(module, f"{prefix}.{name}", name, signature))
+                else:
+                    bound = signature.replace(parameters=list(signature.parameters.values())[1:])
+                    add(member, PublicCallable(module, f"{instance}.{name}", name, bound))
+
+    for name, value in vars(native).items():
+        if name.startswith("_"):
+            continue
+        # Reached from covmap where it exports them.
+        reach = f"covmap.{name}" if getattr(covmap, name, None) is value else f"covmap._native.{name}"
+        if isinstance(value, type):
+            no_constructor = getattr(value, "__text_signature__", None) is None
+            add(value, PublicCallable(None, reach, name, inspect.signature(value), no_constructor))
+            methods = [n for n, m in vars(value).items() if isinstance(m, types.FunctionType) and not n.startswith("_")]
+            if methods and name not in INSTANCES:
+                raise LookupError(f"no instance of covmap.{name} for its methods' arity cases: add one to INSTANCES")
+            members(value, None, reach, INSTANCES.get(name))
+        elif callable(value):
+            add(value, PublicCallable(None, reach, name, inspect.signature(value)))
+
+    modules = list(PUBLIC_MODULES)
+    modules += [f"covmap.experiments.{m.name}" for m in pkgutil.iter_modules(covmap.experiments.__path__)]
+    for module_name in modules:
+        module = importlib.import_module(module_name)
+        names = getattr(module, "__all__", None)
+        if names is None:
+            names = [n for n, v in vars(module).items() if not n.startswith("_") and getattr(v, "__module__", None) == module_name]
+        for name in names:
+            value = getattr(module, name)
+            if not str(getattr(value, "__module__", "")).startswith("covmap"):
+                continue
+            reach = f"{module_name}.{name}"
+            if isinstance(value, type):
+                if issubclass(value, BaseException) or value.__module__ == native.__name__:
+                    continue  # exceptions are raised, not called; native classes are above
+                add(value, PublicCallable(module_name, reach, name, inspect.signature(value)))
+                members(value, module_name, reach, None)
+            elif isinstance(value, types.FunctionType):
+                add(value, PublicCallable(module_name, reach, name, inspect.signature(value)))
+    return found
+
+
+def arity_cases() -> list[Case]:
+    """Every public callable called with too many arguments, without a
+    required one, with an unknown keyword and with an argument given twice
+    (those of the four its signature allows; and a native class without a
+    constructor, called at all): each must raise InvalidTypeError (a
+    CovmapError and a TypeError) naming the callable. The arguments are
+    placeholders: the binding fails before any is looked at."""
+    import inspect
+
+    P = inspect.Parameter
+    cases = []
+    for c in public_callables():
+        params = list(c.signature.parameters.values())
+        positional = [p for p in params if p.kind in (P.POSITIONAL_ONLY, P.POSITIONAL_OR_KEYWORD)]
+        required = [p for p in params if p.default is P.empty and p.kind not in (P.VAR_POSITIONAL, P.VAR_KEYWORD)]
+        calls: list[tuple[str, str]] = []
+        if c.no_constructor:
+            calls.append(("no arguments", ""))
+        if not any(p.kind is P.VAR_POSITIONAL for p in params):
+            calls.append(("too many arguments", ", ".join(["None"] * (len(positional) + 1))))
+        if required:
+            calls.append(("missing argument", ""))
+        if not any(p.kind is P.VAR_KEYWORD for p in params):
+            given = [f"{p.name}=None" if p.kind is P.KEYWORD_ONLY else "None" for p in required]
+            calls.append(("unknown keyword", ", ".join([*given, "not_an_argument=None"])))
+        twice = next((p for p in params if p.kind is P.POSITIONAL_OR_KEYWORD), None)
+        if twice is not None:
+            calls.append(("argument given twice", f"None, {twice.name}=None"))
+        head = f"import {c.module}\n" if c.module else ""
+        for label, arguments in calls:
+            code = f"{head}{c.expression}({arguments})"
+            cases.append(Case(f"{c.expression}({label})", code, "InvalidTypeError", "TypeError", c.name))
+    return cases
+
+
 def cases() -> list[Case]:
     """The whole corpus."""
-    return generated() + WRITTEN
+    return generated() + WRITTEN + arity_cases()
