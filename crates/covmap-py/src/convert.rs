@@ -4,6 +4,7 @@
 //! Arrays are copied out of Python before any work starts. The copy of a scan
 //! costs nothing next to its update, and it lets the update run with the GIL
 //! released without another thread being able to write into its input.
+#![cfg_attr(not(test), warn(clippy::indexing_slicing))]
 
 use covmap::gain::{GainMethod, StopCoverage};
 use covmap::{Cell, CovmapError, Grid, Pose, histogram};
@@ -113,6 +114,17 @@ fn float_values(
         return Ok((values.into_iter().map(f64::from).collect(), shape));
     }
     numpy_values::<f64>(array, name, ndim, expected, check)
+}
+
+/// `shape`, of an array that [`numpy_values`] read as `N`-D, as its `N`
+/// lengths.
+fn dims<const N: usize>(py: Python<'_>, name: &str, shape: &[usize]) -> PyResult<[usize; N]> {
+    shape.try_into().map_err(|_| {
+        Exception::ArrayShape.err(
+            py,
+            format!("{name} must be a {N}-D array, got shape {shape:?}"),
+        )
+    })
 }
 
 /// The most values covmap reads from one Python sequence or array argument
@@ -263,7 +275,7 @@ pub(crate) fn matrix(obj: &Bound<'_, PyAny>, name: &str) -> PyResult<(Vec<f64>, 
     };
     let check = at_most(obj.py(), name, MAX_VALUES);
     let (values, shape) = float_values(array, name, 2, "float64 or float32", &check)?;
-    Ok((values, [shape[0], shape[1]]))
+    Ok((values, dims(obj.py(), name, &shape)?))
 }
 
 /// A pose: any sequence of three numbers `(x, y, theta)`, metres and radians.
@@ -292,7 +304,8 @@ pub(crate) fn readings(obj: &Bound<'_, PyAny>, name: &str, max_len: usize) -> Py
 /// Returns the values cell-major and the bin count.
 pub(crate) fn histograms(obj: &Bound<'_, PyAny>, grid: &Grid) -> PyResult<(Vec<f32>, usize)> {
     let (values, shape) = per_cell::<f32>(obj, grid, "histograms", "float32", &[None])?;
-    Ok((values, shape[2]))
+    let [_, _, bins] = dims(obj.py(), "histograms", &shape)?;
+    Ok((values, bins))
 }
 
 /// A per-cell array for a map over `grid`: a numpy array of element type `T`
@@ -433,16 +446,13 @@ pub(crate) fn rows<const K: usize>(
     if let Ok(array) = obj.cast::<PyUntypedArray>() {
         let check = at_most(py, name, MAX_VALUES);
         let (values, shape) = float_values(array, name, 2, &expected, &check)?;
-        if shape[1] != K {
+        if dims::<2>(py, name, &shape)?[1] != K {
             return Err(Exception::ArrayShape.err(
                 py,
                 format!("{name} must have shape (N, {K}), got {shape:?}"),
             ));
         }
-        return Ok(values
-            .chunks_exact(K)
-            .map(|c| std::array::from_fn(|k| c[k]))
-            .collect());
+        return Ok(values.as_chunks::<K>().0.to_vec());
     }
     let not_rows = || {
         Exception::ArrayDtype.err(
@@ -474,11 +484,11 @@ pub(crate) fn poses(obj: &Bound<'_, PyAny>, name: &str) -> PyResult<Vec<Pose>> {
 pub(crate) fn finite_points(py: Python<'_>, points: &[[f64; 2]], name: &str) -> PyResult<()> {
     match points
         .iter()
-        .position(|p| !(p[0].is_finite() && p[1].is_finite()))
+        .enumerate()
+        .find(|(_, [x, y])| !(x.is_finite() && y.is_finite()))
     {
         None => Ok(()),
-        Some(i) => {
-            let [x, y] = points[i];
+        Some((i, [x, y])) => {
             Err(Exception::InvalidValue
                 .err(py, format!("{name}: point {i} ({x}, {y}) is not finite")))
         }
@@ -597,7 +607,7 @@ pub(crate) fn rows_array<'py, const K: usize>(
     py: Python<'py>,
     rows: &[[f64; K]],
 ) -> Bound<'py, PyArray2<f64>> {
-    Array2::from_shape_fn((rows.len(), K), |(i, k)| rows[i][k]).into_pyarray(py)
+    Array2::from(rows.to_vec()).into_pyarray(py)
 }
 
 /// Poses as an `(N, 3)` float64 numpy array of `(x, y, theta)`.

@@ -9,6 +9,7 @@
 //! for the layout.
 //!
 //! [`CoverageMap::to_file_bytes`]: crate::CoverageMap::to_file_bytes
+#![cfg_attr(not(test), warn(clippy::indexing_slicing))]
 
 mod npz;
 mod posterior;

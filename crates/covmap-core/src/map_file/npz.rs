@@ -23,8 +23,8 @@ const DOS_DATE: u16 = 0x21;
 /// The `.npy` encoding of an array of `descr` and `shape` holding `data`.
 pub(crate) fn npy(descr: &str, shape: &[usize], data: &[u8]) -> Vec<u8> {
     let dims: Vec<String> = shape.iter().map(usize::to_string).collect();
-    let shape = match dims.len() {
-        1 => format!("({},)", dims[0]),
+    let shape = match dims.as_slice() {
+        [one] => format!("({one},)"),
         _ => format!("({})", dims.join(", ")),
     };
     let mut header = format!("{{'descr': '{descr}', 'fortran_order': False, 'shape': {shape}, }}");
@@ -44,21 +44,21 @@ pub(crate) fn npy(descr: &str, shape: &[usize], data: &[u8]) -> Vec<u8> {
 
 /// The array a `.npy` entry holds.
 pub(crate) fn parse_npy(bytes: &[u8]) -> Result<Array<'_>, String> {
-    if bytes.len() < 10 || &bytes[..6] != b"\x93NUMPY" {
+    if bytes.len() < 10 || !bytes.starts_with(b"\x93NUMPY") {
         return Err("not a .npy array (no magic string)".into());
     }
-    let (len, start) = match bytes[6] {
-        1 => (u16::from_le_bytes([bytes[8], bytes[9]]) as usize, 10),
-        2 | 3 if bytes.len() >= 12 => (
-            u32::from_le_bytes([bytes[8], bytes[9], bytes[10], bytes[11]]) as usize,
-            12,
-        ),
+    // Version 1 gives the header's length in 2 bytes, 2 and 3 in 4.
+    let (len, start) = match bytes.get(6).copied().unwrap_or_default() {
+        1 => le_bytes(bytes, 8).map(|b| (usize::from(u16::from_le_bytes(b)), 10usize)),
+        2 | 3 => le_bytes(bytes, 8).map(|b| (u32::from_le_bytes(b) as usize, 12)),
         v => return Err(format!(".npy version {v} is not one numpy writes")),
-    };
-    let header = bytes
-        .get(start..start + len)
-        .and_then(|h| std::str::from_utf8(h).ok())
-        .ok_or("the .npy header runs past the end or is not text")?;
+    }
+    .ok_or("the .npy header's length runs past the end")?;
+    let (header, data) = start
+        .checked_add(len)
+        .and_then(|end| bytes.get(start..end).zip(bytes.get(end..)))
+        .ok_or("the .npy header runs past the end")?;
+    let header = std::str::from_utf8(header).map_err(|_| "the .npy header is not text")?;
     let descr = quoted_after(header, "'descr':").ok_or("the .npy header has no descr")?;
     if !header.contains("'fortran_order': False") {
         return Err("a Fortran-ordered array (covmap writes C order)".into());
@@ -73,7 +73,6 @@ pub(crate) fn parse_npy(bytes: &[u8]) -> Result<Array<'_>, String> {
         .iter()
         .try_fold(item, |n: usize, &d| n.checked_mul(d))
         .ok_or("the shape's size overflows")?;
-    let data = &bytes[start + len..];
     if data.len() != size {
         return Err(format!(
             "shape {shape:?} of {descr} needs {size} bytes, the entry holds {}",
@@ -153,15 +152,20 @@ pub(crate) fn zip(entries: &[(&str, Vec<u8>)]) -> Result<Vec<u8>, String> {
     Ok(out)
 }
 
+/// The `N` bytes of `b` from `at`, if it holds them.
+fn le_bytes<const N: usize>(b: &[u8], at: usize) -> Option<[u8; N]> {
+    b.get(at..at.checked_add(N)?)?.try_into().ok()
+}
+
 fn u16_at(b: &[u8], at: usize) -> Result<u16, String> {
-    b.get(at..at + 2)
-        .map(|s| u16::from_le_bytes([s[0], s[1]]))
+    le_bytes(b, at)
+        .map(u16::from_le_bytes)
         .ok_or_else(|| format!("the archive ends at byte {} inside a record", b.len()))
 }
 
 fn u32_at(b: &[u8], at: usize) -> Result<u32, String> {
-    b.get(at..at + 4)
-        .map(|s| u32::from_le_bytes([s[0], s[1], s[2], s[3]]))
+    le_bytes(b, at)
+        .map(u32::from_le_bytes)
         .ok_or_else(|| format!("the archive ends at byte {} inside a record", b.len()))
 }
 

@@ -123,24 +123,24 @@ impl CoverageMap {
         let need = |name: &str| get(name)?.ok_or_else(|| invalid(format!("no {name}")));
         let version = need("covmap_version.npy")?;
         let version = expect(&version, "covmap_version.npy", "<u4", &[1])?;
-        let version = u32_values(version.data)[0];
+        let [version] = exactly(all(version.data, u32::from_le_bytes), "covmap_version.npy")?;
         if version != MAP_FILE_VERSION {
             return Err(invalid(format!(
                 "version {version}, where this covmap reads version {MAP_FILE_VERSION}"
             )));
         }
         let grid = need("grid.npy")?;
-        let g = f64_values(expect(&grid, "grid.npy", "<f8", &[3])?.data);
+        let grid = expect(&grid, "grid.npy", "<f8", &[3])?;
+        let [x, y, resolution] = exactly(all(grid.data, f64::from_le_bytes), "grid.npy")?;
         let hist = need("histograms.npy")?;
-        if hist.descr != "<f4" || hist.shape.len() != 3 {
+        let (&[rows, cols, bins], "<f4") = (hist.shape.as_slice(), hist.descr.as_str()) else {
             return Err(invalid(format!(
                 "histograms.npy is {} of shape {:?}, not float32 (rows, cols, bins)",
                 hist.descr, hist.shape
             )));
-        }
-        let (rows, cols, bins) = (hist.shape[0], hist.shape[1], hist.shape[2]);
-        let grid = Grid::new([g[0], g[1]], g[2], rows, cols)?;
-        let mut map = CoverageMap::from_histograms(grid, bins, f32_values(hist.data))?;
+        };
+        let grid = Grid::new([x, y], resolution, rows, cols)?;
+        let mut map = CoverageMap::from_histograms(grid, bins, all(hist.data, f32::from_le_bytes))?;
         match (get("history_entropies.npy")?, get("history_counts.npy")?) {
             (None, None) => {}
             (Some(e), Some(c)) => {
@@ -148,8 +148,8 @@ impl CoverageMap {
                 let e = expect(&e, "history_entropies.npy", "<f4", &[rows, cols, depth])?;
                 let c = expect(&c, "history_counts.npy", "<u4", &[rows, cols])?;
                 map.restore_history(HistoryState {
-                    entropies: f32_values(e.data),
-                    count: u32_values(c.data),
+                    entropies: all(e.data, f32::from_le_bytes),
+                    count: all(c.data, u32::from_le_bytes),
                 })?;
             }
             _ => {
@@ -178,22 +178,21 @@ fn expect<'a, 'b>(
     }
 }
 
-fn f32_values(data: &[u8]) -> Vec<f32> {
-    data.chunks_exact(4)
-        .map(|c| f32::from_le_bytes([c[0], c[1], c[2], c[3]]))
+/// The values of an array's little-endian `data`, `B` bytes each.
+fn all<T, const B: usize>(data: &[u8], from_le_bytes: fn([u8; B]) -> T) -> Vec<T> {
+    data.as_chunks::<B>()
+        .0
+        .iter()
+        .map(|&c| from_le_bytes(c))
         .collect()
 }
 
-fn u32_values(data: &[u8]) -> Vec<u32> {
-    data.chunks_exact(4)
-        .map(|c| u32::from_le_bytes([c[0], c[1], c[2], c[3]]))
-        .collect()
-}
-
-fn f64_values(data: &[u8]) -> Vec<f64> {
-    data.chunks_exact(8)
-        .map(|c| f64::from_le_bytes(std::array::from_fn(|k| c[k])))
-        .collect()
+/// `values` as an array of `N`, as [`expect`] checked the entry `name`'s
+/// shape to hold.
+fn exactly<T, const N: usize>(values: Vec<T>, name: &str) -> Result<[T; N]> {
+    values
+        .try_into()
+        .map_err(|v: Vec<T>| invalid(format!("{name} holds {} values, not {N}", v.len())))
 }
 
 #[cfg(test)]

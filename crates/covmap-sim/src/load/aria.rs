@@ -7,6 +7,7 @@
 //! becomes a [`Polygon::wall`] of the given thickness (centred on the segment,
 //! extended by half the thickness at both ends so that corners close). A
 //! `NumLines:` header, when present, must match the number of segments.
+#![cfg_attr(not(test), warn(clippy::indexing_slicing))]
 
 use std::path::Path;
 
@@ -84,8 +85,8 @@ impl World {
                     .iter()
                     .map(|t| t.parse::<f64>().ok().filter(|v| v.is_finite()))
                     .collect();
-                let mm = match parsed {
-                    Some(v) if v.len() == 4 => v,
+                let [x1, y1, x2, y2] = match parsed.as_deref() {
+                    Some(&[x1, y1, x2, y2]) => [x1, y1, x2, y2],
                     _ => {
                         return Err(parse_error(
                             path,
@@ -96,8 +97,8 @@ impl World {
                         ));
                     }
                 };
-                let a = [mm[0] / 1000.0, mm[1] / 1000.0];
-                let b = [mm[2] / 1000.0, mm[3] / 1000.0];
+                let a = [x1 / 1000.0, y1 / 1000.0];
+                let b = [x2 / 1000.0, y2 / 1000.0];
                 let wall =
                     Polygon::wall(a, b, wall_thickness_m, Material::Wall).map_err(|e| match e {
                         SimError::InvalidPolygon { reason, .. } => {

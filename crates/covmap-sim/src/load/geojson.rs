@@ -16,6 +16,7 @@
 //!                 "coordinates": [[[0, 0], [4, 0], [4, 0.05], [0, 0.05], [0, 0]]]}}
 //! ]}
 //! ```
+#![cfg_attr(not(test), warn(clippy::indexing_slicing))]
 
 use std::path::Path;
 
@@ -111,7 +112,7 @@ impl World {
                     .iter()
                     .map(|r| {
                         let mut closed = r.clone();
-                        closed.push(r[0]);
+                        closed.extend(r.first());
                         closed
                     })
                     .collect();

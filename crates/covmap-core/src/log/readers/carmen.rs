@@ -219,8 +219,14 @@ fn read_line(
             return Ok(());
         }
         "PARAM" => return read_param(&mut f, state, options.laser),
-        _ => match options.laser.messages().iter().position(|m| *m == word) {
-            Some(i) => kinds[i],
+        _ => match options
+            .laser
+            .messages()
+            .into_iter()
+            .zip(kinds)
+            .find(|(m, _)| *m == word)
+        {
+            Some((_, kind)) => kind,
             None => return Ok(()),
         },
     };
@@ -368,7 +374,8 @@ fn finish(state: State, lines: &Lines, options: &CarmenOptions) -> Result<Log> {
         line: lines.line(),
         reason,
     };
-    let (Some(kind), Some(beams)) = (state.kind, state.beams) else {
+    let (Some(kind), Some(beams), Some(first)) = (state.kind, state.beams, state.scans.first())
+    else {
         let [a, b, c] = options.laser.messages();
         return Err(end(format!("no {a}, {b} or {c} message")));
     };
@@ -397,7 +404,6 @@ fn finish(state: State, lines: &Lines, options: &CarmenOptions) -> Result<Log> {
             })?,
         });
     }
-    let first = &state.scans[0];
     let same = state
         .scans
         .iter()
@@ -423,7 +429,7 @@ fn finish(state: State, lines: &Lines, options: &CarmenOptions) -> Result<Log> {
         .map_err(|e| match e {
             CovmapError::InScan { scan, source } => CovmapError::Parse {
                 file: lines.file().to_string(),
-                line: state.scans[scan].line,
+                line: state.scans.get(scan).map_or(lines.line(), |s| s.line),
                 reason: source.to_string(),
             },
             other => end(other.to_string()),
@@ -435,7 +441,8 @@ fn finish(state: State, lines: &Lines, options: &CarmenOptions) -> Result<Log> {
 /// round; the nearest outside them; `None` without odometry.
 fn odom_at(odom: &[(f64, Pose)], t: f64) -> Option<Pose> {
     let after = odom.partition_point(|(s, _)| *s <= t);
-    match (after.checked_sub(1).map(|i| odom[i]), odom.get(after)) {
+    let before = after.checked_sub(1).and_then(|i| odom.get(i)).copied();
+    match (before, odom.get(after)) {
         (Some((t0, a)), Some(&(t1, b))) if t1 > t0 => {
             let w = (t - t0) / (t1 - t0);
             let turn = (b.theta_rad - a.theta_rad + std::f64::consts::PI)

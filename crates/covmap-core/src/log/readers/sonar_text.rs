@@ -81,11 +81,13 @@ fn check(o: &SonarTextOptions) -> Result<()> {
     ] {
         check_parameter(v.is_finite() && v > 0.0, name, v, "positive and finite")?;
     }
-    match o.bearings_rad.iter().position(|b| !b.is_finite()) {
-        Some(index) => Err(CovmapError::InvalidBearing {
-            index,
-            value: o.bearings_rad[index],
-        }),
+    match o
+        .bearings_rad
+        .iter()
+        .enumerate()
+        .find(|(_, b)| !b.is_finite())
+    {
+        Some((index, &value)) => Err(CovmapError::InvalidBearing { index, value }),
         None => Ok(()),
     }
 }
