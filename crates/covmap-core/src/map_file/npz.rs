@@ -301,5 +301,17 @@ mod tests {
         assert!(parse_npy(&huge).unwrap_err().contains("overflows"));
         let other = npy("<i8", &[1], &[0; 8]);
         assert!(parse_npy(&other).unwrap_err().contains("<i8"));
+        // Version 2 keeps the header's length in 4 bytes: 2 of them missing.
+        let cut = b"\x93NUMPY\x02\x00\x10\x00";
+        assert!(
+            parse_npy(cut)
+                .unwrap_err()
+                .contains("length runs past the end")
+        );
+        assert!(
+            parse_npy(b"\x93NUMPY\x07\x00\x10\x00")
+                .unwrap_err()
+                .contains("version 7")
+        );
     }
 }
