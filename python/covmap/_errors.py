@@ -137,7 +137,10 @@ class ArrayDtypeError(CovmapError, TypeError):
 class InvalidTypeError(CovmapError, TypeError):
     """An argument has the wrong type: a model that is neither a SonarModel
     nor a LaserModel, a pickled state of the wrong form, a seed that is not an
-    integer, arguments that exclude each other."""
+    integer, arguments that exclude each other. Also a call with the wrong
+    arguments (too many, a missing one, an unknown keyword, one given twice),
+    with Python's message naming the callable and the argument; a class that
+    cannot be created (a result, such as ``Plan``), called."""
 
 
 class InvalidPolygonError(CovmapError, ValueError):
