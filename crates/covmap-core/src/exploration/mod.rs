@@ -41,7 +41,7 @@
 //!   ([`CoverageMap::with_contacts`](crate::CoverageMap::with_contacts)), so
 //!   a wall the sensor misses cannot lure the robot back. A goal it could
 //!   make no headway towards (less than a centimetre) is never chosen again.
-//! - **Planning radius**: paths are planned for a disc a cell (at least 10 cm) wider than
+//! - **Planning radius**: paths are planned for a disc a cell (at least 5 cm) wider than
 //!   the robot, since a cell less than half covered reads free and a sonar
 //!   map often holds the face row of a wall as free (see `region`).
 //! - **The reachable region**: the cells the robot can reach through known

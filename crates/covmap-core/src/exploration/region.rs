@@ -4,16 +4,22 @@
 //!
 //! # Planning radius
 //! Every strategy plans for a disc one cell wider than the robot, or
-//! [`FACE_MARGIN_M`] (10 cm) wider where cells are finer than that
-//! (`robot_radius_m + max(resolution, 0.1)`): a cell less than half covered
-//! reads free on the maps, so an obstacle may reach up to a cell past the
-//! cells that block; and a sonar map often holds the first 5 to 10 cm of a
-//! wall's face as free or unknown, the readings' end bands spreading over
-//! it: on the built-in corridor at 5 cm, planning with the extra cell
-//! alone, paths ran 0.24 m from the north wall's face and the robot (radius
-//! 0.25 m) touched it on 50 of 217 steps. The margin keeps a path that is
-//! right on the map clear in the world there; the robot (0.5 m across)
-//! still passes a 0.9 m doorway with 0.1 m to spare either side.
+//! [`FACE_MARGIN_M`] (5 cm) wider where cells are finer than that
+//! (`robot_radius_m + max(resolution, 0.05)`): a cell less than half
+//! covered reads free on the maps, so an obstacle may reach up to a cell
+//! past the cells that block. A sonar map also holds the first few
+//! centimetres of a wall's face as free or unknown, so a wider margin keeps
+//! the robot off walls more often; but sonar arcs narrow every doorway on
+//! the map too, and a robot planning 10 cm wider than itself (0.7 m for a
+//! 0.25 m robot) found the 0.9 m doorways of the built-in corridor closed:
+//! frontier exploration ended in the room it started in (seed 1: 10.9 m,
+//! 82 % of the evaluation cells uncertain) and counting to 50 in two of
+//! three seeds. With one cell, every strategy leaves that room on seeds 0
+//! to 2, and the coverage strategy touches a wall a little more often (33,
+//! 21 and 24 contacts against 22, 20 and 18): a contact stops the robot at
+//! its last free point and is integrated as evidence, so it costs a step,
+//! never a collision (`cargo run --release -p covmap-sim --example table1
+//! -- --seeds 3`).
 //!
 //! # The region
 //! The cells the robot's centre can reach through space the coverage map
@@ -31,9 +37,8 @@ use crate::planner::{Planner, PlannerConfig, Reachability, shortest_paths};
 use crate::pose::{Pose, check_pose};
 
 /// The least margin beyond the robot's radius that the strategies plan
-/// with, metres: the depth of a wall's face that a sonar map may hold as
-/// free (see the module documentation).
-pub const FACE_MARGIN_M: f64 = 0.1;
+/// with, metres (see the module documentation).
+pub const FACE_MARGIN_M: f64 = 0.05;
 
 /// The radius the strategies plan with: the robot's and one cell, or
 /// [`FACE_MARGIN_M`] if that is more.

@@ -9,7 +9,7 @@
 //! epsilon 0.65; at least the planner's default of 1 nat); of those it takes
 //! the one maximising `alpha * gain / max gain - (1 - alpha) * cost / max
 //! cost`. Paths and costs are for the planning radius (the robot's and a cell, at
-//! least 10 cm, see [`region`](crate::exploration)), with unknown cells blocking.
+//! least 5 cm, see [`region`](crate::exploration)), with unknown cells blocking.
 //!
 //! A goal the robot could not make any headway towards (a failed goal, see
 //! [`Exploration`](crate::exploration::Exploration)) is not chosen again,

@@ -13,7 +13,7 @@
 //!
 //! # Choice
 //! The robot navigates the occupancy grid: cells not known free block, and
-//! the robot's centre keeps the planning radius (the robot's and a cell, at least 10 cm)
+//! the robot's centre keeps the planning radius (the robot's and a cell, at least 5 cm)
 //! from every blocked cell. A frontier group is reached from any reachable
 //! cell within the planning radius and two cells of one of its cells (the
 //! robot cannot stand on the frontier itself: the unknown cells next to it
