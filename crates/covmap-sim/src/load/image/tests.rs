@@ -80,6 +80,10 @@ fn malformed_images_name_the_place() {
         World::from_image_bytes(b"P2 2 1 10 3 x", "a.pgm", &ImageOptions::new(1.0)).unwrap_err();
     assert!(e.to_string().starts_with("a.pgm, PGM data: "), "{e}");
     assert!(e.to_string().contains("sample"), "{e}");
+    // The Netpbm format has comments in the header only.
+    let e = World::from_image_bytes(b"P2 2 1 255\n0 # c\n255", "c.pgm", &ImageOptions::new(1.0))
+        .unwrap_err();
+    assert!(e.to_string().starts_with("c.pgm, PGM data: "), "{e}");
     let e = World::from_image_bytes(b"P5 0 3 255\n", "z.pgm", &ImageOptions::new(1.0)).unwrap_err();
     assert!(
         e.to_string().starts_with("z.pgm, PGM header: ") && e.to_string().contains("0 x 3"),
