@@ -389,22 +389,24 @@ fn decode_grey(
         .map_err(|e| image_error(path, &format!("{format} data"), "pixel data", bound, e))?;
     // Colour channels averaged; alpha ignored. Samples of 16 bits are in the
     // machine's byte order (`read_image`'s contract).
-    let sample_bytes = usize::from(color.bytes_per_pixel() / color.channel_count());
+    let wide = color.bytes_per_pixel() == 2 * color.channel_count();
     let colours = if color.has_color() { 3 } else { 1 };
-    let full = if sample_bytes == 2 { 65535.0 } else { 255.0 };
+    let full = if wide { 65535.0 } else { 255.0 };
     let mut values = memory::try_with_capacity(
         count,
         &format!("{}: the {format}'s grey values", path.display()),
     )?;
     for pixel in buf.chunks_exact(usize::from(color.bytes_per_pixel())) {
-        let sum: f64 = pixel
-            .chunks_exact(sample_bytes)
-            .take(colours)
-            .map(|s| match s {
-                &[hi, lo] => f64::from(u16::from_ne_bytes([hi, lo])),
-                _ => f64::from(s[0]),
-            })
-            .sum();
+        let sum: f64 = if wide {
+            let (samples, _) = pixel.as_chunks::<2>();
+            samples
+                .iter()
+                .take(colours)
+                .map(|&s| f64::from(u16::from_ne_bytes(s)))
+                .sum()
+        } else {
+            pixel.iter().take(colours).map(|&s| f64::from(s)).sum()
+        };
         values.push(match samples {
             Samples::AsDecoded => sum / (full * colours as f64),
             Samples::Stretched { maxval } => {
