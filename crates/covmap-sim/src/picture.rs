@@ -3,6 +3,8 @@
 use std::path::Path;
 
 use covmap_core::Grid;
+use image::codecs::png::{CompressionType, FilterType, PngEncoder};
+use image::{ExtendedColorType, ImageEncoder};
 
 use crate::error::{Result, SimError};
 use crate::load::write_atomic;
@@ -54,19 +56,15 @@ pub fn write_map_png(path: impl AsRef<Path>, grid: &Grid, values: &[f64]) -> Res
             pixels.push(grey);
         }
     }
-    let encode_err = |e: png::EncodingError| SimError::Io {
-        path: path.to_path_buf(),
-        source: std::io::Error::other(e.to_string()),
-    };
     let mut bytes = Vec::new();
-    {
-        let mut enc = png::Encoder::new(&mut bytes, width, height);
-        enc.set_color(png::ColorType::Grayscale);
-        enc.set_depth(png::BitDepth::Eight);
-        let mut writer = enc.write_header().map_err(encode_err)?;
-        writer.write_image_data(&pixels).map_err(encode_err)?;
-        writer.finish().map_err(encode_err)?;
-    }
+    // Deflate's default level and adaptive filters, the `png` crate's own
+    // defaults (the `image` crate's would be its fastest level).
+    PngEncoder::new_with_quality(&mut bytes, CompressionType::Default, FilterType::Adaptive)
+        .write_image(&pixels, width, height, ExtendedColorType::L8)
+        .map_err(|e| SimError::Io {
+            path: path.to_path_buf(),
+            source: std::io::Error::other(e.to_string()),
+        })?;
     write_atomic(path, &bytes)
 }
 

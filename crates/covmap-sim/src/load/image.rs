@@ -25,20 +25,28 @@
 //! of serde_yaml): a value of the wrong type is an error naming its line, a
 //! value map_server refuses one naming its key.
 //!
-//! PNG is decoded by the `png` crate. PGM keeps its own small decoder
-//! (`decode_pgm`): `png` reads no PNM, and the `image` crate would add a
-//! decoder framework's compile time for a header of four numbers; the
-//! decoder here bounds what a header may claim ([`MAX_IMAGE_PIXELS`], no
-//! reservation beyond the file's length) and names the pixel where data
-//! goes wrong.
+//! Both formats are decoded by the `image` crate (its `png` and `pnm`
+//! codecs only): PNG of any colour type and depth (palettes expanded, 16-bit
+//! samples kept whole), PGM binary (P5) or ASCII (P2) of any maxval up to
+//! 65535. The header is read first and what it declares is bounded before
+//! anything of its size is allocated: at most [`MAX_IMAGE_PIXELS`] pixels,
+//! no more pixels than a PGM file has bytes, no more decoded bytes than
+//! deflate can expand a PNG file's bytes into; the decoders get the same
+//! bounds as `image::Limits`. Errors name the file, the part of it (`PGM
+//! header`, `PNG data`, ...) and the decoder's reason. A PGM value above
+//! its maxval reads as maxval, as the `pnm` decoder clamps it.
 
 use std::io::Cursor;
 use std::path::Path;
 
 use covmap_core::memory;
+use image::codecs::png::PngDecoder;
+use image::codecs::pnm::PnmDecoder;
+use image::error::LimitErrorKind;
+use image::{ImageDecoder, ImageError, Limits};
 
 use super::{parse_error, read_bytes, read_text};
-use crate::error::{Result, check_param};
+use crate::error::{Result, SimError, check_param};
 use crate::material::Material;
 use crate::polygon::Polygon;
 use crate::world::World;
@@ -121,7 +129,7 @@ impl World {
     /// assert_eq!(world.len(), 1);
     /// assert_eq!(world.polygons()[0].bounds_m(), [0.5, 0.5, 1.5, 1.0]);
     /// let err = World::from_image_bytes(b"P2\n4 2\n255\n255 0 0\n", "cut.pgm", &ImageOptions::new(0.5)).unwrap_err();
-    /// assert!(err.to_string().starts_with("cut.pgm, pixel (3, 0)"), "{err}");
+    /// assert!(err.to_string().starts_with("cut.pgm, PGM data: "), "{err}");
     /// ```
     pub fn from_image_bytes(
         bytes: &[u8],
@@ -245,214 +253,172 @@ pub const MAX_IMAGE_PIXELS: usize = 1 << 30;
 /// occupancy maps, whose walls are runs of pixels, stay far below.
 pub const MAX_IMAGE_RECTANGLES: usize = 1 << 20;
 
+/// The longest side a decoder accepts: [`MAX_IMAGE_PIXELS`], that of an image
+/// one pixel high.
+const MAX_IMAGE_SIDE: u32 = 1 << 30;
+const _: () = assert!(MAX_IMAGE_SIDE as usize == MAX_IMAGE_PIXELS);
+
 /// The largest factor by which deflate (PNG's compression) expands data.
 const DEFLATE_MAX_RATIO: usize = 1032;
 
-/// The pixel count `width * height`, or an error at `place` if it exceeds
-/// [`MAX_IMAGE_PIXELS`].
-fn check_pixel_count(width: usize, height: usize, path: &Path, place: &str) -> Result<usize> {
-    width
-        .checked_mul(height)
-        .filter(|&n| n <= MAX_IMAGE_PIXELS)
-        .ok_or_else(|| {
-            parse_error(
-                path,
-                place,
-                format!("{width} x {height} pixels is too large (at most 2^30)"),
-            )
-        })
+/// What the decoders may allocate: sides of at most [`MAX_IMAGE_SIDE`]
+/// pixels, and `max_bytes` bytes.
+fn decoder_limits(max_bytes: usize) -> Limits {
+    let mut limits = Limits::no_limits();
+    limits.max_image_width = Some(MAX_IMAGE_SIDE);
+    limits.max_image_height = Some(MAX_IMAGE_SIDE);
+    limits.max_alloc = Some(u64::try_from(max_bytes).unwrap_or(u64::MAX));
+    limits
+}
+
+/// The error for a header that declares more than `bound` allows.
+fn too_large(path: &Path, place: &str, width: u32, height: u32, bound: &str) -> SimError {
+    parse_error(
+        path,
+        place,
+        format!("the declared {width} x {height} pixels are more than {bound}"),
+    )
+}
+
+/// An error of the `image` crate at `place` (`what` says what the bytes
+/// there are): a broken limit is a header declaring more than `bound`
+/// allows, a cut file says so, anything else in the crate's words.
+fn image_error(path: &Path, place: &str, what: &str, bound: &str, e: ImageError) -> SimError {
+    match e {
+        ImageError::Limits(e) => parse_error(
+            path,
+            place,
+            match e.kind() {
+                LimitErrorKind::DimensionError => {
+                    format!("the declared image has a side of more than 2^30 pixels ({e})")
+                }
+                _ => format!("the declared pixels are more than {bound} ({e})"),
+            },
+        ),
+        ImageError::IoError(e) if e.kind() == std::io::ErrorKind::UnexpectedEof => {
+            parse_error(path, place, format!("the file ends inside the {what}"))
+        }
+        e => parse_error(path, place, e.to_string()),
+    }
+}
+
+/// How a decoded sample becomes a level of grey.
+#[derive(Clone, Copy)]
+enum Samples {
+    /// PNG: the sample is the level, out of 255 or 65535 by its width.
+    AsDecoded,
+    /// PGM: the sample is the file's value out of `maxval`, which the `pnm`
+    /// decoder stretched to 255 (maxval up to 255) or 65535 (above).
+    Stretched { maxval: u32 },
 }
 
 fn decode_png(bytes: &[u8], path: &Path) -> Result<Grey> {
-    let err = |e: png::DecodingError| parse_error(path, "PNG stream", e.to_string());
-    let mut decoder = png::Decoder::new(Cursor::new(bytes));
-    decoder.set_transformations(png::Transformations::normalize_to_color8());
-    // The header is checked before anything of its size is allocated: at most
-    // MAX_IMAGE_PIXELS pixels, and no more decoded bytes than deflate can
-    // expand the file's bytes into (at most 1032 to 1), so that a short file
-    // that claims a huge image is refused at once.
+    // No more decoded bytes than deflate can expand the file's bytes into
+    // (at most 1032 to 1): a short file that claims a huge image is refused
+    // from its header. The `png` decoder under the `image` crate holds its
+    // own buffers to the same bound.
     let max_bytes = bytes.len().saturating_mul(DEFLATE_MAX_RATIO);
-    decoder.set_limits(png::Limits { bytes: max_bytes });
-    let too_large = || {
-        parse_error(
-            path,
-            "PNG header",
-            format!(
-                "the declared image has more pixels than a file of {} bytes can hold",
-                bytes.len()
-            ),
-        )
-    };
-    let mut reader = decoder.read_info().map_err(|e| match e {
-        png::DecodingError::LimitsExceeded => too_large(),
-        e => err(e),
-    })?;
-    let (width, height) = (reader.info().width as usize, reader.info().height as usize);
-    check_pixel_count(width, height, path, "PNG header")?;
-    let size = reader
-        .output_buffer_size()
-        .filter(|&size| size <= max_bytes)
-        .ok_or_else(too_large)?;
-    let mut buf = memory::try_filled(
-        0u8,
-        size,
-        &format!("{}: the PNG's decoded pixels", path.display()),
-    )?;
-    let info = reader.next_frame(&mut buf).map_err(err)?;
-    let channels = match info.color_type {
-        png::ColorType::Grayscale => 1,
-        png::ColorType::GrayscaleAlpha => 2,
-        png::ColorType::Rgb => 3,
-        png::ColorType::Rgba => 4,
-        png::ColorType::Indexed => {
-            return Err(parse_error(path, "PNG header", "palette not expanded"));
-        }
-    };
-    // Colour channels averaged; alpha ignored.
-    let colours = if channels >= 3 { 3 } else { 1 };
-    let mut values = memory::try_with_capacity(
-        width * height,
-        &format!("{}: the PNG's grey values", path.display()),
-    )?;
-    for row in buf.chunks(info.line_size).take(height) {
-        for px in row.chunks_exact(channels).take(width) {
-            let sum: u32 = px[..colours].iter().map(|&v| v as u32).sum();
-            values.push(sum as f64 / (255.0 * colours as f64));
-        }
-    }
-    if values.len() != width * height {
-        return Err(parse_error(
-            path,
-            "PNG data",
-            "fewer pixels than the header declares",
-        ));
-    }
-    Ok(Grey {
-        width,
-        height,
-        values,
-    })
+    let bound = format!("a PNG file of {} bytes can hold", bytes.len());
+    let decoder = PngDecoder::with_limits(Cursor::new(bytes), decoder_limits(max_bytes))
+        .map_err(|e| image_error(path, "PNG header", "PNG header", &bound, e))?;
+    decode_grey(decoder, path, "PNG", max_bytes, &bound, Samples::AsDecoded)
 }
 
 fn decode_pgm(bytes: &[u8], path: &Path) -> Result<Grey> {
-    let binary = bytes.starts_with(b"P5");
-    // Header: magic, width, height, maxval, separated by whitespace, with
-    // `#` comments to the end of the line.
-    let mut pos = 2;
-    let mut line = 1;
-    let mut header = [0usize; 3];
-    for (k, name) in ["width", "height", "maxval"].iter().enumerate() {
-        loop {
-            match bytes.get(pos) {
-                Some(b'#') => {
-                    while bytes.get(pos).is_some_and(|&c| c != b'\n') {
-                        pos += 1;
-                    }
-                }
-                Some(c) if c.is_ascii_whitespace() => {
-                    if *c == b'\n' {
-                        line += 1;
-                    }
-                    pos += 1;
-                }
-                _ => break,
-            }
-        }
-        let start = pos;
-        while bytes.get(pos).is_some_and(u8::is_ascii_digit) {
-            pos += 1;
-        }
-        let token = std::str::from_utf8(&bytes[start..pos]).unwrap_or("");
-        header[k] = token
-            .parse::<usize>()
-            .ok()
-            .filter(|&v| v > 0)
-            .ok_or_else(|| {
-                parse_error(
-                    path,
-                    format!("header line {line}"),
-                    format!("expected a positive {name}"),
-                )
-            })?;
-    }
-    let [width, height, maxval] = header;
-    if maxval > 65535 {
+    let bound = format!("a PGM file of {} bytes can hold", bytes.len());
+    let decoder = PnmDecoder::new(Cursor::new(bytes))
+        .map_err(|e| image_error(path, "PGM header", "PGM header", &bound, e))?;
+    let maxval = decoder.header().maximal_sample();
+    // Every pixel takes at least a byte of the file (a binary sample one or
+    // two, an ASCII one a digit): a header that promises more pixels than
+    // the file has bytes is refused before anything of its size is made.
+    let max_bytes = bytes
+        .len()
+        .saturating_mul(usize::from(decoder.color_type().bytes_per_pixel()));
+    decode_grey(
+        decoder,
+        path,
+        "PGM",
+        max_bytes,
+        &bound,
+        Samples::Stretched { maxval },
+    )
+}
+
+/// The grey values of the image `decoder` has read the header of. The
+/// declared size is checked before anything of that size is allocated: at
+/// most [`MAX_IMAGE_PIXELS`] pixels and `max_bytes` decoded bytes (`bound`
+/// says why), the buffers asked for fallibly.
+fn decode_grey(
+    mut decoder: impl ImageDecoder,
+    path: &Path,
+    format: &str,
+    max_bytes: usize,
+    bound: &str,
+    samples: Samples,
+) -> Result<Grey> {
+    let header = format!("{format} header");
+    let (w, h) = decoder.dimensions();
+    if w == 0 || h == 0 {
         return Err(parse_error(
             path,
-            format!("header line {line}"),
-            format!("maxval {maxval} exceeds 65535"),
+            header,
+            format!("the declared image of {w} x {h} pixels has none"),
         ));
     }
-    let count = check_pixel_count(width, height, path, &format!("header line {line}"))?;
-    let pixel = |i: usize| format!("pixel ({}, {})", i % width, i / width);
-    let scale = 1.0 / maxval as f64;
-    // Every pixel takes at least a byte of the file: a header that promises
-    // more than the file holds reserves no more than the file could fill.
-    let mut values = memory::try_with_capacity(
-        count.min(bytes.len()),
-        &format!("{}: the PGM's grey values", path.display()),
+    let (width, height) = (w as usize, h as usize);
+    let count = width
+        .checked_mul(height)
+        .filter(|&n| n <= MAX_IMAGE_PIXELS)
+        .ok_or_else(|| too_large(path, &header, w, h, "the 2^30 an image may have"))?;
+    let size = usize::try_from(decoder.total_bytes())
+        .ok()
+        .filter(|&size| size <= max_bytes)
+        .ok_or_else(|| too_large(path, &header, w, h, bound))?;
+    decoder
+        .set_limits(decoder_limits(max_bytes))
+        .map_err(|e| image_error(path, &header, "header", bound, e))?;
+    let color = decoder.color_type();
+    let mut buf = memory::try_filled(
+        0u8,
+        size,
+        &format!("{}: the {format}'s decoded pixels", path.display()),
     )?;
-    if binary {
-        // Exactly one whitespace byte ends the header.
-        if !bytes.get(pos).is_some_and(u8::is_ascii_whitespace) {
-            return Err(parse_error(
-                path,
-                format!("header line {line}"),
-                "expected whitespace after maxval",
-            ));
-        }
-        pos += 1;
-        let wide = maxval > 255;
-        let step = if wide { 2 } else { 1 };
-        for i in 0..count {
-            let at = pos + i * step;
-            let v = match (wide, bytes.get(at), bytes.get(at + 1)) {
-                (false, Some(&b), _) => b as usize,
-                (true, Some(&hi), Some(&lo)) => ((hi as usize) << 8) | lo as usize,
-                _ => {
-                    return Err(parse_error(
-                        path,
-                        pixel(i),
-                        format!("the data ends early ({width} x {height} pixels declared)"),
-                    ));
-                }
-            };
-            if v > maxval {
-                return Err(parse_error(
-                    path,
-                    pixel(i),
-                    format!("value {v} exceeds maxval {maxval}"),
-                ));
+    decoder
+        .read_image(&mut buf)
+        .map_err(|e| image_error(path, &format!("{format} data"), "pixel data", bound, e))?;
+    // Colour channels averaged; alpha ignored. Samples of 16 bits are in the
+    // machine's byte order (`read_image`'s contract).
+    let wide = color.bytes_per_pixel() == 2 * color.channel_count();
+    let colours = if color.has_color() { 3 } else { 1 };
+    let full = if wide { 65535.0 } else { 255.0 };
+    let mut values = memory::try_with_capacity(
+        count,
+        &format!("{}: the {format}'s grey values", path.display()),
+    )?;
+    for pixel in buf.chunks_exact(usize::from(color.bytes_per_pixel())) {
+        let sum: f64 = if wide {
+            let (samples, _) = pixel.as_chunks::<2>();
+            samples
+                .iter()
+                .take(colours)
+                .map(|&s| f64::from(u16::from_ne_bytes(s)))
+                .sum()
+        } else {
+            pixel.iter().take(colours).map(|&s| f64::from(s)).sum()
+        };
+        values.push(match samples {
+            Samples::AsDecoded => sum / (full * colours as f64),
+            Samples::Stretched { maxval } => {
+                // The decoder stretched the file's value v to
+                // round(v * full / maxval) (in f32): rounding back gives v
+                // exactly for every maxval up to 64849 (every v checked), and
+                // v within one step of maxval above. A value above maxval
+                // comes out as maxval.
+                let maxval = f64::from(maxval);
+                (sum * maxval / full).round() * (1.0 / maxval)
             }
-            values.push(v as f64 * scale);
-        }
-    } else {
-        let text = std::str::from_utf8(&bytes[pos..])
-            .map_err(|_| parse_error(path, "pixel data", "P2 data must be ASCII"))?;
-        let mut tokens = text
-            .lines()
-            .flat_map(|l| l.split('#').next().unwrap_or("").split_ascii_whitespace());
-        for i in 0..count {
-            let token = tokens.next().ok_or_else(|| {
-                parse_error(
-                    path,
-                    pixel(i),
-                    format!("the data ends early ({width} x {height} pixels declared)"),
-                )
-            })?;
-            let v = token
-                .parse::<usize>()
-                .ok()
-                .filter(|&v| v <= maxval)
-                .ok_or_else(|| {
-                    parse_error(
-                        path,
-                        pixel(i),
-                        format!("expected a value from 0 to {maxval}, found {token:?}"),
-                    )
-                })?;
-            values.push(v as f64 * scale);
-        }
+        });
     }
     Ok(Grey {
         width,

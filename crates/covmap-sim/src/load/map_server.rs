@@ -7,13 +7,17 @@
 //! `free_thresh` white (254), the rest and unknown grey (205); in `scale`
 //! mode a known cell of `v` percent is `(100 - v) 255 / 100`, unknown 205.
 //! Row 0 of the image is the map's top row. [`World::from_ros_map_yaml`]
-//! (and map_server) read the pair back.
+//! (and map_server) read the pair back. The PGM is encoded by the `image`
+//! crate (`pnm`), the YAML by serde (`serde_norway`), which quotes an image
+//! name that plain YAML would misread.
 //!
 //! [`World::from_ros_map_yaml`]: crate::World::from_ros_map_yaml
 
 use std::path::Path;
 
 use covmap_core::Grid;
+use image::ExtendedColorType;
+use image::codecs::pnm::{PnmEncoder, PnmSubtype, SampleEncoding};
 
 use super::write_atomic;
 use crate::error::{Result, SimError};
@@ -44,7 +48,7 @@ impl RosMapMode {
 ///
 /// # Errors
 /// [`SimError::InvalidParameter`] unless `0 <= free_thresh <
-/// occupied_thresh <= 1`; [`SimError::LengthMismatch`] unless there is one
+/// occupied_thresh <= 1` and the grid has fewer than 2^32 rows and columns; [`SimError::LengthMismatch`] unless there is one
 /// value a cell; [`SimError::InvalidValue`] for a value outside `-1..=100`;
 /// [`SimError::Io`] if a file cannot be written. Nothing is written then.
 pub fn write_ros_map(
@@ -94,27 +98,67 @@ pub fn write_ros_map(
         }
     };
     let (rows, cols) = grid.shape();
-    let mut pgm = format!("P5\n# covmap map\n{cols} {rows}\n255\n").into_bytes();
+    let (width, height) = match (u32::try_from(cols), u32::try_from(rows)) {
+        (Ok(w), Ok(h)) => (w, h),
+        _ => {
+            return Err(SimError::InvalidParameter {
+                name: "grid size",
+                value: grid.len() as f64,
+                expected: "at most 2^32 - 1 rows and columns for a PGM",
+            });
+        }
+    };
+    let mut pixels = Vec::with_capacity(occupancy.len());
     for row in (0..rows).rev() {
-        pgm.extend(
+        pixels.extend(
             occupancy[row * cols..(row + 1) * cols]
                 .iter()
                 .map(|&v| pixel(v)),
         );
     }
     let image_path = yaml_path.with_extension("pgm");
+    let mut pgm = Vec::new();
+    PnmEncoder::new(&mut pgm)
+        .with_subtype(PnmSubtype::Graymap(SampleEncoding::Binary))
+        .encode(pixels.as_slice(), width, height, ExtendedColorType::L8)
+        .map_err(|e| SimError::Io {
+            path: image_path.clone(),
+            source: std::io::Error::other(e.to_string()),
+        })?;
     let image_name = image_path
         .file_name()
         .map(|n| n.to_string_lossy().into_owned())
         .unwrap_or_default();
     let [x, y] = grid.origin_m();
-    let yaml = format!(
-        "image: {image_name}\nmode: {}\nresolution: {}\norigin: [{x}, {y}, 0.0]\nnegate: 0\noccupied_thresh: {occupied_thresh}\nfree_thresh: {free_thresh}\n",
-        mode.name(),
-        grid.resolution_m()
-    );
+    let yaml = serde_norway::to_string(&RosMapYamlOut {
+        image: &image_name,
+        mode: mode.name(),
+        resolution: grid.resolution_m(),
+        origin: [x, y, 0.0],
+        negate: 0,
+        occupied_thresh,
+        free_thresh,
+    })
+    .map_err(|e| SimError::Io {
+        path: yaml_path.to_path_buf(),
+        source: std::io::Error::other(e.to_string()),
+    })?;
     write_atomic(&image_path, &pgm)?;
     write_atomic(yaml_path, yaml.as_bytes())
+}
+
+/// The YAML file of a map_server pair, as serde writes it (`serde_norway`):
+/// the keys map_saver writes, in its order; the image's name quoted where
+/// YAML needs it.
+#[derive(serde::Serialize)]
+struct RosMapYamlOut<'a> {
+    image: &'a str,
+    mode: &'static str,
+    resolution: f64,
+    origin: [f64; 3],
+    negate: u8,
+    occupied_thresh: f64,
+    free_thresh: f64,
 }
 
 #[cfg(test)]
@@ -154,6 +198,31 @@ mod tests {
         assert!(write_ros_map(&yaml, &grid, &[101; 24], RosMapMode::Trinary, 0.65, 0.2).is_err());
         assert!(write_ros_map(&yaml, &grid, &occupancy, RosMapMode::Trinary, 0.2, 0.65).is_err());
         assert!(!yaml.exists() && !yaml.with_extension("pgm").exists());
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+
+    /// The YAML names its image so that YAML reads the name back whole,
+    /// whatever the file is called (in a plain scalar `#` would start a
+    /// comment, `: ` a mapping, `- ` or `[` a sequence).
+    #[test]
+    fn image_names_that_plain_yaml_would_misread_are_read_back() {
+        let dir = std::env::temp_dir().join(format!("covmap-ros-names-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let grid = Grid::new([0.0, 0.0], 0.5, 2, 3).unwrap();
+        let occupancy = [100, 0, 0, 0, 0, 100];
+        for name in ["map #1", "a: b", "- x", "[x]", "'q", "%d", "0x10", "~"] {
+            let yaml = dir.join(format!("{name}.yaml"));
+            write_ros_map(&yaml, &grid, &occupancy, RosMapMode::Trinary, 0.65, 0.196).unwrap();
+            let world = World::from_ros_map_yaml(&yaml).unwrap_or_else(|e| {
+                panic!("{name}: {e}\n{}", std::fs::read_to_string(&yaml).unwrap())
+            });
+            assert_eq!(world.len(), 2, "{name}");
+        }
+        let text = std::fs::read_to_string(dir.join("- x.yaml")).unwrap();
+        assert!(
+            text.starts_with("image: '- x.pgm'\nmode: trinary\n"),
+            "{text}"
+        );
         std::fs::remove_dir_all(&dir).unwrap();
     }
 }

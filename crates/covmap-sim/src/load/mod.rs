@@ -11,8 +11,11 @@
 //! Written: the map_server pair, PGM + YAML ([`map_server`]:
 //! [`write_ros_map`](crate::write_ros_map)), which the last row reads back.
 //!
-//! Malformed or degenerate input is a [`SimError::Parse`]
-//! naming the file and the place: a line, a feature, a pixel.
+//! Each format has one reader, named in the table; images are read and
+//! written through the `image` crate, YAML through `serde_norway`, JSON
+//! through `serde_json`. Malformed or degenerate input is a
+//! [`SimError::Parse`] naming the file and the place: a line, a feature, a
+//! part of an image.
 
 pub mod aria;
 pub mod geojson;

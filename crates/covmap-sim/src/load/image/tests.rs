@@ -2,6 +2,8 @@
 
 use super::*;
 use covmap_core::Grid;
+use image::codecs::png::PngEncoder;
+use image::{ExtendedColorType, ImageEncoder};
 
 fn pgm_p5(width: usize, height: usize, pixels: &[u8]) -> Vec<u8> {
     let mut b = format!("P5\n# a comment\n{width} {height}\n255\n").into_bytes();
@@ -65,13 +67,28 @@ fn thresholds_negate_and_sixteen_bits() {
 fn malformed_images_name_the_place() {
     let e =
         World::from_image_bytes(b"P5\n4 x\n255\n", "h.pgm", &ImageOptions::new(1.0)).unwrap_err();
-    assert!(e.to_string().starts_with("h.pgm, header line 2"), "{e}");
+    assert!(e.to_string().starts_with("h.pgm, PGM header: "), "{e}");
+    assert!(e.to_string().contains("digit"), "{e}");
     let e = World::from_image_bytes(&pgm_p5(4, 4, &[0; 9]), "s.pgm", &ImageOptions::new(1.0))
         .unwrap_err();
-    assert!(e.to_string().starts_with("s.pgm, pixel (1, 2)"), "{e}");
+    assert!(
+        e.to_string()
+            .starts_with("s.pgm, PGM data: the file ends inside the pixel data"),
+        "{e}"
+    );
     let e =
-        World::from_image_bytes(b"P2 2 1 10 3 11", "v.pgm", &ImageOptions::new(1.0)).unwrap_err();
-    assert!(e.to_string().starts_with("v.pgm, pixel (1, 0)"), "{e}");
+        World::from_image_bytes(b"P2 2 1 10 3 x", "a.pgm", &ImageOptions::new(1.0)).unwrap_err();
+    assert!(e.to_string().starts_with("a.pgm, PGM data: "), "{e}");
+    assert!(e.to_string().contains("sample"), "{e}");
+    // The Netpbm format has comments in the header only.
+    let e = World::from_image_bytes(b"P2 2 1 255\n0 # c\n255", "c.pgm", &ImageOptions::new(1.0))
+        .unwrap_err();
+    assert!(e.to_string().starts_with("c.pgm, PGM data: "), "{e}");
+    let e = World::from_image_bytes(b"P5 0 3 255\n", "z.pgm", &ImageOptions::new(1.0)).unwrap_err();
+    assert!(
+        e.to_string().starts_with("z.pgm, PGM header: ") && e.to_string().contains("0 x 3"),
+        "{e}"
+    );
     assert!(World::from_image_bytes(b"GIF89a", "x.gif", &ImageOptions::new(1.0)).is_err());
     assert!(
         World::from_image_bytes(&pgm_p5(1, 1, &[0]), "r.pgm", &ImageOptions::new(-1.0)).is_err()
@@ -82,22 +99,118 @@ fn malformed_images_name_the_place() {
         &ImageOptions::new(1.0),
     )
     .unwrap_err();
-    assert!(e.to_string().starts_with("p.png, PNG"), "{e}");
+    assert!(e.to_string().starts_with("p.png, PNG header: "), "{e}");
+}
+
+/// A PGM value above the file's maxval reads as maxval (the `pnm` decoder
+/// clamps it): white, or occupied when negated.
+#[test]
+fn a_pgm_value_above_maxval_reads_as_maxval() {
+    let o = ImageOptions::new(1.0);
+    let w = World::from_image_bytes(b"P2 2 1 10 3 11", "v.pgm", &o).unwrap();
+    assert_eq!(w.len(), 1);
+    assert_eq!(w.polygons()[0].bounds_m(), [0.0, 0.0, 1.0, 1.0]);
+    let negated = ImageOptions { negate: true, ..o };
+    let w = World::from_image_bytes(b"P2 2 1 10 3 11", "v.pgm", &negated).unwrap();
+    assert_eq!(w.polygons()[0].bounds_m(), [1.0, 0.0, 2.0, 1.0]);
+}
+
+/// Grey values are the file's values over its maxval, exactly as before the
+/// decoder stretched them: every value of every 8-bit maxval, every value of
+/// maxval 1000 (16-bit, binary and ASCII), the top of 16 bits within a step.
+#[test]
+fn pgm_grey_values_are_the_files_values_over_maxval() {
+    let check = |bytes: &[u8], maxval: u32, tolerance: f64| {
+        let grey = decode_pgm(bytes, Path::new("g.pgm")).unwrap();
+        assert_eq!(grey.values.len(), maxval as usize + 1);
+        for (v, &g) in grey.values.iter().enumerate() {
+            let exact = v as f64 * (1.0 / f64::from(maxval));
+            assert!(
+                (g - exact).abs() <= tolerance,
+                "maxval {maxval}, value {v}: {g} (expected {exact})"
+            );
+        }
+    };
+    for maxval in 1..=255u32 {
+        let mut b = format!("P5 {} 1 {maxval}\n", maxval + 1).into_bytes();
+        b.extend((0..=maxval).map(|v| v as u8));
+        check(&b, maxval, 0.0);
+    }
+    for maxval in [256u32, 1000, 4095, 64849, 65535] {
+        let mut b = format!("P5 {} 1 {maxval}\n", maxval + 1).into_bytes();
+        b.extend((0..=maxval).flat_map(|v| (v as u16).to_be_bytes()));
+        check(&b, maxval, 0.0);
+    }
+    let text: Vec<String> = (0..=1000).map(|v| v.to_string()).collect();
+    check(
+        format!("P2 1001 1 1000\n{}\n", text.join(" ")).as_bytes(),
+        1000,
+        0.0,
+    );
+    let mut b = b"P5 65535 1 65534\n".to_vec();
+    b.extend((0..=65534u16).flat_map(|v| v.to_be_bytes()));
+    check(&b, 65534, 1.0 / 65534.0);
+    // A value on the threshold stays on it: 35 of 100 is an occupancy of
+    // exactly 0.65, not above it (stretched to 89 of 255 it would be).
+    let w = World::from_image_bytes(b"P2 2 1 100 35 0", "t.pgm", &ImageOptions::new(1.0)).unwrap();
+    assert_eq!(w.polygons()[0].bounds_m(), [1.0, 0.0, 2.0, 1.0]);
+}
+
+/// A PGM header that declares more pixels than the file has bytes, or more
+/// than 2^30, is refused from the header, naming the file.
+#[test]
+fn a_pgm_header_claiming_a_huge_image_is_refused_before_decoding() {
+    let opts = ImageOptions::new(0.05);
+    for (header, says) in [
+        ("P5\n100000 100000\n255\n", "the 2^30 an image may have"),
+        ("P5\n30000 30000\n255\n", "a PGM file of 35 bytes can hold"),
+        ("P5\n3000 3000\n65535\n", "a PGM file of 35 bytes can hold"),
+        ("P2\n30000 30000\n255\n", "a PGM file of 35 bytes can hold"),
+    ] {
+        let mut bytes = header.as_bytes().to_vec();
+        bytes.extend([0u8; 16]);
+        let err = World::from_image_bytes(&bytes, "huge.pgm", &opts).unwrap_err();
+        let text = err.to_string();
+        assert!(
+            text.starts_with("huge.pgm, PGM header: "),
+            "{header}: {text}"
+        );
+        assert!(text.contains(says), "{header}: {text}");
+    }
+    let e = World::from_image_bytes(b"P5\n18446744073709551617 3\n255\n\0\0\0", "h.pgm", &opts)
+        .unwrap_err();
+    assert!(e.to_string().starts_with("h.pgm, PGM header: "), "{e}");
+}
+
+/// A 16-bit PNG's samples are read whole, out of 65535.
+#[test]
+fn sixteen_bit_png_samples_are_read_whole() {
+    let mut data = Vec::new();
+    let px: Vec<u8> = [0x8000u16, 0x5FFF, 0xFFFF]
+        .iter()
+        .flat_map(|v| v.to_ne_bytes())
+        .collect();
+    PngEncoder::new(&mut data)
+        .write_image(&px, 3, 1, ExtendedColorType::L16)
+        .unwrap();
+    let grey = decode_png(&data, Path::new("w.png")).unwrap();
+    assert_eq!(
+        grey.values,
+        [32768.0 / 65535.0, 24575.0 / 65535.0, 1.0],
+        "{:?}",
+        grey.values
+    );
 }
 
 #[test]
 fn png_rgb_and_yaml() {
     // Encode a 3 x 2 RGB PNG: one dark pixel at the top left.
     let mut data = Vec::new();
-    {
-        let mut enc = png::Encoder::new(&mut data, 3, 2);
-        enc.set_color(png::ColorType::Rgb);
-        enc.set_depth(png::BitDepth::Eight);
-        let mut wr = enc.write_header().unwrap();
-        let mut px = vec![255u8; 18];
-        px[..3].copy_from_slice(&[10, 20, 30]);
-        wr.write_image_data(&px).unwrap();
-    }
+    let mut px = vec![255u8; 18];
+    px[..3].copy_from_slice(&[10, 20, 30]);
+    PngEncoder::new(&mut data)
+        .write_image(&px, 3, 2, ExtendedColorType::Rgb8)
+        .unwrap();
     let mut o = ImageOptions::new(0.5);
     o.origin_m = [10.0, 20.0];
     let w = World::from_image_bytes(&data, "a.png", &o).unwrap();
@@ -149,12 +262,9 @@ fn crc32(bytes: &[u8]) -> u32 {
 /// (its chunk checksum mended, so only the size is a lie).
 fn png_claiming(width: u32, height: u32) -> Vec<u8> {
     let mut data = Vec::new();
-    {
-        let mut enc = png::Encoder::new(&mut data, 1, 1);
-        enc.set_color(png::ColorType::Grayscale);
-        enc.set_depth(png::BitDepth::Eight);
-        enc.write_header().unwrap().write_image_data(&[0]).unwrap();
-    }
+    PngEncoder::new(&mut data)
+        .write_image(&[0], 1, 1, ExtendedColorType::L8)
+        .unwrap();
     // Signature (8 bytes), IHDR length (4), "IHDR" (4), width, height, ...
     data[16..20].copy_from_slice(&width.to_be_bytes());
     data[20..24].copy_from_slice(&height.to_be_bytes());
