@@ -3,7 +3,7 @@
 //!
 //! ```text
 //! cargo run --release -p covmap-sim --example table1 -- [--worlds corridor,office] [--seeds N]
-//!     [--strategies coverage,count1,count50,frontier] [--scan-spacing M] [--clear-no-echo]
+//!     [--strategies coverage,count1,count50,frontier] [--scan-spacing M] [--resolution M] [--clear-no-echo]
 //!     [--no-multipath] [--laser] [--verbose]
 //! ```
 //!
@@ -45,6 +45,7 @@ fn main() -> ExitCode {
     let (mut verbose, mut laser, mut clear_no_echo, mut no_multipath) =
         (false, false, false, false);
     let mut scan_spacing_m = None;
+    let mut resolution_m = None;
     let mut args = std::env::args().skip(1);
     while let Some(a) = args.next() {
         let list = |v: Option<String>| -> Vec<String> {
@@ -60,6 +61,10 @@ fn main() -> ExitCode {
             "--scan-spacing" => match args.next().and_then(|s| s.parse().ok()) {
                 Some(m) => scan_spacing_m = Some(m),
                 None => return usage("--scan-spacing needs a distance in metres"),
+            },
+            "--resolution" => match args.next().and_then(|s| s.parse().ok()) {
+                Some(m) => resolution_m = Some(m),
+                None => return usage("--resolution needs a cell size in metres"),
             },
             "--verbose" => verbose = true,
             "--laser" => laser = true,
@@ -109,6 +114,9 @@ fn main() -> ExitCode {
                 }
                 if let Some(m) = scan_spacing_m {
                     options.config.scan_spacing_m = m;
+                }
+                if let Some(m) = resolution_m {
+                    options.resolution_m = m;
                 }
                 match run(&world, s, &options, verbose) {
                     Ok(row) => println!("{:<9} {:<8} {:>4} {row}", name, world_name, seed),
@@ -186,7 +194,7 @@ fn run(
 
 fn usage(problem: &str) -> ExitCode {
     eprintln!(
-        "table1: {problem}\nusage: table1 [--worlds corridor,office] [--seeds N] [--strategies coverage,count1,count1d,count50,count50u,frontier] [--scan-spacing M] [--clear-no-echo] [--no-multipath] [--laser] [--verbose]"
+        "table1: {problem}\nusage: table1 [--worlds corridor,office] [--seeds N] [--strategies coverage,count1,count1d,count50,count50u,frontier] [--scan-spacing M] [--resolution M] [--clear-no-echo] [--no-multipath] [--laser] [--verbose]"
     );
     ExitCode::from(2)
 }
