@@ -15,8 +15,8 @@ use criterion::{Criterion, criterion_group, criterion_main};
 
 fn evaluation(c: &mut Criterion) {
     let model = AnySensorModel::default();
-    let drive =
-        Drive::simulate("corridor", &model, (300, 0.15, 0.05), 0).expect("the corridor drive");
+    let drive = Drive::simulate("corridor", &model, (300, 0.15, 0.05), 0, false)
+        .expect("the corridor drive");
     let mut group = c.benchmark_group("fit_evaluation");
     group.sample_size(20);
     group.bench_function("corridor_300_scans_24_sonars", |b| {

@@ -1204,14 +1204,18 @@ def run_learn(
 
     Returns a dict: ``fit`` (``SensorFit``); ``drives``, one dict per drive
     (training first) of ``world``, ``log`` (``Log``), ``grid`` (``Grid``) and
-    ``truth`` (float64 ``(rows, cols)``); ``default`` and ``learned``, one
-    dict per drive of ``log_likelihood`` (of the truth, every cell),
-    ``judged_log_likelihood`` (over the judged cells: reached by the drive's
-    readings and observable from its free space),
+    ``truth`` (float64 ``(rows, cols)``), ``reached`` (uint32 ``(rows,
+    cols)``: how many of its scans' sound reached each cell in the true
+    world), ``judged`` (bool: the cells the drive is judged on, reached and
+    observable from its free space) and ``faced_walls`` (bool: the wall
+    cells behind a face that 20 or more scans reached); ``default`` and
+    ``learned``, one dict per drive of ``log_likelihood`` (of the truth,
+    every cell), ``judged_log_likelihood`` (over the judged cells),
     ``mean_error`` (of the mean map, over the judged cells),
-    ``free_error`` and ``obstacle_error`` (the same over the reached free and
-    obstacle cells), ``occupancy_error`` (the occupancy grid's) and
-    ``cells_reached``.
+    ``free_error`` and ``obstacle_error`` (the same over the judged free and
+    obstacle cells), ``occupancy_error`` (the occupancy grid's),
+    ``cells_reached``, ``wall_coverage`` (the mean map's mean over the faced
+    walls) and ``occupancy_wall`` (the occupancy grid's).
     """
 
 @final

@@ -128,34 +128,41 @@ def test_the_learned_model_explains_a_drive_in_another_world_better(learned: dic
     assert new["log_likelihood"] > default["log_likelihood"]
 
 
-@pytest.mark.xfail(strict=True, reason="issue 22 goal not met: the likelihood gives up wall cells for free space (BENCHMARKS.md, sensor model learning)")
+@pytest.fixture(scope="module")
+def learned_as_the_command() -> dict[str, Any]:
+    """The fit of ``covmap learn`` with its defaults (300 scans a drive, 300
+    evaluations): the figures BENCHMARKS.md gives."""
+    return covmap.run_learn(covmap.SonarModel())
+
+
+@pytest.mark.xfail(strict=True, reason="issue 22 goal not met with covmap learn's defaults: the learned map's error on the test drive is below 8 % but not below the occupancy grid's (BENCHMARKS.md, sensor model learning)")
 def test_the_learned_mean_map_error_on_the_unseen_drive_is_below_8_percent_and_the_grids(
-    learned: dict[str, Any],
+    learned_as_the_command: dict[str, Any],
 ) -> None:
-    new = learned["learned"][1]
+    new = learned_as_the_command["learned"][1]
     assert new["mean_error"] < 0.08 and new["mean_error"] < new["occupancy_error"]
 
 
-def wall_mean(drive: dict[str, Any], model: Any, min_counts: int) -> float:
-    """The mean coverage of the fully covered cells the readings reached at least ``min_counts`` times."""
+def wall_mean(drive: dict[str, Any], model: Any) -> float:
+    """The mean coverage of the drive's faced walls (the fully covered cells
+    behind a face that 20 or more of its scans' sound reached) in the map
+    ``model`` builds of the drive."""
     m = covmap.CoverageMap(drive["grid"])
     m.integrate_log(drive["log"], model)
-    o = covmap.OccupancyGrid(drive["grid"])
-    o.integrate_log(drive["log"], model)
-    wall = (drive["truth"] >= 0.99) & (o.counts() >= min_counts)
+    wall = drive["faced_walls"]
     assert wall.sum() > 100
     return float(m.mean()[wall].mean())
 
 
 def test_a_weak_no_echo_weight_keeps_walls_that_no_echo_readings_erase(learned: dict[str, Any]) -> None:
     corridor = learned["drives"][0]
-    assert wall_mean(corridor, covmap.SonarModel(), 20) < 0.5
-    assert wall_mean(corridor, covmap.SonarModel(no_echo_weight=0.2), 20) > 0.5
+    assert wall_mean(corridor, covmap.SonarModel()) < 0.5
+    assert wall_mean(corridor, covmap.SonarModel(no_echo_weight=0.2)) > 0.5
 
 
 @pytest.mark.xfail(strict=True, reason="issue 22 goal not met: no fit chooses a no-echo weight low enough to keep walls")
 def test_walls_survive_no_echo_readings_under_the_learned_model(learned: dict[str, Any]) -> None:
-    assert wall_mean(learned["drives"][0], learned["fit"].model, 20) > 0.5
+    assert wall_mean(learned["drives"][0], learned["fit"].model) > 0.5
 
 
 def test_the_readme_example_of_learning_runs() -> None:

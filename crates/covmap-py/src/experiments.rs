@@ -64,14 +64,18 @@ pub(crate) fn run_fig3(py: Python<'_>, seed: Seed) -> PyResult<Bound<'_, PyAny>>
 ///
 /// Returns a dict: ``fit`` (``SensorFit``); ``drives``, one dict per drive
 /// (training first) of ``world``, ``log`` (``Log``), ``grid`` (``Grid``) and
-/// ``truth`` (float64 ``(rows, cols)``); ``default`` and ``learned``, one
-/// dict per drive of ``log_likelihood`` (of the truth, every cell),
-/// ``judged_log_likelihood`` (over the judged cells: reached by the drive's
-/// readings and observable from its free space),
+/// ``truth`` (float64 ``(rows, cols)``), ``reached`` (uint32 ``(rows,
+/// cols)``: how many of its scans' sound reached each cell in the true
+/// world), ``judged`` (bool: the cells the drive is judged on, reached and
+/// observable from its free space) and ``faced_walls`` (bool: the wall
+/// cells behind a face that 20 or more scans reached); ``default`` and
+/// ``learned``, one dict per drive of ``log_likelihood`` (of the truth,
+/// every cell), ``judged_log_likelihood`` (over the judged cells),
 /// ``mean_error`` (of the mean map, over the judged cells),
-/// ``free_error`` and ``obstacle_error`` (the same over the reached free and
-/// obstacle cells), ``occupancy_error`` (the occupancy grid's) and
-/// ``cells_reached``.
+/// ``free_error`` and ``obstacle_error`` (the same over the judged free and
+/// obstacle cells), ``occupancy_error`` (the occupancy grid's),
+/// ``cells_reached``, ``wall_coverage`` (the mean map's mean over the faced
+/// walls) and ``occupancy_wall`` (the occupancy grid's).
 #[pyfunction]
 #[pyo3(signature = (
     model, *, train_world="corridor", test_world="office", scans=300, step=0.15,
@@ -127,6 +131,9 @@ pub(crate) fn run_learn<'py>(
         drive.set_item("log", crate::log::PyLog(d.log.clone()))?;
         drive.set_item("grid", PyGrid(d.grid))?;
         drive.set_item("truth", cell_array(py, &d.grid, d.truth.clone())?)?;
+        drive.set_item("reached", cell_array(py, &d.grid, d.reached.clone())?)?;
+        drive.set_item("judged", cell_array(py, &d.grid, d.judged.clone())?)?;
+        drive.set_item("faced_walls", cell_array(py, &d.grid, d.faced_walls())?)?;
         drives.append(drive)?;
     }
     out.set_item("drives", drives)?;
@@ -144,6 +151,8 @@ pub(crate) fn run_learn<'py>(
             d.set_item("obstacle_error", s.obstacle_error)?;
             d.set_item("occupancy_error", s.occupancy_error)?;
             d.set_item("cells_reached", s.cells_reached)?;
+            d.set_item("wall_coverage", s.wall_coverage)?;
+            d.set_item("occupancy_wall", s.occupancy_wall)?;
             list.append(d)?;
         }
         out.set_item(key, list)?;

@@ -72,6 +72,10 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             l.obstacle_error,
             d.occupancy_error
         );
+        println!(
+            "  faced walls' mean coverage {:.3} -> {:.3} (occupancy grid {:.3})",
+            d.wall_coverage, l.wall_coverage, d.occupancy_wall
+        );
     }
     if breakdown {
         print_breakdown(&report.drives[0], &config.model)?;

@@ -40,6 +40,7 @@ mod picture;
 mod polygon;
 mod ray_tree;
 mod raycast;
+pub mod reached;
 mod rng;
 mod robot;
 mod scan;

@@ -63,7 +63,9 @@ def table(result: dict[str, Any], sensor: str) -> str:
             f"mean-map error {d['mean_error']:.4f} -> {l['mean_error']:.4f} "
             f"(free {d['free_error']:.4f} -> {l['free_error']:.4f}, "
             f"obstacle {d['obstacle_error']:.4f} -> {l['obstacle_error']:.4f}); "
-            f"occupancy grid {d['occupancy_error']:.4f}"
+            f"occupancy grid {d['occupancy_error']:.4f}; "
+            f"faced walls' mean coverage {d['wall_coverage']:.3f} -> {l['wall_coverage']:.3f} "
+            f"(occupancy grid {d['occupancy_wall']:.3f})"
         )
     return "\n".join(lines)
 

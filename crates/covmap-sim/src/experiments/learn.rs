@@ -8,12 +8,13 @@ use covmap_core::learn::{
     FitData, FitOptions, SensorFit, fit_sensor_model, log_likelihood, map_of_log,
 };
 use covmap_core::planner::shortest_paths;
-use covmap_core::{Grid, Log, OccupancyGrid, Pose};
+use covmap_core::{CoverageMap, Grid, Log, OccupancyGrid, Pose};
 use rand::RngExt;
 
 use crate::error::{Result, check_param};
 use crate::exploration::{choose_start, clearances, evaluation_cells};
 use crate::laser::Laser;
+use crate::reached::reached_counts;
 use crate::rng::sim_rng_stream;
 use crate::robot::Robot;
 use crate::simulate::record;
@@ -173,27 +174,35 @@ pub struct Drive {
     pub grid: Grid,
     /// The exact coverage of every cell.
     pub truth: Vec<f64>,
+    /// How many of the drive's scans reached each cell: the sound (or
+    /// light) travelled there in the true world ([`reached_counts`]).
+    pub reached: Vec<u32>,
     /// The cells the drive is judged on: those its readings reached (the
-    /// occupancy grid's scan counts above 0, with the model the drive was
-    /// simulated with) that a robot driving from the drive's start could
-    /// observe ([`evaluation_cells`] with a 0.25 m robot and a 0.2 m end
-    /// band: the free space it can reach and the obstacle cells that bound
-    /// it). Not the free space behind walls nor the insides of thick walls:
-    /// no reading reaches them, though no-echo footprints run through them.
+    /// sound travelled there: [`Drive::reached`] above 0) that a robot
+    /// driving from the drive's start could observe ([`evaluation_cells`]
+    /// with a 0.25 m robot and a 0.2 m end band: the free space it can
+    /// reach and the obstacle cells that bound it). Not the free space
+    /// behind walls nor the insides of thick walls: no reading reaches
+    /// them, though no-echo footprints run through them.
     pub judged: Vec<bool>,
     /// The occupancy grid's probabilities of the drive (the baseline, built
-    /// with the model the drive was simulated with).
+    /// with the model the drive was simulated with, fed the same beams as
+    /// that model's coverage map: with its no-echo readings occluded by
+    /// that map if the drive is, see [`Drive::simulate`]).
     pub occupancy: Vec<f32>,
 }
 
 impl Drive {
     /// Simulate a drive of `scans` scans through built-in world `name` with
-    /// the sensor `model` stands for.
+    /// the sensor `model` stands for; its baseline occupancy grid is fed
+    /// the beams as `model`'s coverage map takes them, with no-echo readings
+    /// occluded by that map if `occlude_no_echo`.
     pub fn simulate(
         name: &str,
         model: &AnySensorModel,
         (scans, step_m, resolution_m): (usize, f64, f64),
         seed: u64,
+        occlude_no_echo: bool,
     ) -> Result<Self> {
         let world = World::builtin(name)?;
         let [x0, y0, x1, y1] = world.bounds_m();
@@ -212,20 +221,31 @@ impl Drive {
                 record(&laser, &world, &poses, seed)?
             }
         };
-        // The judged cells and the baseline come from the drive's own sensor
-        // (the model it was simulated with), the same for every model scored.
+        // The baseline comes from the drive's own sensor (the model it was
+        // simulated with), the same for every model scored.
         let mut occupancy = OccupancyGrid::new(grid);
-        occupancy.integrate_log(&log, model)?;
-        let judged = occupancy
-            .counts()
-            .counts()
+        if occlude_no_echo {
+            let mut map = CoverageMap::with_bins(grid, DEFAULT_BINS)?;
+            for i in 0..log.len() {
+                let (pose, ranges, bearings) =
+                    (log.sensor_pose(i), log.scan_ranges(i), log.scan_bearings(i));
+                let reaches = map.no_echo_reaches(&[], &pose, ranges, bearings, model.as_dyn());
+                map.integrate_clipped(&pose, ranges, bearings, model.as_dyn(), &reaches)?;
+                occupancy.integrate_clipped(&pose, ranges, bearings, model.as_dyn(), &reaches)?;
+            }
+        } else {
+            occupancy.integrate_log(&log, model)?;
+        }
+        let reached = reached_counts(&world, &grid, &log, model.as_dyn().footprint());
+        let judged = reached
             .iter()
             .zip(&observable)
-            .map(|(&c, &observable)| c > 0.0 && observable)
+            .map(|(&c, &observable)| c > 0 && observable)
             .collect();
         Ok(Self {
             world: name.into(),
             truth,
+            reached,
             judged,
             occupancy: occupancy.probabilities(),
             log,
@@ -258,8 +278,41 @@ impl Drive {
             obstacle_error: self.error_where(&mean, |t| t > 0.0),
             occupancy_error: self.error_where(&self.occupancy, |_| true),
             cells_reached: self.judged.iter().filter(|&&r| r).count(),
+            wall_coverage: mean_over(&mean, &self.faced_walls()),
+            occupancy_wall: mean_over(&self.occupancy, &self.faced_walls()),
         })
     }
+
+    /// The wall cells whose face the drive's sound reached repeatedly: the
+    /// fully covered cells (true coverage at least 0.99) within the end
+    /// band ([`WALL_BAND_M`]) of a cell that at least [`FACED_SCANS`] scans
+    /// reached. A face cell itself is most often cut by the face and only
+    /// partly covered; the cells behind it are the wall.
+    pub fn faced_walls(&self) -> Vec<bool> {
+        let faced: Vec<bool> = self.reached.iter().map(|&c| c >= FACED_SCANS).collect();
+        let near = covmap_core::exploration::dilate(&self.grid, &faced, WALL_BAND_M);
+        (0..self.grid.len())
+            .map(|i| near[i] && self.truth[i] >= 0.99)
+            .collect()
+    }
+}
+
+/// Scans that must have reached a wall's face for the wall to count as
+/// faced repeatedly ([`Drive::faced_walls`]).
+pub const FACED_SCANS: u32 = 20;
+
+/// How deep behind a face the cells of a faced wall are taken, metres:
+/// the default sonar model's end band.
+pub const WALL_BAND_M: f64 = 0.2;
+
+/// The mean of `values` over the flagged cells (NaN if none is).
+fn mean_over(values: &[f32], flagged: &[bool]) -> f64 {
+    let (sum, n) = values
+        .iter()
+        .zip(flagged)
+        .filter(|(_, f)| **f)
+        .fold((0.0, 0usize), |(s, n), (&v, _)| (s + f64::from(v), n + 1));
+    if n == 0 { f64::NAN } else { sum / n as f64 }
 }
 
 impl Drive {
@@ -293,6 +346,12 @@ pub struct DriveScore {
     pub occupancy_error: f64,
     /// The judged cells.
     pub cells_reached: usize,
+    /// The mean coverage of the coverage map's mean over the faced walls
+    /// ([`Drive::faced_walls`]): above 0.5, walls survived the no-echo
+    /// readings that crossed them.
+    pub wall_coverage: f64,
+    /// The occupancy grid's mean probability over the same cells.
+    pub occupancy_wall: f64,
 }
 
 /// What [`learn`] found.
@@ -318,8 +377,21 @@ pub struct LearnReport {
 pub fn learn(config: &LearnConfig, progress: &(dyn Fn(usize) + Sync)) -> Result<LearnReport> {
     config.validate()?;
     let drive = (config.scans, config.step_m, config.resolution_m);
-    let train = Drive::simulate(&config.train_world, &config.model, drive, config.train_seed)?;
-    let test = Drive::simulate(&config.test_world, &config.model, drive, config.test_seed)?;
+    let occlude = config.fit.occlude_no_echo;
+    let train = Drive::simulate(
+        &config.train_world,
+        &config.model,
+        drive,
+        config.train_seed,
+        occlude,
+    )?;
+    let test = Drive::simulate(
+        &config.test_world,
+        &config.model,
+        drive,
+        config.test_seed,
+        occlude,
+    )?;
     let data = train.fit_data(config.judged_only.then_some(&train.judged[..]));
     let fit = fit_sensor_model(&data, &config.model, &config.fit, progress)?;
     let scores = |m: &AnySensorModel| -> Result<[DriveScore; 2]> {
