@@ -1,5 +1,6 @@
-//! Occupancy images: PGM (P5 binary, P2 ASCII) or PNG, plus a resolution; and
-//! ROS map_server YAML files that name such an image.
+//! Occupancy images: PGM (P5 binary, P2 ASCII) or PNG, plus a resolution
+//! (a ROS map_server YAML file names such an image and gives the rest:
+//! [`super::map_server`]).
 //!
 //! A pixel's darkness `1 - v` (`v` its grey value scaled to `[0, 1]`; colour
 //! channels are averaged and alpha is ignored, as map_server does) is its
@@ -16,14 +17,6 @@
 //! corner sits at `origin_m`, row 0 of the file is the top, and the image is
 //! rotated by `yaw_rad` about the origin (zero yaw keeps rectangles
 //! axis-aligned).
-//!
-//! A ROS YAML file gives `image` (a path relative to the YAML file),
-//! `resolution`, `origin: [x, y, yaw]`, and optionally `negate` (0/1, default
-//! 0) and `occupied_thresh` (default 0.65); `free_thresh` and `mode: trinary`
-//! or `mode: scale` (whose obstacles are the same pixels) are accepted and
-//! ignored. The YAML is read by serde (`serde_norway`, the maintained fork
-//! of serde_yaml): a value of the wrong type is an error naming its line, a
-//! value map_server refuses one naming its key.
 //!
 //! Both formats are decoded by the `image` crate (its `png` and `pnm`
 //! codecs only): PNG of any colour type and depth (palettes expanded, 16-bit
@@ -45,7 +38,7 @@ use image::codecs::pnm::PnmDecoder;
 use image::error::LimitErrorKind;
 use image::{ImageDecoder, ImageError, Limits};
 
-use super::{parse_error, read_bytes, read_text};
+use super::{parse_error, read_bytes};
 use crate::error::{Result, SimError, check_param};
 use crate::material::Material;
 use crate::polygon::Polygon;
@@ -79,7 +72,7 @@ impl ImageOptions {
         }
     }
 
-    fn validate(&self) -> Result<()> {
+    pub(super) fn validate(&self) -> Result<()> {
         check_param(
             "resolution_m",
             self.resolution_m,
@@ -151,96 +144,6 @@ impl World {
         };
         world_from_grey(&grey, options, path)
     }
-
-    /// A world from a ROS map_server YAML file and the image it names; see
-    /// [the rules](crate::load::image).
-    pub fn from_ros_map_yaml(path: impl AsRef<Path>) -> Result<World> {
-        let path = path.as_ref();
-        let (image, options) = parse_ros_yaml(&read_text(path)?, path)?;
-        let image_path = path.parent().unwrap_or(Path::new("")).join(image);
-        Self::from_image_file(image_path, &options)
-    }
-}
-
-/// A map_server YAML file's keys, as serde reads them (serde_norway, the
-/// maintained fork of serde_yaml); other keys are ignored, as map_server
-/// ignores them. A value of the wrong type is refused by serde, naming its
-/// line; values of the right type that map_server refuses are refused
-/// after, naming their key.
-#[derive(serde::Deserialize)]
-struct RosMapYaml {
-    image: Option<String>,
-    resolution: Option<f64>,
-    origin: Option<[f64; 3]>,
-    /// map_server's 0 or 1, or a YAML boolean.
-    negate: Option<serde_norway::Value>,
-    occupied_thresh: Option<f64>,
-    free_thresh: Option<f64>,
-    mode: Option<String>,
-}
-
-/// The image path and the options of a map_server YAML text.
-fn parse_ros_yaml(text: &str, path: &Path) -> Result<(String, ImageOptions)> {
-    let yaml: RosMapYaml = serde_norway::from_str(text).map_err(|e| {
-        let place = e.location().map_or_else(
-            || "whole file".to_string(),
-            |l| format!("line {}", l.line()),
-        );
-        parse_error(path, place, e.to_string())
-    })?;
-    let at = |key: &str, reason: String| parse_error(path, format!("key `{key}`"), reason);
-    let numbers = [
-        ("resolution", yaml.resolution),
-        ("occupied_thresh", yaml.occupied_thresh),
-        ("free_thresh", yaml.free_thresh),
-    ];
-    for (key, v) in numbers
-        .into_iter()
-        .chain(yaml.origin.iter().flatten().map(|&v| ("origin", Some(v))))
-    {
-        if let Some(v) = v.filter(|v| !v.is_finite()) {
-            return Err(at(
-                key,
-                format!("`{key}` must be a finite number, found {v}"),
-            ));
-        }
-    }
-    let negate = match &yaml.negate {
-        None => false,
-        Some(serde_norway::Value::Bool(b)) => *b,
-        Some(serde_norway::Value::Number(n)) if matches!(n.as_u64(), Some(0 | 1)) => {
-            n.as_u64() == Some(1)
-        }
-        Some(other) => {
-            return Err(at(
-                "negate",
-                format!("negate must be 0 or 1, found {other:?}"),
-            ));
-        }
-    };
-    // Both modes make an obstacle of the same pixels: those more likely
-    // occupied than `occupied_thresh`.
-    if let Some(mode) = yaml
-        .mode
-        .filter(|m| !matches!(m.as_str(), "trinary" | "scale"))
-    {
-        return Err(at(
-            "mode",
-            format!("only `mode: trinary` or `mode: scale` is supported, found {mode:?}"),
-        ));
-    }
-    let missing = |key| parse_error(path, "whole file", format!("missing key `{key}`"));
-    let image = yaml.image.ok_or_else(|| missing("image"))?;
-    let mut options = ImageOptions::new(yaml.resolution.ok_or_else(|| missing("resolution"))?);
-    let [x, y, yaw] = yaml.origin.ok_or_else(|| missing("origin"))?;
-    options.origin_m = [x, y];
-    options.yaw_rad = yaw;
-    options.negate = negate;
-    options.occupied_thresh = yaml.occupied_thresh.unwrap_or(options.occupied_thresh);
-    options
-        .validate()
-        .map_err(|e| parse_error(path, "whole file", e.to_string()))?;
-    Ok((image, options))
 }
 
 /// The most pixels an image file may declare (2^30).

@@ -1,7 +1,18 @@
-//! Maps out as ROS map_server / nav2 map_saver write them: a PGM image and
-//! the YAML file that names it, from `nav_msgs/OccupancyGrid` data (one
-//! `i8` a cell, `-1` unknown, `0..=100` percent occupied).
+//! ROS map_server / nav2 map_saver files: a YAML file and the image it
+//! names, read as a world and written from `nav_msgs/OccupancyGrid` data
+//! (one `i8` a cell, `-1` unknown, `0..=100` percent occupied).
 //!
+//! # Reading
+//! A YAML file gives `image` (a path relative to the YAML file),
+//! `resolution`, `origin: [x, y, yaw]`, and optionally `negate` (0/1, default
+//! 0) and `occupied_thresh` (default 0.65); `free_thresh` and `mode: trinary`
+//! or `mode: scale` (whose obstacles are the same pixels) are accepted and
+//! ignored. The YAML is read by serde (`serde_norway`, the maintained fork
+//! of serde_yaml): a value of the wrong type is an error naming its line, a
+//! value map_server refuses one naming its key. The image is read as
+//! [`super::image`] reads occupancy images.
+//!
+//! # Writing
 //! Pixels as map_saver makes them: in `trinary` mode a cell at or above
 //! `occupied_thresh` (in percent, rounded) is black (0), one at or below
 //! `free_thresh` white (254), the rest and unknown grey (205); in `scale`
@@ -19,8 +30,102 @@ use covmap_core::Grid;
 use image::ExtendedColorType;
 use image::codecs::pnm::{PnmEncoder, PnmSubtype, SampleEncoding};
 
-use super::write_atomic;
+use super::image::ImageOptions;
+use super::{parse_error, read_text, write_atomic};
 use crate::error::{Result, SimError};
+use crate::world::World;
+
+impl World {
+    /// A world from a ROS map_server YAML file and the image it names; see
+    /// [the rules](crate::load::map_server).
+    pub fn from_ros_map_yaml(path: impl AsRef<Path>) -> Result<World> {
+        let path = path.as_ref();
+        let (image, options) = parse_ros_yaml(&read_text(path)?, path)?;
+        let image_path = path.parent().unwrap_or(Path::new("")).join(image);
+        Self::from_image_file(image_path, &options)
+    }
+}
+
+/// A map_server YAML file's keys, as serde reads them (serde_norway, the
+/// maintained fork of serde_yaml); other keys are ignored, as map_server
+/// ignores them. A value of the wrong type is refused by serde, naming its
+/// line; values of the right type that map_server refuses are refused
+/// after, naming their key.
+#[derive(serde::Deserialize)]
+struct RosMapYaml {
+    image: Option<String>,
+    resolution: Option<f64>,
+    origin: Option<[f64; 3]>,
+    /// map_server's 0 or 1, or a YAML boolean.
+    negate: Option<serde_norway::Value>,
+    occupied_thresh: Option<f64>,
+    free_thresh: Option<f64>,
+    mode: Option<String>,
+}
+
+/// The image path and the options of a map_server YAML text.
+pub(super) fn parse_ros_yaml(text: &str, path: &Path) -> Result<(String, ImageOptions)> {
+    let yaml: RosMapYaml = serde_norway::from_str(text).map_err(|e| {
+        let place = e.location().map_or_else(
+            || "whole file".to_string(),
+            |l| format!("line {}", l.line()),
+        );
+        parse_error(path, place, e.to_string())
+    })?;
+    let at = |key: &str, reason: String| parse_error(path, format!("key `{key}`"), reason);
+    let numbers = [
+        ("resolution", yaml.resolution),
+        ("occupied_thresh", yaml.occupied_thresh),
+        ("free_thresh", yaml.free_thresh),
+    ];
+    for (key, v) in numbers
+        .into_iter()
+        .chain(yaml.origin.iter().flatten().map(|&v| ("origin", Some(v))))
+    {
+        if let Some(v) = v.filter(|v| !v.is_finite()) {
+            return Err(at(
+                key,
+                format!("`{key}` must be a finite number, found {v}"),
+            ));
+        }
+    }
+    let negate = match &yaml.negate {
+        None => false,
+        Some(serde_norway::Value::Bool(b)) => *b,
+        Some(serde_norway::Value::Number(n)) if matches!(n.as_u64(), Some(0 | 1)) => {
+            n.as_u64() == Some(1)
+        }
+        Some(other) => {
+            return Err(at(
+                "negate",
+                format!("negate must be 0 or 1, found {other:?}"),
+            ));
+        }
+    };
+    // Both modes make an obstacle of the same pixels: those more likely
+    // occupied than `occupied_thresh`.
+    if let Some(mode) = yaml
+        .mode
+        .filter(|m| !matches!(m.as_str(), "trinary" | "scale"))
+    {
+        return Err(at(
+            "mode",
+            format!("only `mode: trinary` or `mode: scale` is supported, found {mode:?}"),
+        ));
+    }
+    let missing = |key| parse_error(path, "whole file", format!("missing key `{key}`"));
+    let image = yaml.image.ok_or_else(|| missing("image"))?;
+    let mut options = ImageOptions::new(yaml.resolution.ok_or_else(|| missing("resolution"))?);
+    let [x, y, yaw] = yaml.origin.ok_or_else(|| missing("origin"))?;
+    options.origin_m = [x, y];
+    options.yaw_rad = yaw;
+    options.negate = negate;
+    options.occupied_thresh = yaml.occupied_thresh.unwrap_or(options.occupied_thresh);
+    options
+        .validate()
+        .map_err(|e| parse_error(path, "whole file", e.to_string()))?;
+    Ok((image, options))
+}
 
 /// How map_saver turns occupancy into grey values.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

@@ -1,6 +1,7 @@
 //! Tests of the image and map_server loaders.
 
 use super::*;
+use crate::load::map_server::parse_ros_yaml;
 use covmap_core::Grid;
 use image::codecs::png::PngEncoder;
 use image::{ExtendedColorType, ImageEncoder};
