@@ -26,6 +26,10 @@ pub(super) struct History {
     /// The scan that last touched each cell.
     stamp: Vec<u32>,
     scan: u32,
+    /// Every measurement since the journal was last drained, in order: the
+    /// cell and its entropy then (`None`: not kept). See
+    /// [`CoverageMap::keep_entropy_journal`].
+    journal: Option<Vec<(usize, f32)>>,
 }
 
 /// The persistent part of a map's entropy history, to save a map with it and
@@ -80,6 +84,7 @@ impl CoverageMap {
                 count: vec![0; self.grid.len()],
                 stamp: vec![0; self.grid.len()],
                 scan: 0,
+                journal: None,
             })
         });
     }
@@ -99,6 +104,7 @@ impl CoverageMap {
                 count: memory::try_filled(0, cells, "the measurement counts")?,
                 stamp: memory::try_filled(0, cells, "the history's scan stamps")?,
                 scan: 0,
+                journal: None,
             })),
         };
         Ok(())
@@ -183,6 +189,7 @@ impl CoverageMap {
             count: state.count,
             stamp: vec![0; cells],
             scan: 0,
+            journal: None,
         }));
         Ok(())
     }
@@ -214,6 +221,32 @@ impl CoverageMap {
                 memory::try_collect(history.count.iter().copied(), "the measurement counts")
             }
             None => memory::try_filled(0, self.grid.len(), "the measurement counts"),
+        }
+    }
+
+    /// Keep (or stop keeping) a journal of the history's measurements: each
+    /// measured cell and the entropy of its histogram then, drained by
+    /// [`CoverageMap::drain_entropy_journal`]. Where every change of the
+    /// map is a measurement (scans and contacts, with the history kept), the
+    /// journal's last entry for a cell holds its entropy now: a loop that
+    /// keeps an entropy map up to date takes the changed cells' entropies
+    /// from it, instead of comparing every histogram with a copy and
+    /// computing the entropy of each changed one again. No effect while the
+    /// history is off; turning the history on again starts without a journal.
+    pub(crate) fn keep_entropy_journal(&mut self, on: bool) {
+        if let Some(history) = self.history.as_deref_mut() {
+            history.journal = on.then(Vec::new);
+        }
+    }
+
+    /// Hand every measurement the journal holds to `f` (the cell's row-major
+    /// index and its entropy then, nats), in the order they were made, and
+    /// empty it. Nothing while no journal is kept.
+    pub(crate) fn drain_entropy_journal(&mut self, mut f: impl FnMut(usize, f32)) {
+        if let Some(journal) = self.history.as_deref_mut().and_then(|h| h.journal.as_mut()) {
+            for (i, entropy) in journal.drain(..) {
+                f(i, entropy);
+            }
         }
     }
 
@@ -294,8 +327,12 @@ impl History {
     /// Count one measurement of cell `i`, whose histogram is now `h`.
     fn measure(&mut self, i: usize, h: &[f32]) {
         let measured = self.count[i] as usize;
-        self.entropies[i][measured % (STAGNATION_MEASUREMENTS + 1)] = histogram::entropy(h);
+        let entropy = histogram::entropy(h);
+        self.entropies[i][measured % (STAGNATION_MEASUREMENTS + 1)] = entropy;
         self.count[i] = self.count[i].saturating_add(1);
+        if let Some(journal) = &mut self.journal {
+            journal.push((i, entropy));
+        }
     }
 }
 
@@ -358,6 +395,37 @@ mod tests {
                     .unwrap();
             }
         }
+    }
+
+    /// The journal's last entry for a cell is its entropy now, after scans
+    /// and contacts; draining empties it; no journal, no entries.
+    #[test]
+    fn the_journal_holds_each_measured_cells_entropy_now() {
+        let g = Grid::new([0.0, 0.0], 0.05, 4, 40).unwrap();
+        let mut map = CoverageMap::new(g);
+        map.track_history(true);
+        map.keep_entropy_journal(true);
+        let mut kept = map.entropy();
+        for round in 0..3 {
+            settling_scans(&mut map, 4 * round..4 * round + 4);
+            map.integrate_contact(Cell {
+                row: 2,
+                col: 10 + round,
+            })
+            .unwrap();
+            let mut entries = 0;
+            map.drain_entropy_journal(|i, e| {
+                kept[i] = e;
+                entries += 1;
+            });
+            assert!(entries > 0);
+            let now = map.entropy();
+            assert!((0..now.len()).all(|i| kept[i].to_bits() == now[i].to_bits()));
+            map.drain_entropy_journal(|_, _| panic!("drained"));
+        }
+        map.keep_entropy_journal(false);
+        settling_scans(&mut map, 0..2);
+        map.drain_entropy_journal(|_, _| panic!("no journal kept"));
     }
 
     #[test]

@@ -37,7 +37,6 @@ use crate::counting::ScanCounts;
 use crate::coverage_map::CoverageMap;
 use crate::error::{CovmapError, Result};
 use crate::grid::{Cell, Grid};
-use crate::histogram;
 use crate::histogram::DEFAULT_BINS;
 use crate::occupancy::{OccupancyGrid, OccupancyModel};
 use crate::pose::{Pose, check_bearings, check_pose};
@@ -103,11 +102,9 @@ pub struct Exploration<S, M> {
     chooser: Chooser,
     map: CoverageMap,
     occupancy: OccupancyGrid,
-    /// The coverage map's entropy after the last scan.
+    /// The coverage map's entropy after the last scan, kept up to date from
+    /// the map's entropy journal (see [`Exploration::refresh_entropy`]).
     entropy: Vec<f32>,
-    /// The histograms `entropy` was computed from: a refresh recomputes the
-    /// entropy of the cells whose histogram differs, and only those.
-    entropy_of: Vec<f32>,
     report_cells: Option<Vec<bool>>,
     pose: Pose,
     trajectory: Trajectory,
@@ -184,6 +181,7 @@ impl<S: ScanSource, M: Motion> Exploration<S, M> {
         }
         let mut map = CoverageMap::with_bins(grid, bins)?;
         map.track_history(true);
+        map.keep_entropy_journal(true);
         let counts = match strategy {
             Strategy::Counting {
                 discount_beyond_m: Some(d),
@@ -194,7 +192,6 @@ impl<S: ScanSource, M: Motion> Exploration<S, M> {
         let occupancy = OccupancyGrid::with_model(OccupancyModel::default(), counts)?;
         let chooser = Chooser::new(&strategy, &config, &grid, bins, &bearings)?;
         let entropy = map.entropy();
-        let entropy_of = map.histograms().to_vec();
         Ok(Self {
             source,
             motion,
@@ -205,7 +202,6 @@ impl<S: ScanSource, M: Motion> Exploration<S, M> {
             chooser,
             map,
             occupancy,
-            entropy_of,
             entropy,
             report_cells,
             pose: start,
@@ -543,25 +539,17 @@ impl<S: ScanSource, M: Motion> Exploration<S, M> {
     }
 
     /// Bring the entropy map up to date after the scans of a step: the
-    /// entropy of every cell whose histogram changed since, computed as
-    /// [`CoverageMap::entropy`] computes it (the same bits; most of a large
-    /// map is untouched by a step's scans).
+    /// entropy of every cell measured since, as the map's entropy history
+    /// computed it after its last measurement. Every change of the map is a
+    /// measurement (a scan's cells, a contact's cell, with the history kept),
+    /// so that entropy is the one [`CoverageMap::entropy`] computes now, the
+    /// same bits, with no histogram compared or entropy computed again (a
+    /// step's scans touch a small part of a large map, and the history has
+    /// just computed their entropies).
     fn refresh_entropy(&mut self) {
         let started = Instant::now();
-        let bins = self.map.bins();
-        let now = self.map.histograms();
-        for ((entropy, seen), h) in self
-            .entropy
-            .iter_mut()
-            .zip(self.entropy_of.chunks_exact_mut(bins))
-            .zip(now.chunks_exact(bins))
-        {
-            // Compared bit for bit, as the planning cache compares them.
-            if seen.iter().zip(h).any(|(a, b)| a.to_bits() != b.to_bits()) {
-                seen.copy_from_slice(h);
-                *entropy = histogram::entropy(h);
-            }
-        }
+        let entropy = &mut self.entropy;
+        self.map.drain_entropy_journal(|i, e| entropy[i] = e);
         debug_assert_eq!(self.entropy, self.map.entropy());
         self.timing.integration_s += started.elapsed().as_secs_f64();
     }
@@ -740,6 +728,108 @@ fn straight_runs(path: &[[f64; 2]], resolution_m: f64) -> Vec<[f64; 2]> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::sensor::LaserModel;
+
+    /// A room `[0, 4] x [0, 3]` m with a pane `[2.2, 2.6] x [0.9, 2.1]` the
+    /// sensor sees through and the robot runs into: the runs of
+    /// [`every_step_keeps_the_loops_read_outs`] scan, drive and touch.
+    const PANE: [f64; 4] = [2.2, 0.9, 2.6, 2.1];
+
+    /// Exact laser ranges to the room's walls.
+    struct RoomRing(Vec<f64>);
+    impl ScanSource for RoomRing {
+        fn bearings(&self) -> &[f64] {
+            &self.0
+        }
+        fn scan(&mut self, p: &Pose) -> Result<Vec<f64>> {
+            let to = |v: f64, high: f64, at: f64| match v {
+                v if v > 1e-12 => (high - at) / v,
+                v if v < -1e-12 => -at / v,
+                _ => f64::INFINITY,
+            };
+            Ok(self
+                .0
+                .iter()
+                .map(|b| {
+                    let (s, c) = (p.theta_rad + b).sin_cos();
+                    to(c, 4.0, p.x_m).min(to(s, 3.0, p.y_m))
+                })
+                .collect())
+        }
+    }
+
+    /// A disc of 0.25 m stopped by the walls and the pane, in steps of a
+    /// millimetre; the contact is the nearest point of what stopped it.
+    struct Bumper;
+    impl Motion for Bumper {
+        fn drive(&mut self, from: [f64; 2], to: [f64; 2]) -> Result<Travel> {
+            const R: f64 = 0.25;
+            let nearest = |[x, y]: [f64; 2]| -> ([f64; 2], f64) {
+                let [x0, y0, x1, y1] = PANE;
+                let pane = [x.clamp(x0, x1), y.clamp(y0, y1)];
+                [pane, [0.0, y], [4.0, y], [x, 0.0], [x, 3.0]]
+                    .into_iter()
+                    .map(|q| (q, (q[0] - x).hypot(q[1] - y)))
+                    .fold(
+                        ([0.0; 2], f64::INFINITY),
+                        |a, b| if b.1 < a.1 { b } else { a },
+                    )
+            };
+            let length = (to[0] - from[0]).hypot(to[1] - from[1]);
+            let steps = (length / 1e-3).ceil() as usize;
+            for k in 1..=steps {
+                let t = k as f64 / steps as f64;
+                let at = [
+                    from[0] + t * (to[0] - from[0]),
+                    from[1] + t * (to[1] - from[1]),
+                ];
+                let (contact, gap) = nearest(at);
+                if gap < R {
+                    return Ok(Travel {
+                        travelled_m: (k - 1) as f64 / steps as f64 * length,
+                        contact_m: Some(contact),
+                    });
+                }
+            }
+            Ok(Travel {
+                travelled_m: length,
+                contact_m: None,
+            })
+        }
+    }
+
+    /// After every step, the entropy map the loop keeps from the map's
+    /// journal is the map's entropy, bit for bit, for every strategy, in
+    /// runs that scan, drive and run into the pane.
+    #[test]
+    fn every_step_keeps_the_loops_read_outs() {
+        let bearings: Vec<f64> = (0..90)
+            .map(|i| i as f64 * std::f64::consts::TAU / 90.0)
+            .collect();
+        let grid = Grid::covering(-0.5, -0.5, 4.5, 3.5, 0.05).unwrap();
+        for strategy in [
+            Strategy::coverage(0.5).unwrap(),
+            Strategy::counting(3, Some(2.0)).unwrap(),
+            Strategy::frontier(),
+        ] {
+            let mut setup = ExplorationSetup::new(grid, Pose::new(1.0, 1.5, 0.0), strategy);
+            setup.model = AnySensorModel::Laser(LaserModel::default());
+            setup.config.max_path_m = 40.0;
+            let mut run = Exploration::new(setup, RoomRing(bearings.clone()), Bumper).unwrap();
+            while run.step().unwrap().is_some() {
+                let entropy = run.map.entropy();
+                let differs =
+                    (0..entropy.len()).find(|&i| run.entropy[i].to_bits() != entropy[i].to_bits());
+                assert_eq!(differs, None, "{strategy:?}, step {}: cell", run.steps);
+            }
+            assert!(
+                run.contacts > 0 && run.steps > 3,
+                "{strategy:?}: {} contacts, {} steps",
+                run.contacts,
+                run.steps
+            );
+        }
+    }
 
     #[test]
     fn straight_runs_keep_the_corners() {
