@@ -47,11 +47,16 @@
 
 use super::{Decision, Outcome, View, viewpoint_headings};
 use crate::error::Result;
-use crate::exploration::region::{blocked_on_occupancy, dilate, paths_from, planning_radius_m};
+use crate::exploration::config::ExplorationConfig;
+use crate::exploration::dilation::Dilation;
+use crate::exploration::region::{
+    blocked_on_occupancy, clearance_offsets, dilation_offsets, passable_from, planning_radius_m,
+};
 use crate::exploration::result::Termination;
 use crate::footprint::visit;
 use crate::grid::Grid;
-use crate::pose::Pose;
+use crate::planner::{Search, reachable_cells};
+use crate::pose::{Pose, check_pose};
 use crate::sensor::{SensorModel, trace_readings};
 
 /// Visits that miss a cell after which it is given up.
@@ -65,51 +70,75 @@ pub(crate) struct Counting {
     misses: Vec<u8>,
     /// The cells the last goal was chosen for, and their counts then.
     targets: Vec<(usize, f32)>,
+    /// The blocked cells grown by the planning radius: the cells where the
+    /// robot is not clear of them, kept from step to step.
+    unclear: Dilation,
+    /// The reachable cells grown by the planning radius and a cell: the
+    /// region, kept from step to step.
+    region: Dilation,
 }
 
 impl Counting {
-    pub fn new(n: u32, grid: &Grid) -> Self {
+    pub fn new(n: u32, config: &ExplorationConfig, grid: &Grid) -> Self {
+        let radius_m = planning_radius_m(config.robot_radius_m, grid);
         Self {
             n: n as f32,
             misses: vec![0; grid.len()],
             targets: Vec::new(),
+            unclear: Dilation::new(grid, &clearance_offsets(grid, radius_m)),
+            region: Dilation::new(
+                grid,
+                &dilation_offsets(grid, radius_m + grid.resolution_m()),
+            ),
         }
     }
 
+    /// The nearest candidate that would intercept an unexplored cell of the
+    /// region (see the module documentation). The free space and the region
+    /// are kept from the last step and brought up to date with the cells
+    /// that changed; the region needs only which cells the robot reaches (a
+    /// fill), and the candidates come in the order of their path lengths
+    /// (ties to the lower index) from a search that stops at the first one
+    /// that would intercept something: the goal and path that sorting every
+    /// reachable candidate by the lengths of a whole search gives.
     pub fn decide(&mut self, view: &View) -> Result<Decision> {
         let grid = view.grid();
         let model = view.model.as_dyn();
         let radius_m = planning_radius_m(view.config.robot_radius_m, grid);
         let blocked = blocked_on_occupancy(view.occupancy, view.contact_cells)?;
-        let (free, reach) = paths_from(grid, &blocked, radius_m, &view.pose)?;
-        let reachable: Vec<bool> = reach.costs().iter().map(|c| c.is_finite()).collect();
-        let region = dilate(grid, &reachable, radius_m + grid.resolution_m());
+        let start = check_pose(grid, &view.pose)?;
+        self.unclear.take_in(&blocked);
+        let free: Vec<bool> = (0..grid.len()).map(|i| !self.unclear.covers(i)).collect();
+        let passable = passable_from(grid, &blocked, &free, radius_m, &view.pose)?;
+        self.region
+            .take_in(&reachable_cells(grid, &passable, start)?);
         let counts = view.occupancy.counts().counts();
-        let unexplored: Vec<bool> = (0..region.len())
-            .map(|i| region[i] && counts[i] < self.n && self.misses[i] < GIVE_UP_AFTER)
+        let unexplored: Vec<bool> = (0..grid.len())
+            .map(|i| self.region.covers(i) && counts[i] < self.n && self.misses[i] < GIVE_UP_AFTER)
             .collect();
         if !unexplored.iter().any(|&u| u) {
             return Ok(Decision::Done(Termination::NoGoal));
         }
         let stride =
             ((view.config.candidate_stride_m / grid.resolution_m()).round() as usize).max(1);
-        let mut candidates = Vec::new();
-        for row in (stride / 2..grid.rows()).step_by(stride) {
-            for col in (stride / 2..grid.cols()).step_by(stride) {
-                let i = row * grid.cols() + col;
-                if free[i]
-                    && reach.reachable(i)
-                    && reach.cost(i) >= view.config.min_travel_m
-                    && !view.failed_goals.contains(&i)
-                {
-                    candidates.push(i);
-                }
-            }
-        }
-        candidates.sort_by(|&a, &b| reach.cost(a).total_cmp(&reach.cost(b)).then(a.cmp(&b)));
+        let on_lattice = |i: usize| {
+            let (row, col) = (i / grid.cols(), i % grid.cols());
+            row >= stride / 2
+                && (row - stride / 2) % stride == 0
+                && col >= stride / 2
+                && (col - stride / 2) % stride == 0
+        };
         let ml = view.planning_map.ml();
         let headings = viewpoint_headings(view.bearings, view.pose.theta_rad);
-        for &i in &candidates {
+        let mut search = Search::new(grid, &passable, start)?;
+        while let Some((i, cost_m)) = search.settle_next() {
+            if !(on_lattice(i)
+                && free[i]
+                && cost_m >= view.config.min_travel_m
+                && !view.failed_goals.contains(&i))
+            {
+                continue;
+            }
             let [x, y] = grid.cell_center(grid.cell(i));
             for &heading in &headings {
                 let pose = Pose::new(x, y, heading);
@@ -118,7 +147,7 @@ impl Counting {
                     self.targets = targets.into_iter().map(|t| (t, counts[t])).collect();
                     return Ok(Decision::Goal {
                         pose,
-                        path: reach.path_to(i),
+                        path: search.path_to(i),
                     });
                 }
             }

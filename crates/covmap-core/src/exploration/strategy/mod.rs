@@ -269,7 +269,9 @@ impl Chooser {
             Strategy::Coverage { alpha } => Self::Coverage(Box::new(coverage::Coverage::new(
                 alpha, config, grid, bins, bearings,
             )?)),
-            Strategy::Counting { n, .. } => Self::Counting(counting::Counting::new(n, grid)),
+            Strategy::Counting { n, .. } => {
+                Self::Counting(counting::Counting::new(n, config, grid))
+            }
             Strategy::Frontier => Self::Frontier(frontier::Frontier::new(grid)),
         })
     }
