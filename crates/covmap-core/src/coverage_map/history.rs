@@ -225,28 +225,37 @@ impl CoverageMap {
     }
 
     /// Keep (or stop keeping) a journal of the history's measurements: each
-    /// measured cell and the entropy of its histogram then, drained by
-    /// [`CoverageMap::drain_entropy_journal`]. Where every change of the
-    /// map is a measurement (scans and contacts, with the history kept), the
-    /// journal's last entry for a cell holds its entropy now: a loop that
-    /// keeps an entropy map up to date takes the changed cells' entropies
-    /// from it, instead of comparing every histogram with a copy and
-    /// computing the entropy of each changed one again. No effect while the
-    /// history is off; turning the history on again starts without a journal.
+    /// measured cell and the entropy of its histogram then
+    /// ([`CoverageMap::entropy_journal`]), until
+    /// [`CoverageMap::clear_entropy_journal`]. Where every change of the map
+    /// is a measurement (scans and contacts, with the history kept), the
+    /// journal holds every cell changed since it was cleared, and its last
+    /// entry for a cell the cell's entropy now: a loop that keeps read-outs
+    /// of the map up to date (its entropy, a copy to plan on) reads the
+    /// changed cells from it, instead of comparing every histogram with a
+    /// copy and computing the entropy of each changed one again. No effect
+    /// while the history is off; turning the history on again starts
+    /// without a journal.
     pub(crate) fn keep_entropy_journal(&mut self, on: bool) {
         if let Some(history) = self.history.as_deref_mut() {
             history.journal = on.then(Vec::new);
         }
     }
 
-    /// Hand every measurement the journal holds to `f` (the cell's row-major
-    /// index and its entropy then, nats), in the order they were made, and
-    /// empty it. Nothing while no journal is kept.
-    pub(crate) fn drain_entropy_journal(&mut self, mut f: impl FnMut(usize, f32)) {
+    /// Every measurement since the journal was last cleared, in the order
+    /// they were made: the cell's row-major index and its entropy then
+    /// (nats). Empty while no journal is kept.
+    pub(crate) fn entropy_journal(&self) -> &[(usize, f32)] {
+        self.history
+            .as_deref()
+            .and_then(|h| h.journal.as_deref())
+            .unwrap_or(&[])
+    }
+
+    /// Empty the journal (its memory kept for the next measurements).
+    pub(crate) fn clear_entropy_journal(&mut self) {
         if let Some(journal) = self.history.as_deref_mut().and_then(|h| h.journal.as_mut()) {
-            for (i, entropy) in journal.drain(..) {
-                f(i, entropy);
-            }
+            journal.clear();
         }
     }
 
@@ -398,34 +407,42 @@ mod tests {
     }
 
     /// The journal's last entry for a cell is its entropy now, after scans
-    /// and contacts; draining empties it; no journal, no entries.
+    /// and contacts, and every changed cell has one; clearing empties it; no
+    /// journal, no entries.
     #[test]
-    fn the_journal_holds_each_measured_cells_entropy_now() {
+    fn the_journal_holds_each_changed_cells_entropy_now() {
         let g = Grid::new([0.0, 0.0], 0.05, 4, 40).unwrap();
         let mut map = CoverageMap::new(g);
         map.track_history(true);
         map.keep_entropy_journal(true);
         let mut kept = map.entropy();
         for round in 0..3 {
+            let before = map.histograms().to_vec();
             settling_scans(&mut map, 4 * round..4 * round + 4);
             map.integrate_contact(Cell {
                 row: 2,
                 col: 10 + round,
             })
             .unwrap();
-            let mut entries = 0;
-            map.drain_entropy_journal(|i, e| {
+            let journal = map.entropy_journal();
+            assert!(!journal.is_empty());
+            for &(i, e) in journal {
                 kept[i] = e;
-                entries += 1;
-            });
-            assert!(entries > 0);
+            }
             let now = map.entropy();
             assert!((0..now.len()).all(|i| kept[i].to_bits() == now[i].to_bits()));
-            map.drain_entropy_journal(|_, _| panic!("drained"));
+            let changed = (0..g.len()).filter(|&i| {
+                map.histograms()[16 * i..16 * (i + 1)] != before[16 * i..16 * (i + 1)]
+            });
+            for i in changed {
+                assert!(journal.iter().any(|&(j, _)| j == i), "cell {i}");
+            }
+            map.clear_entropy_journal();
+            assert!(map.entropy_journal().is_empty());
         }
         map.keep_entropy_journal(false);
         settling_scans(&mut map, 0..2);
-        map.drain_entropy_journal(|_, _| panic!("no journal kept"));
+        assert!(map.entropy_journal().is_empty());
     }
 
     #[test]

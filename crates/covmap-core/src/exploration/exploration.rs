@@ -105,6 +105,8 @@ pub struct Exploration<S, M> {
     /// The coverage map's entropy after the last scan, kept up to date from
     /// the map's entropy journal (see [`Exploration::refresh_entropy`]).
     entropy: Vec<f32>,
+    /// How many entries of the map's entropy journal `entropy` has taken in.
+    entropy_read: usize,
     report_cells: Option<Vec<bool>>,
     pose: Pose,
     trajectory: Trajectory,
@@ -122,8 +124,14 @@ pub struct Exploration<S, M> {
     /// Every cell the robot has run into, in the order it did.
     contact_cells: Vec<Cell>,
     /// The coverage map with the contact cells pinned, for planning
-    /// (`None`: no contact yet, the map itself).
+    /// (`None`: no contact yet, the map itself), kept up to date from the
+    /// map's entropy journal (see [`Exploration::update_planning_map`]).
     planning_map: Option<CoverageMap>,
+    /// The ML coverage of the map planned on, kept with it.
+    planning_ml: Vec<f32>,
+    /// How many entries of the map's entropy journal the planning map and
+    /// its ML coverage have taken in.
+    planning_read: usize,
 }
 
 /// How one drive along a path went.
@@ -192,6 +200,7 @@ impl<S: ScanSource, M: Motion> Exploration<S, M> {
         let occupancy = OccupancyGrid::with_model(OccupancyModel::default(), counts)?;
         let chooser = Chooser::new(&strategy, &config, &grid, bins, &bearings)?;
         let entropy = map.entropy();
+        let planning_ml = map.ml();
         Ok(Self {
             source,
             motion,
@@ -203,6 +212,7 @@ impl<S: ScanSource, M: Motion> Exploration<S, M> {
             map,
             occupancy,
             entropy,
+            entropy_read: 0,
             report_cells,
             pose: start,
             trajectory: Trajectory::default(),
@@ -217,6 +227,8 @@ impl<S: ScanSource, M: Motion> Exploration<S, M> {
             failed_goals: Vec::new(),
             contact_cells: Vec::new(),
             planning_map: None,
+            planning_ml,
+            planning_read: 0,
         })
     }
 
@@ -244,11 +256,7 @@ impl<S: ScanSource, M: Motion> Exploration<S, M> {
         // 1. Decide on the maps (the cells the robot ran into pinned: see
         //    `CoverageMap::with_contacts`).
         let started = Instant::now();
-        self.planning_map = if self.contact_cells.is_empty() {
-            None
-        } else {
-            Some(self.map.with_contacts(&self.contact_cells)?)
-        };
+        self.update_planning_map()?;
         let decision = {
             let (chooser, view) = self.chooser_and_view();
             chooser.decide(&view)?
@@ -540,18 +548,75 @@ impl<S: ScanSource, M: Motion> Exploration<S, M> {
 
     /// Bring the entropy map up to date after the scans of a step: the
     /// entropy of every cell measured since, as the map's entropy history
-    /// computed it after its last measurement. Every change of the map is a
-    /// measurement (a scan's cells, a contact's cell, with the history kept),
-    /// so that entropy is the one [`CoverageMap::entropy`] computes now, the
-    /// same bits, with no histogram compared or entropy computed again (a
-    /// step's scans touch a small part of a large map, and the history has
-    /// just computed their entropies).
+    /// computed it after its last measurement (its journal). Every change of
+    /// the map is a measurement (a scan's cells, a contact's cell, with the
+    /// history kept), so that entropy is the one [`CoverageMap::entropy`]
+    /// computes now, the same bits, with no histogram compared or entropy
+    /// computed again (a step's scans touch a small part of a large map,
+    /// and the history has just computed their entropies).
     fn refresh_entropy(&mut self) {
         let started = Instant::now();
-        let entropy = &mut self.entropy;
-        self.map.drain_entropy_journal(|i, e| entropy[i] = e);
+        for &(i, e) in &self.map.entropy_journal()[self.entropy_read..] {
+            self.entropy[i] = e;
+        }
+        self.entropy_read = self.map.entropy_journal().len();
+        self.done_with_journal();
         debug_assert_eq!(self.entropy, self.map.entropy());
         self.timing.integration_s += started.elapsed().as_secs_f64();
+    }
+
+    /// Bring the map the strategies plan on up to date before they decide:
+    /// the coverage map with every contact cell pinned
+    /// ([`CoverageMap::with_contacts`]), made at the first contact and then
+    /// kept, the cells the journal names since copied and the contacts
+    /// pinned again; and its ML coverage, of the same cells. The same
+    /// histograms and ML coverage as a copy made anew, without copying the
+    /// whole map at every step; the copy keeps the map's kernel table, so
+    /// that planning does not compute the kernels again every time.
+    fn update_planning_map(&mut self) -> Result<()> {
+        let fresh = &self.map.entropy_journal()[self.planning_read..];
+        match &mut self.planning_map {
+            None if self.contact_cells.is_empty() => {
+                for &(i, _) in fresh {
+                    self.planning_ml[i] = self.map.ml_at(i);
+                }
+            }
+            planning => {
+                let cells = fresh.iter().map(|&(i, _)| i);
+                let planned = match planning {
+                    Some(planned) => {
+                        planned.update_with_contacts(&self.map, cells, &self.contact_cells)?;
+                        planned
+                    }
+                    None => {
+                        let mut planned = self.map.with_contacts(&self.contact_cells)?;
+                        planned.share_kernel_table(&self.map);
+                        planning.insert(planned)
+                    }
+                };
+                let grid = *planned.grid();
+                for &(i, _) in fresh {
+                    self.planning_ml[i] = planned.ml_at(i);
+                }
+                for &cell in &self.contact_cells {
+                    let i = grid.index(cell)?;
+                    self.planning_ml[i] = planned.ml_at(i);
+                }
+            }
+        }
+        self.planning_read = self.map.entropy_journal().len();
+        self.done_with_journal();
+        Ok(())
+    }
+
+    /// Clear the map's entropy journal once both the entropy map and the
+    /// planning map have taken it in.
+    fn done_with_journal(&mut self) {
+        let len = self.map.entropy_journal().len();
+        if self.entropy_read == len && self.planning_read == len {
+            self.map.clear_entropy_journal();
+            (self.entropy_read, self.planning_read) = (0, 0);
+        }
     }
 
     /// The strategy, and what it sees.
@@ -559,6 +624,7 @@ impl<S: ScanSource, M: Motion> Exploration<S, M> {
         let view = View {
             map: &self.map,
             planning_map: self.planning_map.as_ref().unwrap_or(&self.map),
+            planning_ml: &self.planning_ml,
             contact_cells: &self.contact_cells,
             occupancy: &self.occupancy,
             entropy: &self.entropy,
@@ -683,7 +749,7 @@ impl<S, M> Exploration<S, M> {
             trajectory: self.trajectory.clone(),
             trace: self.trace.clone(),
             timing: self.timing,
-            map: self.map.clone(),
+            map: without_journal(self.map.clone()),
             occupancy: self.occupancy.clone(),
         }
     }
@@ -700,10 +766,17 @@ impl<S, M> Exploration<S, M> {
             trajectory: self.trajectory,
             trace: self.trace,
             timing: self.timing,
-            map: self.map,
+            map: without_journal(self.map),
             occupancy: self.occupancy,
         }
     }
+}
+
+/// `map` without the loop's entropy journal: a map handed out may be
+/// integrated into further, and nothing would read or clear its journal.
+fn without_journal(mut map: CoverageMap) -> CoverageMap {
+    map.keep_entropy_journal(false);
+    map
 }
 
 /// The corners of `path` (cell centres, 8-connected steps): its first and
@@ -799,8 +872,10 @@ mod tests {
     }
 
     /// After every step, the entropy map the loop keeps from the map's
-    /// journal is the map's entropy, bit for bit, for every strategy, in
-    /// runs that scan, drive and run into the pane.
+    /// journal is the map's entropy, and the map it plans on and its ML
+    /// coverage are the ones made anew from the map and the contacts, bit
+    /// for bit, for every strategy, in runs that scan, drive and run into
+    /// the pane.
     #[test]
     fn every_step_keeps_the_loops_read_outs() {
         let bearings: Vec<f64> = (0..90)
@@ -821,7 +896,22 @@ mod tests {
                 let differs =
                     (0..entropy.len()).find(|&i| run.entropy[i].to_bits() != entropy[i].to_bits());
                 assert_eq!(differs, None, "{strategy:?}, step {}: cell", run.steps);
+                // What the next step plans on, made anew.
+                run.update_planning_map().unwrap();
+                let made = run.map.with_contacts(&run.contact_cells).unwrap();
+                let planned = run.planning_map.as_ref().unwrap_or(&run.map);
+                let differs = (0..made.histograms().len())
+                    .find(|&i| made.histograms()[i].to_bits() != planned.histograms()[i].to_bits());
+                assert_eq!(differs, None, "{strategy:?}, step {}: value", run.steps);
+                assert_eq!(
+                    run.planning_ml,
+                    made.ml(),
+                    "{strategy:?}, step {}",
+                    run.steps
+                );
+                assert!(run.map.entropy_journal().len() < 20_000);
             }
+            assert!(run.planning_map.is_some(), "{strategy:?}: no contact");
             assert!(
                 run.contacts > 0 && run.steps > 3,
                 "{strategy:?}: {} contacts, {} steps",

@@ -128,7 +128,6 @@ impl Counting {
                 && col >= stride / 2
                 && (col - stride / 2) % stride == 0
         };
-        let ml = view.planning_map.ml();
         let headings = viewpoint_headings(view.bearings, view.pose.theta_rad);
         let mut search = Search::new(grid, &passable, start)?;
         while let Some((i, cost_m)) = search.settle_next() {
@@ -142,7 +141,14 @@ impl Counting {
             let [x, y] = grid.cell_center(grid.cell(i));
             for &heading in &headings {
                 let pose = Pose::new(x, y, heading);
-                let targets = intercepted(grid, &ml, &pose, view.bearings, model, &unexplored);
+                let targets = intercepted(
+                    grid,
+                    view.planning_ml,
+                    &pose,
+                    view.bearings,
+                    model,
+                    &unexplored,
+                );
                 if !targets.is_empty() {
                     self.targets = targets.into_iter().map(|t| (t, counts[t])).collect();
                     return Ok(Decision::Goal {

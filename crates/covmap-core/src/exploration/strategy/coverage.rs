@@ -271,10 +271,11 @@ mod tests {
         let bearings: Vec<f64> = (0..180)
             .map(|i| i as f64 * std::f64::consts::TAU / 180.0)
             .collect();
-        let entropy = map.entropy();
+        let (entropy, ml) = (map.entropy(), map.ml());
         let view = View {
             map: &map,
             planning_map: &map,
+            planning_ml: &ml,
             contact_cells: &[],
             occupancy: &occupancy,
             entropy: &entropy,

@@ -169,6 +169,9 @@ pub(super) struct View<'a> {
     /// into pinned as covered (the robot remembers its contacts, whatever
     /// the readings say since).
     pub planning_map: &'a CoverageMap,
+    /// The ML coverage of `planning_map` ([`CoverageMap::ml`]), kept by the
+    /// loop from step to step.
+    pub planning_ml: &'a [f32],
     /// The cells the robot has run into.
     pub contact_cells: &'a [Cell],
     pub occupancy: &'a OccupancyGrid,
