@@ -146,27 +146,27 @@ pub(super) fn paths_from(
 ) -> Result<(Vec<bool>, Reachability)> {
     let start = check_pose(grid, pose)?;
     let free = clear_of(grid, blocked, radius_m);
-    let passable = passable_from(grid, blocked, &free, radius_m, pose)?;
+    let mut passable = free.clone();
+    open_start(grid, blocked, radius_m, pose, &mut passable)?;
     let reach = shortest_paths(grid, &passable, start)?;
     Ok((free, reach))
 }
 
-/// The cells a disc of `radius_m` at `pose` may pass through on a map
-/// whose cells `blocked` holds and whose clear cells (for the disc) `free`
-/// holds: the clear cells, the robot's own cell, and the unblocked cells
-/// its disc at `pose` overlaps ([`paths_from`]).
+/// Make passable, among the cells `passable` (the clear cells of a map
+/// whose cells `blocked` holds, for a disc of `radius_m`), the robot's own
+/// cell and the unblocked cells its disc at `pose` overlaps: what
+/// [`paths_from`] passes through besides the clear cells.
 ///
 /// # Errors
 /// As [`paths_from`] for the pose.
-pub(super) fn passable_from(
+pub(super) fn open_start(
     grid: &Grid,
     blocked: &[bool],
-    free: &[bool],
     radius_m: f64,
     pose: &Pose,
-) -> Result<Vec<bool>> {
+    passable: &mut [bool],
+) -> Result<()> {
     let start = check_pose(grid, pose)?;
-    let mut passable = free.to_vec();
     let start_index = grid.index(start)?;
     passable[start_index] = true;
     // The cells the disc at `pose` overlaps: some point of theirs lies
@@ -190,7 +190,7 @@ pub(super) fn passable_from(
             }
         }
     }
-    Ok(passable)
+    Ok(())
 }
 
 /// Which cells of `occupancy` are known (some evidence reached them), and
@@ -212,8 +212,9 @@ pub(super) fn blocked_on_occupancy(
     occupancy: &OccupancyGrid,
     contact_cells: &[Cell],
 ) -> Result<Vec<bool>> {
-    let (_, known_free) = known_cells(occupancy);
-    let mut blocked: Vec<bool> = known_free.iter().map(|f| !f).collect();
+    // Known free is a log-odds below 0, which no unknown cell has (its
+    // log-odds is 0): one pass over the log-odds.
+    let mut blocked: Vec<bool> = occupancy.log_odds().iter().map(|&l| !(l < 0.0)).collect();
     for &cell in contact_cells {
         blocked[occupancy.grid().index(cell)?] = true;
     }

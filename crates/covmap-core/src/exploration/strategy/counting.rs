@@ -50,7 +50,7 @@ use crate::error::Result;
 use crate::exploration::config::ExplorationConfig;
 use crate::exploration::dilation::Dilation;
 use crate::exploration::region::{
-    blocked_on_occupancy, clearance_offsets, dilation_offsets, passable_from, planning_radius_m,
+    blocked_on_occupancy, clearance_offsets, dilation_offsets, open_start, planning_radius_m,
 };
 use crate::exploration::result::Termination;
 use crate::footprint::visit;
@@ -108,15 +108,16 @@ impl Counting {
         let blocked = blocked_on_occupancy(view.occupancy, view.contact_cells)?;
         let start = check_pose(grid, &view.pose)?;
         self.unclear.take_in(&blocked);
-        let free: Vec<bool> = (0..grid.len()).map(|i| !self.unclear.covers(i)).collect();
-        let passable = passable_from(grid, &blocked, &free, radius_m, &view.pose)?;
+        let unclear = &self.unclear;
+        let free = |i: usize| !unclear.covers(i);
+        let mut passable: Vec<bool> = (0..grid.len()).map(free).collect();
+        open_start(grid, &blocked, radius_m, &view.pose, &mut passable)?;
         self.region
             .take_in(&reachable_cells(grid, &passable, start)?);
         let counts = view.occupancy.counts().counts();
-        let unexplored: Vec<bool> = (0..grid.len())
-            .map(|i| self.region.covers(i) && counts[i] < self.n && self.misses[i] < GIVE_UP_AFTER)
-            .collect();
-        if !unexplored.iter().any(|&u| u) {
+        let (region, misses, n) = (&self.region, &self.misses, self.n);
+        let unexplored = |i: usize| region.covers(i) && counts[i] < n && misses[i] < GIVE_UP_AFTER;
+        if !(0..grid.len()).any(unexplored) {
             return Ok(Decision::Done(Termination::NoGoal));
         }
         let stride =
@@ -132,7 +133,7 @@ impl Counting {
         let mut search = Search::new(grid, &passable, start)?;
         while let Some((i, cost_m)) = search.settle_next() {
             if !(on_lattice(i)
-                && free[i]
+                && free(i)
                 && cost_m >= view.config.min_travel_m
                 && !view.failed_goals.contains(&i))
             {
@@ -147,7 +148,7 @@ impl Counting {
                     &pose,
                     view.bearings,
                     model,
-                    &unexplored,
+                    unexplored,
                 );
                 if !targets.is_empty() {
                     self.targets = targets.into_iter().map(|t| (t, counts[t])).collect();
@@ -175,7 +176,7 @@ impl Counting {
     }
 }
 
-/// The cells flagged in `wanted` that a scan from `pose` would intercept
+/// The cells `wanted` holds for that a scan from `pose` would intercept
 /// (in increasing index order, each once), predicting each beam's
 /// reading as its median reading on the ML map `ml`.
 fn intercepted(
@@ -184,7 +185,7 @@ fn intercepted(
     pose: &Pose,
     bearings: &[f64],
     model: &dyn SensorModel,
-    wanted: &[bool],
+    wanted: impl Fn(usize) -> bool,
 ) -> Vec<usize> {
     let range = model.range_model();
     let half = 0.5 * grid.resolution_m();
@@ -216,7 +217,7 @@ fn intercepted(
             reach,
             model.footprint(),
             &mut |i: usize, _| {
-                if wanted[i] {
+                if wanted(i) {
                     found.push(i);
                 }
             },
