@@ -3,12 +3,9 @@
 
 use super::CoverageMap;
 use crate::error::{CovmapError, Result};
-use crate::footprint::visit;
 use crate::grid::Cell;
 use crate::histogram;
 use crate::memory;
-use crate::pose::Pose;
-use crate::sensor::SensorModel;
 
 /// Measurements of a cell an entropy change is judged over.
 pub const STAGNATION_MEASUREMENTS: usize = 5;
@@ -26,6 +23,9 @@ pub(super) struct History {
     /// The scan that last touched each cell.
     stamp: Vec<u32>,
     scan: u32,
+    /// The cells the scan being integrated touches, each once, in the order
+    /// it first does (kept between scans for its memory).
+    touched: Vec<usize>,
     /// Every measurement since the journal was last drained, in order: the
     /// cell and its entropy then (`None`: not kept). See
     /// [`CoverageMap::keep_entropy_journal`].
@@ -84,6 +84,7 @@ impl CoverageMap {
                 count: vec![0; self.grid.len()],
                 stamp: vec![0; self.grid.len()],
                 scan: 0,
+                touched: Vec::new(),
                 journal: None,
             })
         });
@@ -104,6 +105,7 @@ impl CoverageMap {
                 count: memory::try_filled(0, cells, "the measurement counts")?,
                 stamp: memory::try_filled(0, cells, "the history's scan stamps")?,
                 scan: 0,
+                touched: Vec::new(),
                 journal: None,
             })),
         };
@@ -189,6 +191,7 @@ impl CoverageMap {
             count: state.count,
             stamp: vec![0; cells],
             scan: 0,
+            touched: Vec::new(),
             journal: None,
         }));
         Ok(())
@@ -286,18 +289,11 @@ impl CoverageMap {
         }
     }
 
-    /// Count a validated scan as one measurement of every cell it updates,
-    /// and keep their entropies, if the history is kept.
-    pub(super) fn record_history<M: SensorModel + ?Sized>(
-        &mut self,
-        pose: &Pose,
-        ranges: &[f64],
-        bearings: &[f64],
-        no_echo_reach_m: Option<&[f64]>,
-        model: &M,
-    ) {
+    /// Count the scan just integrated (its cells marked through the
+    /// [`Touches`] of [`History::begin_scan`]) as one measurement of every
+    /// cell it updated, and keep their entropies, if the history is kept.
+    pub(super) fn record_history(&mut self) {
         let Self {
-            grid,
             bins,
             data,
             history,
@@ -306,33 +302,47 @@ impl CoverageMap {
         let Some(history) = history.as_deref_mut() else {
             return;
         };
-        history.scan = history.scan.wrapping_add(1).max(1);
-        let scan = history.scan;
-        let range = model.range_model();
-        let mut touched = Vec::new();
-        for (k, (&r, &bearing)) in ranges.iter().zip(bearings).enumerate() {
-            let (reach, _) = super::update::beam_reach(range, r, k, no_echo_reach_m);
-            visit(
-                grid,
-                [pose.x_m, pose.y_m],
-                pose.theta_rad + bearing,
-                reach,
-                model.footprint(),
-                &mut |i, _| {
-                    if history.stamp[i] != scan {
-                        history.stamp[i] = scan;
-                        touched.push(i);
-                    }
-                },
-            );
-        }
-        for i in touched {
+        let touched = std::mem::take(&mut history.touched);
+        for &i in &touched {
             history.measure(i, &data[i * *bins..(i + 1) * *bins]);
+        }
+        history.touched = touched;
+    }
+}
+
+/// The cells a scan touches, marked as its update visits them: each cell
+/// once, in the order the update first reaches it (one traversal of the
+/// beams' footprints for the update and the history).
+pub(super) struct Touches<'h> {
+    stamp: &'h mut [u32],
+    scan: u32,
+    touched: &'h mut Vec<usize>,
+}
+
+impl Touches<'_> {
+    /// Mark the cell at row-major `index` as touched by the scan.
+    #[inline(always)]
+    pub fn mark(&mut self, index: usize) {
+        if self.stamp[index] != self.scan {
+            self.stamp[index] = self.scan;
+            self.touched.push(index);
         }
     }
 }
 
 impl History {
+    /// Start a scan: its cells are marked through the touches returned, and
+    /// measured by [`CoverageMap::record_history`].
+    pub(super) fn begin_scan(&mut self) -> Touches<'_> {
+        self.scan = self.scan.wrapping_add(1).max(1);
+        self.touched.clear();
+        Touches {
+            stamp: &mut self.stamp,
+            scan: self.scan,
+            touched: &mut self.touched,
+        }
+    }
+
     /// Count one measurement of cell `i`, whose histogram is now `h`.
     fn measure(&mut self, i: usize, h: &[f32]) {
         let measured = self.count[i] as usize;
@@ -349,6 +359,7 @@ impl History {
 mod tests {
     use super::*;
     use crate::grid::Grid;
+    use crate::pose::Pose;
     use crate::sensor::{LaserModel, SonarModel};
 
     #[test]
