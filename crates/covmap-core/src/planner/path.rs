@@ -101,6 +101,22 @@ pub(crate) struct Search<'p> {
     cost: Vec<f64>,
     previous: Vec<usize>,
     heap: BinaryHeap<Entry>,
+    /// The cells whose length was set, to be reset when the memory is
+    /// handed back ([`Search::into_memory`]).
+    touched: Vec<usize>,
+}
+
+/// The memory of a [`Search`], handed from one search to the next: a loop
+/// that searches a large grid at every step, and stops early, would
+/// otherwise allocate (and the system zero) two values a cell each time,
+/// and fill them all. Every length is infinite and every previous cell
+/// unset between searches: a search resets the cells it touched.
+#[derive(Default)]
+pub(crate) struct SearchMemory {
+    cost: Vec<f64>,
+    previous: Vec<usize>,
+    heap: BinaryHeap<Entry>,
+    touched: Vec<usize>,
 }
 
 impl<'p> Search<'p> {
@@ -111,6 +127,19 @@ impl<'p> Search<'p> {
     /// [`CovmapError::LengthMismatch`] if `passable` does not hold one flag
     /// a cell, [`CovmapError::CellOutOfBounds`] if `start` is not on the grid.
     pub(crate) fn new(grid: &Grid, passable: &'p [bool], start: Cell) -> Result<Self> {
+        Self::with_memory(grid, passable, start, SearchMemory::default())
+    }
+
+    /// [`Search::new`], in the memory of an earlier search.
+    ///
+    /// # Errors
+    /// As [`Search::new`].
+    pub(crate) fn with_memory(
+        grid: &Grid,
+        passable: &'p [bool],
+        start: Cell,
+        memory: SearchMemory,
+    ) -> Result<Self> {
         if passable.len() != grid.len() {
             return Err(CovmapError::LengthMismatch {
                 what: "passable mask and grid cells",
@@ -119,16 +148,29 @@ impl<'p> Search<'p> {
             });
         }
         let start = grid.index(start)?;
-        let mut search = Self {
+        let SearchMemory {
+            mut cost,
+            mut previous,
+            mut heap,
+            mut touched,
+        } = memory;
+        if cost.len() != grid.len() {
+            cost = vec![f64::INFINITY; grid.len()];
+            previous = vec![usize::MAX; grid.len()];
+        }
+        heap.clear();
+        touched.clear();
+        cost[start] = 0.0;
+        touched.push(start);
+        heap.push(Entry(0.0, start));
+        Ok(Self {
             grid: *grid,
             passable,
-            cost: vec![f64::INFINITY; grid.len()],
-            previous: vec![usize::MAX; grid.len()],
-            heap: BinaryHeap::new(),
-        };
-        search.cost[start] = 0.0;
-        search.heap.push(Entry(0.0, start));
-        Ok(search)
+            cost,
+            previous,
+            heap,
+            touched,
+        })
     }
 
     /// Settle the nearest cell not settled yet: its row-major index and path
@@ -160,6 +202,9 @@ impl<'p> Search<'p> {
                 }
                 let next = cost_m + len * resolution_m;
                 if next < self.cost[neighbour] {
+                    if self.cost[neighbour] == f64::INFINITY {
+                        self.touched.push(neighbour);
+                    }
                     self.cost[neighbour] = next;
                     self.previous[neighbour] = index;
                     self.heap.push(Entry(next, neighbour));
@@ -177,6 +222,29 @@ impl<'p> Search<'p> {
     /// If `index` is not a cell of the grid.
     pub(crate) fn path_to(&self, index: usize) -> Vec<[f64; 2]> {
         path_of(&self.grid, &self.cost, &self.previous, index)
+    }
+
+    /// The search's memory, every cell it touched reset, for the next.
+    pub(crate) fn into_memory(self) -> SearchMemory {
+        let Self {
+            mut cost,
+            mut previous,
+            mut heap,
+            mut touched,
+            ..
+        } = self;
+        for &i in &touched {
+            cost[i] = f64::INFINITY;
+            previous[i] = usize::MAX;
+        }
+        heap.clear();
+        touched.clear();
+        SearchMemory {
+            cost,
+            previous,
+            heap,
+            touched,
+        }
     }
 
     /// The path lengths and paths found so far (all of them, once
@@ -284,6 +352,7 @@ mod tests {
     /// with its path.
     #[test]
     fn a_search_settles_in_the_order_of_the_whole_searchs_lengths() {
+        let mut memory = SearchMemory::default();
         for (trial, (grid, passable, start)) in random_masks(11, 300).into_iter().enumerate() {
             let whole = shortest_paths(&grid, &passable, start).unwrap();
             let mut order: Vec<usize> = (0..grid.len()).filter(|&i| whole.reachable(i)).collect();
@@ -304,15 +373,22 @@ mod tests {
                 settled.push(i);
             }
             assert_eq!(settled, order, "trial {trial}");
-            // Stopped early, at the nearest cell of every seventh column.
-            let mut search = Search::new(&grid, &passable, start).unwrap();
-            let wanted = |i: usize| i % grid.cols() % 7 == 3;
-            let first = std::iter::from_fn(|| search.settle_next()).find(|&(i, _)| wanted(i));
-            let nearest = order.iter().copied().find(|&i| wanted(i));
-            assert_eq!(first.map(|(i, _)| i), nearest, "trial {trial}");
-            if let Some(i) = nearest {
-                assert_eq!(search.path_to(i), whole.path_to(i), "trial {trial}");
+            // Stopped early, at the nearest cell of every seventh column and
+            // then of every fifth, in the memory of the searches before (on
+            // this grid and others).
+            for (k, column) in [(7, 3), (5, 1)] {
+                let mut search = Search::with_memory(&grid, &passable, start, memory).unwrap();
+                let wanted = |i: usize| i % grid.cols() % k == column;
+                let first = std::iter::from_fn(|| search.settle_next()).find(|&(i, _)| wanted(i));
+                let nearest = order.iter().copied().find(|&i| wanted(i));
+                assert_eq!(first.map(|(i, _)| i), nearest, "trial {trial}");
+                if let Some(i) = nearest {
+                    assert_eq!(search.path_to(i), whole.path_to(i), "trial {trial}");
+                }
+                memory = search.into_memory();
             }
+            assert!(memory.cost.iter().all(|c| *c == f64::INFINITY));
+            assert!(memory.previous.iter().all(|p| *p == usize::MAX));
         }
     }
 

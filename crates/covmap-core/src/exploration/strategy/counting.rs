@@ -55,7 +55,7 @@ use crate::exploration::region::{
 use crate::exploration::result::Termination;
 use crate::footprint::visit;
 use crate::grid::Grid;
-use crate::planner::{Search, reachable_cells};
+use crate::planner::{Search, SearchMemory, reachable_cells};
 use crate::pose::{Pose, check_pose};
 use crate::sensor::{SensorModel, trace_readings};
 
@@ -76,6 +76,8 @@ pub(crate) struct Counting {
     /// The reachable cells grown by the planning radius and a cell: the
     /// region, kept from step to step.
     region: Dilation,
+    /// The memory of the candidates' searches, kept from step to step.
+    search: SearchMemory,
 }
 
 impl Counting {
@@ -90,6 +92,7 @@ impl Counting {
                 grid,
                 &dilation_offsets(grid, radius_m + grid.resolution_m()),
             ),
+            search: SearchMemory::default(),
         }
     }
 
@@ -130,8 +133,10 @@ impl Counting {
                 && (col - stride / 2) % stride == 0
         };
         let headings = viewpoint_headings(view.bearings, view.pose.theta_rad);
-        let mut search = Search::new(grid, &passable, start)?;
-        while let Some((i, cost_m)) = search.settle_next() {
+        let memory = std::mem::take(&mut self.search);
+        let mut search = Search::with_memory(grid, &passable, start, memory)?;
+        let mut goal = None;
+        'candidates: while let Some((i, cost_m)) = search.settle_next() {
             if !(on_lattice(i)
                 && free(i)
                 && cost_m >= view.config.min_travel_m
@@ -151,15 +156,19 @@ impl Counting {
                     unexplored,
                 );
                 if !targets.is_empty() {
-                    self.targets = targets.into_iter().map(|t| (t, counts[t])).collect();
-                    return Ok(Decision::Goal {
-                        pose,
-                        path: search.path_to(i),
-                    });
+                    goal = Some((pose, search.path_to(i), targets));
+                    break 'candidates;
                 }
             }
         }
-        Ok(Decision::Done(Termination::NoGoal))
+        self.search = search.into_memory();
+        Ok(match goal {
+            Some((pose, path, targets)) => {
+                self.targets = targets.into_iter().map(|t| (t, counts[t])).collect();
+                Decision::Goal { pose, path }
+            }
+            None => Decision::Done(Termination::NoGoal),
+        })
     }
 
     pub fn learn(&mut self, view: &View, outcome: &Outcome) {
