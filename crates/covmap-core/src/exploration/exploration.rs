@@ -132,6 +132,45 @@ pub struct Exploration<S, M> {
     /// How many entries of the map's entropy journal the planning map and
     /// its ML coverage have taken in.
     planning_read: usize,
+    /// The cells the journal names, each once, for the planning map.
+    changed: Distinct,
+}
+
+/// The distinct cells of a list that names some more than once, in the
+/// order they first appear: a cell's stamp says which list last took it.
+struct Distinct {
+    stamp: Vec<u32>,
+    list: u32,
+    cells: Vec<usize>,
+}
+
+impl Distinct {
+    /// For a grid of `cells` cells.
+    fn new(cells: usize) -> Self {
+        Self {
+            stamp: vec![0; cells],
+            list: 0,
+            cells: Vec::new(),
+        }
+    }
+
+    /// The distinct cells of `cells`, in the order they first appear.
+    fn of(&mut self, cells: impl Iterator<Item = usize>) -> &[usize] {
+        self.list = self.list.wrapping_add(1);
+        if self.list == 0 {
+            // Stamps of earlier lists would read as this one's.
+            self.stamp.fill(0);
+            self.list = 1;
+        }
+        self.cells.clear();
+        for i in cells {
+            if self.stamp[i] != self.list {
+                self.stamp[i] = self.list;
+                self.cells.push(i);
+            }
+        }
+        &self.cells
+    }
 }
 
 /// How one drive along a path went.
@@ -229,6 +268,7 @@ impl<S: ScanSource, M: Motion> Exploration<S, M> {
             planning_map: None,
             planning_ml,
             planning_read: 0,
+            changed: Distinct::new(grid.len()),
         })
     }
 
@@ -574,15 +614,18 @@ impl<S: ScanSource, M: Motion> Exploration<S, M> {
     /// whole map at every step; the copy keeps the map's kernel table, so
     /// that planning does not compute the kernels again every time.
     fn update_planning_map(&mut self) -> Result<()> {
+        // The journal names a cell once a scan that measured it: each
+        // changed cell is taken once.
         let fresh = &self.map.entropy_journal()[self.planning_read..];
+        let changed = self.changed.of(fresh.iter().map(|&(i, _)| i));
         match &mut self.planning_map {
             None if self.contact_cells.is_empty() => {
-                for &(i, _) in fresh {
+                for &i in changed {
                     self.planning_ml[i] = self.map.ml_at(i);
                 }
             }
             planning => {
-                let cells = fresh.iter().map(|&(i, _)| i);
+                let cells = changed.iter().copied();
                 let planned = match planning {
                     Some(planned) => {
                         planned.update_with_contacts(&self.map, cells, &self.contact_cells)?;
@@ -595,7 +638,7 @@ impl<S: ScanSource, M: Motion> Exploration<S, M> {
                     }
                 };
                 let grid = *planned.grid();
-                for &(i, _) in fresh {
+                for &i in changed {
                     self.planning_ml[i] = planned.ml_at(i);
                 }
                 for &cell in &self.contact_cells {
