@@ -32,13 +32,16 @@ impl CoverageMap {
         let (max_range_m, no_echo_reach_m) = (range.max_range_m, range.no_echo_reach_m());
         let footprint = model.footprint();
         let half = 0.5 * grid.resolution_m();
-        let extra: Vec<usize> = covered.iter().filter_map(|&c| grid.index(c).ok()).collect();
+        // Sorted, so that each cell of a footprint looks itself up in a
+        // long list of contacts by halves.
+        let mut extra: Vec<usize> = covered.iter().filter_map(|&c| grid.index(c).ok()).collect();
+        extra.sort_unstable();
         let is_covered = |i: usize| {
             let ml = histogram::bin_value(
                 histogram::argmax(&histograms[i * bins..(i + 1) * bins]),
                 bins,
             );
-            ml > CONTACT_COVERAGE || extra.contains(&i)
+            ml > CONTACT_COVERAGE || extra.binary_search(&i).is_ok()
         };
         ranges
             .iter()

@@ -294,17 +294,18 @@ pub(crate) fn reachable_cells(grid: &Grid, passable: &[bool], start: Cell) -> Re
         });
     }
     let start = grid.index(start)?;
-    let (rows, cols) = (grid.rows(), grid.cols());
-    let mut reached = vec![false; grid.len()];
+    let (cells, cols) = (grid.len(), grid.cols());
+    let mut reached = vec![false; cells];
     reached[start] = true;
     let mut queue = vec![start];
     while let Some(i) = queue.pop() {
-        let (row, col) = (i / cols, i % cols);
+        // Rows from the index alone: one division a cell, for the column.
+        let col = i % cols;
         let neighbours = [
             (col + 1 < cols).then(|| i + 1),
             (col > 0).then(|| i - 1),
-            (row + 1 < rows).then(|| i + cols),
-            (row > 0).then(|| i - cols),
+            (i + cols < cells).then(|| i + cols),
+            (i >= cols).then(|| i - cols),
         ];
         for n in neighbours.into_iter().flatten() {
             if passable[n] && !reached[n] {
