@@ -49,20 +49,26 @@ impl Dilation {
     pub fn take_in(&mut self, mask: &[bool]) {
         assert_eq!(mask.len(), self.mask.len(), "one flag a cell");
         let (rows, cols) = (self.grid.rows() as i64, self.grid.cols() as i64);
-        for (i, (&now, was)) in mask.iter().zip(self.mask.iter_mut()).enumerate() {
-            if now == *was {
-                continue;
-            }
-            *was = now;
-            let (row, col) = ((i as i64) / cols, (i as i64) % cols);
-            for &(dr, dc) in &self.offsets {
-                let (r, c) = (row + dr, col + dc);
-                if r >= 0 && c >= 0 && r < rows && c < cols {
-                    let near = &mut self.near[(r * cols + c) as usize];
-                    // A cell counts each mask cell once: the numbers stay
-                    // within the offsets' count, and a cell leaves only a
-                    // mask it joined.
-                    *near = if now { *near + 1 } else { *near - 1 };
+        // Compared a block of cells at a time: most blocks did not change.
+        const BLOCK: usize = 64;
+        let blocks = mask.chunks(BLOCK).zip(self.mask.chunks_mut(BLOCK));
+        for (k, (now, was)) in blocks.enumerate().filter(|(_, (now, was))| now != was) {
+            for (j, (&now, was)) in now.iter().zip(was.iter_mut()).enumerate() {
+                if now == *was {
+                    continue;
+                }
+                *was = now;
+                let i = (k * BLOCK + j) as i64;
+                let (row, col) = (i / cols, i % cols);
+                for &(dr, dc) in &self.offsets {
+                    let (r, c) = (row + dr, col + dc);
+                    if r >= 0 && c >= 0 && r < rows && c < cols {
+                        let near = &mut self.near[(r * cols + c) as usize];
+                        // A cell counts each mask cell once: the numbers
+                        // stay within the offsets' count, and a cell leaves
+                        // only a mask it joined.
+                        *near = if now { *near + 1 } else { *near - 1 };
+                    }
                 }
             }
         }
