@@ -108,6 +108,9 @@ pub struct Exploration<S, M> {
     /// How many entries of the map's entropy journal `entropy` has taken in.
     entropy_read: usize,
     report_cells: Option<Vec<bool>>,
+    /// The report cells whose entropy is above epsilon, and all of them:
+    /// counted at the start and kept as the entropy map changes.
+    uncertain: (usize, usize),
     pose: Pose,
     trajectory: Trajectory,
     path_length_m: f64,
@@ -239,6 +242,7 @@ impl<S: ScanSource, M: Motion> Exploration<S, M> {
         let occupancy = OccupancyGrid::with_model(OccupancyModel::default(), counts)?;
         let chooser = Chooser::new(&strategy, &config, &grid, bins, &bearings)?;
         let entropy = map.entropy();
+        let uncertain = uncertain_cells(&entropy, report_cells.as_deref(), config.epsilon);
         let planning_ml = map.ml();
         Ok(Self {
             source,
@@ -253,6 +257,7 @@ impl<S: ScanSource, M: Motion> Exploration<S, M> {
             entropy,
             entropy_read: 0,
             report_cells,
+            uncertain,
             pose: start,
             trajectory: Trajectory::default(),
             path_length_m: 0.0,
@@ -596,7 +601,13 @@ impl<S: ScanSource, M: Motion> Exploration<S, M> {
     /// and the history has just computed their entropies).
     fn refresh_entropy(&mut self) {
         let started = Instant::now();
+        let epsilon = self.config.epsilon;
+        let reported = |i: usize| self.report_cells.as_ref().is_none_or(|cells| cells[i]);
         for &(i, e) in &self.map.entropy_journal()[self.entropy_read..] {
+            if reported(i) {
+                let (was, now) = (f64::from(self.entropy[i]) > epsilon, f64::from(e) > epsilon);
+                self.uncertain.0 = self.uncertain.0 + usize::from(now) - usize::from(was);
+            }
             self.entropy[i] = e;
         }
         self.entropy_read = self.map.entropy_journal().len();
@@ -701,21 +712,9 @@ impl<S, M> Exploration<S, M> {
 
     /// The fraction of the report cells whose entropy is above epsilon now.
     pub fn uncertain_fraction(&self) -> f64 {
-        let epsilon = self.config.epsilon;
-        let uncertain = |i: usize| f64::from(self.entropy[i]) > epsilon;
-        let (count, total) = match &self.report_cells {
-            Some(cells) => (0..cells.len())
-                .filter(|&i| cells[i])
-                .fold((0, 0), |(u, t), i| (u + usize::from(uncertain(i)), t + 1)),
-            None => (
-                (0..self.entropy.len()).filter(|&i| uncertain(i)).count(),
-                self.entropy.len(),
-            ),
-        };
-        if total == 0 {
-            0.0
-        } else {
-            count as f64 / total as f64
+        match self.uncertain {
+            (_, 0) => 0.0,
+            (count, total) => count as f64 / total as f64,
         }
     }
 
@@ -812,6 +811,21 @@ impl<S, M> Exploration<S, M> {
             map: without_journal(self.map),
             occupancy: self.occupancy,
         }
+    }
+}
+
+/// How many of the report cells (`None`: every cell) have an entropy above
+/// `epsilon` (nats), and how many report cells there are.
+fn uncertain_cells(entropy: &[f32], report_cells: Option<&[bool]>, epsilon: f64) -> (usize, usize) {
+    let uncertain = |i: usize| f64::from(entropy[i]) > epsilon;
+    match report_cells {
+        Some(cells) => (0..cells.len())
+            .filter(|&i| cells[i])
+            .fold((0, 0), |(u, t), i| (u + usize::from(uncertain(i)), t + 1)),
+        None => (
+            (0..entropy.len()).filter(|&i| uncertain(i)).count(),
+            entropy.len(),
+        ),
     }
 }
 
@@ -939,6 +953,10 @@ mod tests {
                 let differs =
                     (0..entropy.len()).find(|&i| run.entropy[i].to_bits() != entropy[i].to_bits());
                 assert_eq!(differs, None, "{strategy:?}, step {}: cell", run.steps);
+                let epsilon = run.config.epsilon;
+                let counted = uncertain_cells(&entropy, run.report_cells.as_deref(), epsilon);
+                assert_eq!(run.uncertain, counted, "{strategy:?}, step {}", run.steps);
+                assert!(counted.0 > 0 && counted.0 < counted.1);
                 // What the next step plans on, made anew.
                 run.update_planning_map().unwrap();
                 let made = run.map.with_contacts(&run.contact_cells).unwrap();
