@@ -2,6 +2,7 @@
 //! any evidence has reached.
 
 use super::CoverageMap;
+use super::storage::ml_value;
 use crate::error::Result;
 use crate::grid::Cell;
 use crate::histogram;
@@ -89,6 +90,12 @@ impl CoverageMap {
             copy.data[i * bins..(i + 1) * bins].copy_from_slice(&pinned);
         }
         Ok(copy)
+    }
+
+    /// The ML coverage of a cell [`CoverageMap::with_contacts`] pins, as
+    /// [`CoverageMap::ml`] reads it, on a map of `bins` bins.
+    pub(crate) fn pinned_ml(bins: usize) -> f32 {
+        ml_value(bins)(&pinned_histogram(bins))
     }
 
     /// Bring `self`, made by `map.with_contacts(..)` earlier, up to date:

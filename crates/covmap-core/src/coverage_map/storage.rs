@@ -223,7 +223,7 @@ impl CoverageMap {
 
 /// A histogram's most probable coverage value with `bins` bins (ties to the
 /// lower bin).
-fn ml_value(bins: usize) -> impl Fn(&[f32]) -> f32 {
+pub(super) fn ml_value(bins: usize) -> impl Fn(&[f32]) -> f32 {
     let scale = 1.0 / (bins - 1) as f32;
     move |h| histogram::argmax(h) as f32 * scale
 }

@@ -126,12 +126,16 @@ pub struct Exploration<S, M> {
     failed_goals: Vec<usize>,
     /// Every cell the robot has run into, in the order it did.
     contact_cells: Vec<Cell>,
-    /// The coverage map with the contact cells pinned, for planning
-    /// (`None`: no contact yet, the map itself), kept up to date from the
-    /// map's entropy journal (see [`Exploration::update_planning_map`]).
+    /// The coverage map with the contact cells pinned, for a strategy that
+    /// plans on it (`None`: no contact yet, the map itself; or a strategy
+    /// that reads its ML coverage alone), kept up to date from the map's
+    /// entropy journal (see [`Exploration::update_planning_map`]).
     planning_map: Option<CoverageMap>,
-    /// The ML coverage of the map planned on, kept with it.
+    /// The ML coverage of the coverage map with the contact cells pinned,
+    /// kept with it.
     planning_ml: Vec<f32>,
+    /// The ML coverage of a pinned cell.
+    pinned_ml: f32,
     /// How many entries of the map's entropy journal the planning map and
     /// its ML coverage have taken in.
     planning_read: usize,
@@ -272,6 +276,7 @@ impl<S: ScanSource, M: Motion> Exploration<S, M> {
             contact_cells: Vec::new(),
             planning_map: None,
             planning_ml,
+            pinned_ml: CoverageMap::pinned_ml(bins),
             planning_read: 0,
             changed: Distinct::new(grid.len()),
         })
@@ -616,45 +621,39 @@ impl<S: ScanSource, M: Motion> Exploration<S, M> {
         self.timing.integration_s += started.elapsed().as_secs_f64();
     }
 
-    /// Bring the map the strategies plan on up to date before they decide:
-    /// the coverage map with every contact cell pinned
+    /// Bring what the strategies plan on up to date before they decide:
+    /// the ML coverage of the coverage map with every contact cell pinned,
+    /// of the cells the journal names since (the map's) and of the contact
+    /// cells (a pinned cell's); and, for a strategy that plans on the
+    /// histograms, the map with the contacts pinned
     /// ([`CoverageMap::with_contacts`]), made at the first contact and then
-    /// kept, the cells the journal names since copied and the contacts
-    /// pinned again; and its ML coverage, of the same cells. The same
-    /// histograms and ML coverage as a copy made anew, without copying the
-    /// whole map at every step; the copy keeps the map's kernel table, so
-    /// that planning does not compute the kernels again every time.
+    /// kept, the cells the journal names copied and the contacts pinned
+    /// again. The same histograms and ML coverage as a copy made anew,
+    /// without copying the whole map at every step; the copy keeps the
+    /// map's kernel table, so that planning does not compute the kernels
+    /// again every time.
     fn update_planning_map(&mut self) -> Result<()> {
         // The journal names a cell once a scan that measured it: each
         // changed cell is taken once.
         let fresh = &self.map.entropy_journal()[self.planning_read..];
         let changed = self.changed.of(fresh.iter().map(|&(i, _)| i));
-        match &mut self.planning_map {
-            None if self.contact_cells.is_empty() => {
-                for &i in changed {
-                    self.planning_ml[i] = self.map.ml_at(i);
+        for &i in changed {
+            self.planning_ml[i] = self.map.ml_at(i);
+        }
+        let grid = *self.map.grid();
+        for &cell in &self.contact_cells {
+            self.planning_ml[grid.index(cell)?] = self.pinned_ml;
+        }
+        if self.strategy.plans_on_histograms() && !self.contact_cells.is_empty() {
+            match &mut self.planning_map {
+                Some(planned) => {
+                    let cells = changed.iter().copied();
+                    planned.update_with_contacts(&self.map, cells, &self.contact_cells)?;
                 }
-            }
-            planning => {
-                let cells = changed.iter().copied();
-                let planned = match planning {
-                    Some(planned) => {
-                        planned.update_with_contacts(&self.map, cells, &self.contact_cells)?;
-                        planned
-                    }
-                    None => {
-                        let mut planned = self.map.with_contacts(&self.contact_cells)?;
-                        planned.share_kernel_table(&self.map);
-                        planning.insert(planned)
-                    }
-                };
-                let grid = *planned.grid();
-                for &i in changed {
-                    self.planning_ml[i] = planned.ml_at(i);
-                }
-                for &cell in &self.contact_cells {
-                    let i = grid.index(cell)?;
-                    self.planning_ml[i] = planned.ml_at(i);
+                None => {
+                    let mut planned = self.map.with_contacts(&self.contact_cells)?;
+                    planned.share_kernel_table(&self.map);
+                    self.planning_map = Some(planned);
                 }
             }
         }
@@ -677,7 +676,10 @@ impl<S: ScanSource, M: Motion> Exploration<S, M> {
     fn chooser_and_view(&mut self) -> (&mut Chooser, View<'_>) {
         let view = View {
             map: &self.map,
-            planning_map: self.planning_map.as_ref().unwrap_or(&self.map),
+            planning_map: self
+                .strategy
+                .plans_on_histograms()
+                .then(|| self.planning_map.as_ref().unwrap_or(&self.map)),
             planning_ml: &self.planning_ml,
             contact_cells: &self.contact_cells,
             occupancy: &self.occupancy,
@@ -960,10 +962,12 @@ mod tests {
                 // What the next step plans on, made anew.
                 run.update_planning_map().unwrap();
                 let made = run.map.with_contacts(&run.contact_cells).unwrap();
-                let planned = run.planning_map.as_ref().unwrap_or(&run.map);
-                let differs = (0..made.histograms().len())
-                    .find(|&i| made.histograms()[i].to_bits() != planned.histograms()[i].to_bits());
-                assert_eq!(differs, None, "{strategy:?}, step {}: value", run.steps);
+                if let Some(planned) = run.chooser_and_view().1.planning_map {
+                    let differs = (0..made.histograms().len()).find(|&i| {
+                        made.histograms()[i].to_bits() != planned.histograms()[i].to_bits()
+                    });
+                    assert_eq!(differs, None, "{strategy:?}, step {}: value", run.steps);
+                }
                 assert_eq!(
                     run.planning_ml,
                     made.ml(),
@@ -972,7 +976,11 @@ mod tests {
                 );
                 assert!(run.map.entropy_journal().len() < 20_000);
             }
-            assert!(run.planning_map.is_some(), "{strategy:?}: no contact");
+            assert_eq!(
+                run.planning_map.is_some(),
+                strategy.plans_on_histograms(),
+                "{strategy:?}"
+            );
             assert!(
                 run.contacts > 0 && run.steps > 3,
                 "{strategy:?}: {} contacts, {} steps",

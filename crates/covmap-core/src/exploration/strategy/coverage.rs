@@ -53,6 +53,7 @@
 //! of a nat from them.
 
 use super::{Decision, HEADINGS, Outcome, View, sees_all_around};
+use crate::coverage_map::CoverageMap;
 use crate::error::Result;
 use crate::exploration::ExplorationConfig;
 use crate::exploration::region::{navigator, reachable_region, region_of};
@@ -121,7 +122,7 @@ impl Coverage {
         // planner's cache keeps the map's read-outs they need).
         let (free, reach) = self.planner.free_and_reachable_cached(
             &mut self.cache,
-            view.planning_map,
+            planning_map(view),
             &view.pose,
         )?;
         if let Some(done) = self.termination(view, &reach)? {
@@ -168,7 +169,7 @@ impl Coverage {
         };
         self.planner.next_viewpoint_on(
             &mut self.cache,
-            view.planning_map,
+            planning_map(view),
             &pose,
             view.bearings,
             view.model,
@@ -180,10 +181,10 @@ impl Coverage {
     /// or the run has stagnated (see the module documentation).
     fn termination(&mut self, view: &View, reach: &Reachability) -> Result<Option<Termination>> {
         let band_m = view.model.as_dyn().range_model().band_m;
-        let region = region_of(reach, view.planning_map.grid(), &self.planner, band_m);
+        let region = region_of(reach, planning_map(view).grid(), &self.planner, band_m);
         debug_assert_eq!(
             region,
-            reachable_region(&self.planner, view.planning_map, &view.pose, band_m)?
+            reachable_region(&self.planner, planning_map(view), &view.pose, band_m)?
         );
         let epsilon = view.config.epsilon;
         let (mut certain, mut stagnated, mut open) = (0usize, 0usize, 0usize);
@@ -228,6 +229,17 @@ impl Coverage {
             self.exhausted.push(goal);
         }
     }
+}
+
+/// The map the strategy plans on, which the loop keeps for it
+/// ([`Strategy::plans_on_histograms`](super::Strategy)).
+fn planning_map<'v>(view: &View<'v>) -> &'v CoverageMap {
+    #[allow(
+        clippy::expect_used,
+        reason = "the loop keeps the map planned on for the coverage strategy"
+    )]
+    view.planning_map
+        .expect("the loop keeps the map planned on for the coverage strategy")
 }
 
 /// The least gain a goal must promise, nats: what making one cell at the
@@ -279,7 +291,7 @@ mod tests {
         let (entropy, ml) = (map.entropy(), map.ml());
         let view = View {
             map: &map,
-            planning_map: &map,
+            planning_map: Some(&map),
             planning_ml: &ml,
             contact_cells: &[],
             occupancy: &occupancy,
