@@ -6,7 +6,7 @@ use crate::error::{CovmapError, Result, check_parameter};
 use crate::footprint::visit;
 use crate::grid::Grid;
 use crate::pose::{Pose, validate_scan};
-use crate::sensor::SensorModel;
+use crate::sensor::{RangeModel, SensorModel};
 
 /// Per-cell scan counts, the exploration baseline of the paper's Table I.
 ///
@@ -177,14 +177,8 @@ impl ScanCounts {
         no_echo_reach_m: Option<&[f64]>,
     ) {
         let range = model.range_model();
-        let half = 0.5 * self.grid.resolution_m();
         for (k, (&r, &bearing)) in ranges.iter().zip(bearings).enumerate() {
-            let reach = if r >= range.max_range_m {
-                no_echo_reach_m.map_or(range.max_range_m, |c| c[k].min(range.max_range_m))
-            } else {
-                r + half
-            };
-            let w = self.weight(r.min(range.max_range_m));
+            let (reach, w) = self.beam(range, r, k, no_echo_reach_m);
             let counts = &mut self.counts;
             visit(
                 &self.grid,
@@ -195,6 +189,33 @@ impl ScanCounts {
                 &mut |i, _| counts[i] += w,
             );
         }
+    }
+}
+
+impl ScanCounts {
+    /// How far reading `k` of `r` metres intercepts cells along its beam,
+    /// and what it adds to each: up to the end point's cell, or for no echo
+    /// up to the maximum range (or `no_echo_reach_m[k]` if less); its
+    /// [`ScanCounts::weight`].
+    pub(crate) fn beam(
+        &self,
+        range: &RangeModel,
+        r: f64,
+        k: usize,
+        no_echo_reach_m: Option<&[f64]>,
+    ) -> (f64, f32) {
+        let reach = if r >= range.max_range_m {
+            no_echo_reach_m.map_or(range.max_range_m, |c| c[k].min(range.max_range_m))
+        } else {
+            r + 0.5 * self.grid.resolution_m()
+        };
+        (reach, self.weight(r.min(range.max_range_m)))
+    }
+
+    /// The counts, for a caller that visits a beam's cells (as far as
+    /// [`ScanCounts::beam`] says) to add its weight to each.
+    pub(crate) fn counts_mut(&mut self) -> &mut [f32] {
+        &mut self.counts
     }
 }
 

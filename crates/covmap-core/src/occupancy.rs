@@ -249,7 +249,8 @@ impl OccupancyGrid {
         Ok(())
     }
 
-    /// Integrate and count a validated scan.
+    /// Integrate and count a validated scan, both in one visit of each
+    /// beam's cells (the grid's beam reaches as far as the count's).
     fn apply<M: SensorModel + ?Sized>(
         &mut self,
         pose: &Pose,
@@ -265,12 +266,8 @@ impl OccupancyGrid {
         let half = 0.5 * grid.resolution_m();
         for (k, (&r, &bearing)) in ranges.iter().zip(bearings).enumerate() {
             let echo = r < range.max_range_m;
-            let reach = if echo {
-                r + half
-            } else {
-                no_echo_reach_m.map_or(range.max_range_m, |c| c[k].min(range.max_range_m))
-            };
-            let log_odds = &mut self.log_odds;
+            let (reach, weight) = self.counts.beam(range, r, k, no_echo_reach_m);
+            let (log_odds, counts) = (&mut self.log_odds, self.counts.counts_mut());
             visit(
                 &grid,
                 [pose.x_m, pose.y_m],
@@ -284,11 +281,10 @@ impl OccupancyGrid {
                         l_free
                     };
                     log_odds[i] = (log_odds[i] + l).clamp(-limit, limit);
+                    counts[i] += weight;
                 },
             );
         }
-        self.counts
-            .count(pose, ranges, bearings, model, no_echo_reach_m);
     }
 }
 
@@ -300,6 +296,56 @@ fn probability(l: &f32) -> f32 {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The grid counts the cells it visits for its log-odds, and they are
+    /// what counting alone gives, bit for bit: echoes, no echoes to the
+    /// maximum range and clipped, discounted beams.
+    #[test]
+    fn the_grids_counts_are_the_counts_alone() {
+        use crate::sensor::SonarModel;
+        let grid = Grid::new([0.0, 0.0], 0.05, 90, 120).unwrap();
+        let sonar = SonarModel::default();
+        let max = sonar.range.max_range_m;
+        let counts = ScanCounts::with_discount(grid, 2.0).unwrap();
+        let mut occupancy =
+            OccupancyGrid::with_model(OccupancyModel::default(), counts.clone()).unwrap();
+        let mut alone = counts;
+        let bearings: Vec<f64> = (0..24).map(|k| f64::from(k) * 0.2618).collect();
+        for k in 0..12 {
+            let pose = Pose::new(1.5 + 0.3 * f64::from(k), 2.0 + 0.1 * f64::from(k % 4), 0.1);
+            let ranges: Vec<f64> = (0..24)
+                .map(|j| {
+                    if (j + k) % 5 == 0 {
+                        max
+                    } else {
+                        0.4 + 0.13 * f64::from(j)
+                    }
+                })
+                .collect();
+            let reaches: Vec<f64> = (0..24).map(|j| 0.5 + 0.2 * f64::from(j)).collect();
+            if k % 2 == 0 {
+                occupancy
+                    .integrate(&pose, &ranges, &bearings, &sonar)
+                    .unwrap();
+                alone.integrate(&pose, &ranges, &bearings, &sonar).unwrap();
+            } else {
+                occupancy
+                    .integrate_clipped(&pose, &ranges, &bearings, &sonar, &reaches)
+                    .unwrap();
+                alone
+                    .integrate_clipped(&pose, &ranges, &bearings, &sonar, &reaches)
+                    .unwrap();
+            }
+        }
+        let bits = |c: &[f32]| c.iter().map(|v| v.to_bits()).collect::<Vec<_>>();
+        assert_eq!(bits(occupancy.counts().counts()), bits(alone.counts()));
+        let counted = alone.counts().iter().filter(|&&c| c > 0.0).count();
+        assert!(counted > 1000, "{counted} cells counted");
+        assert!(
+            alone.counts().iter().any(|&c| c.fract() != 0.0),
+            "discounted beams"
+        );
+    }
 
     /// A deserialised grid is checked as the constructors check it.
     #[test]

@@ -4,7 +4,7 @@
 //! ```text
 //! cargo run --release -p covmap-sim --example table1 -- [--worlds corridor,office] [--seeds N]
 //!     [--strategies coverage,count1,count50,frontier] [--scan-spacing M] [--resolution M] [--clear-no-echo]
-//!     [--no-multipath] [--laser] [--verbose]
+//!     [--no-multipath] [--laser] [--verbose] [--digest]
 //! ```
 //!
 //! Prints one row a run: path length, the fraction of evaluation cells whose
@@ -13,7 +13,11 @@
 //! 0.5 m/s to wall time. `--clear-no-echo`: no-echo readings clear their
 //! whole footprint, as the sensor model alone has it (`occlude_no_echo` off);
 //! `--no-multipath`: the simulated sonar's specular misses never come back
-//! over a second surface (`multipath_probability` 0).
+//! over a second surface (`multipath_probability` 0). `--digest`: a last
+//! column with a 64-bit digest of everything a run leaves but its timing
+//! (the trajectory, the per-step trace, the coverage map's histograms and
+//! entropy history, the occupancy grid, the scan counts), so that a change
+//! meant to leave the runs as they were can be checked bit for bit.
 
 use std::process::ExitCode;
 use std::sync::Arc;
@@ -42,8 +46,8 @@ fn main() -> ExitCode {
     let mut strategies: Vec<String> = ["coverage", "count1", "count50", "frontier"]
         .map(String::from)
         .to_vec();
-    let (mut verbose, mut laser, mut clear_no_echo, mut no_multipath) =
-        (false, false, false, false);
+    let (mut verbose, mut laser, mut clear_no_echo, mut no_multipath, mut digest) =
+        (false, false, false, false, false);
     let mut scan_spacing_m = None;
     let mut resolution_m = None;
     let mut args = std::env::args().skip(1);
@@ -70,6 +74,7 @@ fn main() -> ExitCode {
             "--laser" => laser = true,
             "--clear-no-echo" => clear_no_echo = true,
             "--no-multipath" => no_multipath = true,
+            "--digest" => digest = true,
             _ => return usage(&format!("unexpected argument {a:?}")),
         }
     }
@@ -118,7 +123,7 @@ fn main() -> ExitCode {
                 if let Some(m) = resolution_m {
                     options.resolution_m = m;
                 }
-                match run(&world, s, &options, verbose) {
+                match run(&world, s, &options, verbose, digest) {
                     Ok(row) => println!("{:<9} {:<8} {:>4} {row}", name, world_name, seed),
                     Err(e) => {
                         eprintln!("table1: {e}");
@@ -136,6 +141,7 @@ fn run(
     strategy: Strategy,
     options: &ExploreOptions,
     verbose: bool,
+    digest: bool,
 ) -> Result<String, Box<dyn std::error::Error>> {
     let mut sim = SimExploration::new(Arc::clone(world), strategy, options)?;
     while let Some(step) = sim.step()? {
@@ -174,8 +180,13 @@ fn run(
         first(0.01)
     );
     let real_s = r.path_length_m / 0.5;
+    let digest = if digest {
+        format!("   digest {:016x}", run_digest(r))
+    } else {
+        String::new()
+    };
     Ok(format!(
-        "{:>8.1} {:>10.2} {:<10} {:>5} {:>6} {:>8} {:>8.4} {:>8.4} {:>8.2} {:>7.0}   (plan {:.2} s, sense {:.2} s, integrate {:.2} s)",
+        "{:>8.1} {:>10.2} {:<10} {:>5} {:>6} {:>8} {:>8.4} {:>8.4} {:>8.2} {:>7.0}   (plan {:.2} s, sense {:.2} s, integrate {:.2} s){digest}",
         r.path_length_m,
         100.0 * run.high_entropy_fraction,
         r.termination.map_or("-", |t| t.as_str()),
@@ -192,9 +203,63 @@ fn run(
     ))
 }
 
+/// FNV-1a over the bits of everything `r` holds but its timing: equal
+/// digests, runs equal bit for bit (but for a collision).
+fn run_digest(r: &covmap_core::exploration::ExplorationResult) -> u64 {
+    let mut hash = 0xcbf2_9ce4_8422_2325_u64;
+    let mut add = |bits: u64| {
+        for byte in bits.to_le_bytes() {
+            hash = (hash ^ u64::from(byte)).wrapping_mul(0x0100_0000_01b3);
+        }
+    };
+    add(r.path_length_m.to_bits());
+    for byte in r.termination.map_or("-", |t| t.as_str()).bytes() {
+        add(u64::from(byte));
+    }
+    for n in [r.scans, r.steps, r.contacts] {
+        add(n as u64);
+    }
+    for (p, &scanned) in r.trajectory.poses.iter().zip(&r.trajectory.scanned) {
+        for v in [p.x_m, p.y_m, p.theta_rad] {
+            add(v.to_bits());
+        }
+        add(u64::from(scanned));
+    }
+    let t = &r.trace;
+    for k in 0..t.path_length_m.len() {
+        add(t.path_length_m[k].to_bits());
+        add(t.scans[k] as u64);
+        add(t.uncertain_fraction[k].to_bits());
+        add(u64::from(t.contact[k]));
+    }
+    for v in r.map.histograms() {
+        add(u64::from(v.to_bits()));
+    }
+    if let Some(history) = r.map.history_state() {
+        for v in history.entropies {
+            add(u64::from(v.to_bits()));
+        }
+        for n in history.count {
+            add(u64::from(n));
+        }
+    }
+    for v in r
+        .occupancy
+        .log_odds()
+        .iter()
+        .chain(r.occupancy.counts().counts())
+    {
+        add(u64::from(v.to_bits()));
+    }
+    for seen in r.occupancy.observed() {
+        add(u64::from(seen));
+    }
+    hash
+}
+
 fn usage(problem: &str) -> ExitCode {
     eprintln!(
-        "table1: {problem}\nusage: table1 [--worlds corridor,office] [--seeds N] [--strategies coverage,count1,count1d,count50,count50u,frontier] [--scan-spacing M] [--resolution M] [--clear-no-echo] [--no-multipath] [--laser] [--verbose]"
+        "table1: {problem}\nusage: table1 [--worlds corridor,office] [--seeds N] [--strategies coverage,count1,count1d,count50,count50u,frontier] [--scan-spacing M] [--resolution M] [--clear-no-echo] [--no-multipath] [--laser] [--verbose] [--digest]"
     );
     ExitCode::from(2)
 }

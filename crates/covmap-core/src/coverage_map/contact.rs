@@ -2,6 +2,7 @@
 //! any evidence has reached.
 
 use super::CoverageMap;
+use super::storage::ml_value;
 use crate::error::Result;
 use crate::grid::Cell;
 use crate::histogram;
@@ -77,8 +78,7 @@ impl CoverageMap {
             .map(|&cell| self.grid.index(cell))
             .collect::<Result<Vec<_>>>()?;
         let bins = self.bins;
-        let mut pinned = vec![histogram::BIN_FLOOR; bins];
-        pinned[bins - 1] = 1.0 - (bins - 1) as f32 * histogram::BIN_FLOOR;
+        let pinned = pinned_histogram(bins);
         let mut copy = CoverageMap {
             grid: self.grid,
             bins,
@@ -90,6 +90,51 @@ impl CoverageMap {
             copy.data[i * bins..(i + 1) * bins].copy_from_slice(&pinned);
         }
         Ok(copy)
+    }
+
+    /// The ML coverage of a cell [`CoverageMap::with_contacts`] pins, as
+    /// [`CoverageMap::ml`] reads it, on a map of `bins` bins.
+    pub(crate) fn pinned_ml(bins: usize) -> f32 {
+        ml_value(bins)(&pinned_histogram(bins))
+    }
+
+    /// Bring `self`, made by `map.with_contacts(..)` earlier, up to date:
+    /// the histograms of the cells `changed` (every cell whose histogram in
+    /// `map` may have changed since) copied from `map`, and every cell of
+    /// `cells` pinned. The same histograms as `map.with_contacts(cells)`,
+    /// without copying the whole map: a loop planning after every step
+    /// copies the few cells its scans changed.
+    ///
+    /// # Errors
+    /// As [`CoverageMap::with_contacts`]; `self` is unchanged then.
+    ///
+    /// # Panics
+    /// If `map` has another grid or bin count, or a changed cell is not on
+    /// its grid.
+    pub(crate) fn update_with_contacts(
+        &mut self,
+        map: &CoverageMap,
+        changed: impl Iterator<Item = usize>,
+        cells: &[Cell],
+    ) -> Result<()> {
+        assert!(
+            self.grid == map.grid && self.bins == map.bins,
+            "a copy of the map"
+        );
+        let indices = cells
+            .iter()
+            .map(|&cell| self.grid.index(cell))
+            .collect::<Result<Vec<_>>>()?;
+        let bins = self.bins;
+        for i in changed {
+            let at = i * bins..(i + 1) * bins;
+            self.data[at.clone()].copy_from_slice(&map.data[at]);
+        }
+        let pinned = pinned_histogram(bins);
+        for i in indices {
+            self.data[i * bins..(i + 1) * bins].copy_from_slice(&pinned);
+        }
+        Ok(())
     }
 
     /// Which cells some evidence has reached, row-major: those whose
@@ -107,6 +152,14 @@ impl CoverageMap {
     pub fn try_observed(&self) -> crate::Result<Vec<bool>> {
         crate::memory::try_collect(self.cells().map(observed), "the observed cells")
     }
+}
+
+/// A cell certainly covered: all its mass in the top bin, the others at the
+/// floor.
+fn pinned_histogram(bins: usize) -> Vec<f32> {
+    let mut pinned = vec![histogram::BIN_FLOOR; bins];
+    pinned[bins - 1] = 1.0 - (bins - 1) as f32 * histogram::BIN_FLOOR;
+    pinned
 }
 
 /// Whether a histogram has moved from the uniform prior.

@@ -3,12 +3,9 @@
 
 use super::CoverageMap;
 use crate::error::{CovmapError, Result};
-use crate::footprint::visit;
 use crate::grid::Cell;
 use crate::histogram;
 use crate::memory;
-use crate::pose::Pose;
-use crate::sensor::SensorModel;
 
 /// Measurements of a cell an entropy change is judged over.
 pub const STAGNATION_MEASUREMENTS: usize = 5;
@@ -26,6 +23,13 @@ pub(super) struct History {
     /// The scan that last touched each cell.
     stamp: Vec<u32>,
     scan: u32,
+    /// The cells the scan being integrated touches, each once, in the order
+    /// it first does (kept between scans for its memory).
+    touched: Vec<usize>,
+    /// Every measurement since the journal was last drained, in order: the
+    /// cell and its entropy then (`None`: not kept). See
+    /// [`CoverageMap::keep_entropy_journal`].
+    journal: Option<Vec<(usize, f32)>>,
 }
 
 /// The persistent part of a map's entropy history, to save a map with it and
@@ -80,6 +84,8 @@ impl CoverageMap {
                 count: vec![0; self.grid.len()],
                 stamp: vec![0; self.grid.len()],
                 scan: 0,
+                touched: Vec::new(),
+                journal: None,
             })
         });
     }
@@ -99,6 +105,8 @@ impl CoverageMap {
                 count: memory::try_filled(0, cells, "the measurement counts")?,
                 stamp: memory::try_filled(0, cells, "the history's scan stamps")?,
                 scan: 0,
+                touched: Vec::new(),
+                journal: None,
             })),
         };
         Ok(())
@@ -183,6 +191,8 @@ impl CoverageMap {
             count: state.count,
             stamp: vec![0; cells],
             scan: 0,
+            touched: Vec::new(),
+            journal: None,
         }));
         Ok(())
     }
@@ -217,6 +227,41 @@ impl CoverageMap {
         }
     }
 
+    /// Keep (or stop keeping) a journal of the history's measurements: each
+    /// measured cell and the entropy of its histogram then
+    /// ([`CoverageMap::entropy_journal`]), until
+    /// [`CoverageMap::clear_entropy_journal`]. Where every change of the map
+    /// is a measurement (scans and contacts, with the history kept), the
+    /// journal holds every cell changed since it was cleared, and its last
+    /// entry for a cell the cell's entropy now: a loop that keeps read-outs
+    /// of the map up to date (its entropy, a copy to plan on) reads the
+    /// changed cells from it, instead of comparing every histogram with a
+    /// copy and computing the entropy of each changed one again. No effect
+    /// while the history is off; turning the history on again starts
+    /// without a journal.
+    pub(crate) fn keep_entropy_journal(&mut self, on: bool) {
+        if let Some(history) = self.history.as_deref_mut() {
+            history.journal = on.then(Vec::new);
+        }
+    }
+
+    /// Every measurement since the journal was last cleared, in the order
+    /// they were made: the cell's row-major index and its entropy then
+    /// (nats). Empty while no journal is kept.
+    pub(crate) fn entropy_journal(&self) -> &[(usize, f32)] {
+        self.history
+            .as_deref()
+            .and_then(|h| h.journal.as_deref())
+            .unwrap_or(&[])
+    }
+
+    /// Empty the journal (its memory kept for the next measurements).
+    pub(crate) fn clear_entropy_journal(&mut self) {
+        if let Some(journal) = self.history.as_deref_mut().and_then(|h| h.journal.as_mut()) {
+            journal.clear();
+        }
+    }
+
     /// [`CoverageMap::stagnated`] by row-major index (below `grid.len()`).
     pub(crate) fn stagnated_at(&self, index: usize) -> bool {
         let Some(history) = &self.history else {
@@ -244,18 +289,11 @@ impl CoverageMap {
         }
     }
 
-    /// Count a validated scan as one measurement of every cell it updates,
-    /// and keep their entropies, if the history is kept.
-    pub(super) fn record_history<M: SensorModel + ?Sized>(
-        &mut self,
-        pose: &Pose,
-        ranges: &[f64],
-        bearings: &[f64],
-        no_echo_reach_m: Option<&[f64]>,
-        model: &M,
-    ) {
+    /// Count the scan just integrated (its cells marked through the
+    /// [`Touches`] of [`History::begin_scan`]) as one measurement of every
+    /// cell it updated, and keep their entropies, if the history is kept.
+    pub(super) fn record_history(&mut self) {
         let Self {
-            grid,
             bins,
             data,
             history,
@@ -264,38 +302,56 @@ impl CoverageMap {
         let Some(history) = history.as_deref_mut() else {
             return;
         };
-        history.scan = history.scan.wrapping_add(1).max(1);
-        let scan = history.scan;
-        let range = model.range_model();
-        let mut touched = Vec::new();
-        for (k, (&r, &bearing)) in ranges.iter().zip(bearings).enumerate() {
-            let (reach, _) = super::update::beam_reach(range, r, k, no_echo_reach_m);
-            visit(
-                grid,
-                [pose.x_m, pose.y_m],
-                pose.theta_rad + bearing,
-                reach,
-                model.footprint(),
-                &mut |i, _| {
-                    if history.stamp[i] != scan {
-                        history.stamp[i] = scan;
-                        touched.push(i);
-                    }
-                },
-            );
-        }
-        for i in touched {
+        let touched = std::mem::take(&mut history.touched);
+        for &i in &touched {
             history.measure(i, &data[i * *bins..(i + 1) * *bins]);
+        }
+        history.touched = touched;
+    }
+}
+
+/// The cells a scan touches, marked as its update visits them: each cell
+/// once, in the order the update first reaches it (one traversal of the
+/// beams' footprints for the update and the history).
+pub(super) struct Touches<'h> {
+    stamp: &'h mut [u32],
+    scan: u32,
+    touched: &'h mut Vec<usize>,
+}
+
+impl Touches<'_> {
+    /// Mark the cell at row-major `index` as touched by the scan.
+    #[inline(always)]
+    pub fn mark(&mut self, index: usize) {
+        if self.stamp[index] != self.scan {
+            self.stamp[index] = self.scan;
+            self.touched.push(index);
         }
     }
 }
 
 impl History {
+    /// Start a scan: its cells are marked through the touches returned, and
+    /// measured by [`CoverageMap::record_history`].
+    pub(super) fn begin_scan(&mut self) -> Touches<'_> {
+        self.scan = self.scan.wrapping_add(1).max(1);
+        self.touched.clear();
+        Touches {
+            stamp: &mut self.stamp,
+            scan: self.scan,
+            touched: &mut self.touched,
+        }
+    }
+
     /// Count one measurement of cell `i`, whose histogram is now `h`.
     fn measure(&mut self, i: usize, h: &[f32]) {
         let measured = self.count[i] as usize;
-        self.entropies[i][measured % (STAGNATION_MEASUREMENTS + 1)] = histogram::entropy(h);
+        let entropy = histogram::entropy(h);
+        self.entropies[i][measured % (STAGNATION_MEASUREMENTS + 1)] = entropy;
         self.count[i] = self.count[i].saturating_add(1);
+        if let Some(journal) = &mut self.journal {
+            journal.push((i, entropy));
+        }
     }
 }
 
@@ -303,6 +359,7 @@ impl History {
 mod tests {
     use super::*;
     use crate::grid::Grid;
+    use crate::pose::Pose;
     use crate::sensor::{LaserModel, SonarModel};
 
     #[test]
@@ -358,6 +415,45 @@ mod tests {
                     .unwrap();
             }
         }
+    }
+
+    /// The journal's last entry for a cell is its entropy now, after scans
+    /// and contacts, and every changed cell has one; clearing empties it; no
+    /// journal, no entries.
+    #[test]
+    fn the_journal_holds_each_changed_cells_entropy_now() {
+        let g = Grid::new([0.0, 0.0], 0.05, 4, 40).unwrap();
+        let mut map = CoverageMap::new(g);
+        map.track_history(true);
+        map.keep_entropy_journal(true);
+        let mut kept = map.entropy();
+        for round in 0..3 {
+            let before = map.histograms().to_vec();
+            settling_scans(&mut map, 4 * round..4 * round + 4);
+            map.integrate_contact(Cell {
+                row: 2,
+                col: 10 + round,
+            })
+            .unwrap();
+            let journal = map.entropy_journal();
+            assert!(!journal.is_empty());
+            for &(i, e) in journal {
+                kept[i] = e;
+            }
+            let now = map.entropy();
+            assert!((0..now.len()).all(|i| kept[i].to_bits() == now[i].to_bits()));
+            let changed = (0..g.len()).filter(|&i| {
+                map.histograms()[16 * i..16 * (i + 1)] != before[16 * i..16 * (i + 1)]
+            });
+            for i in changed {
+                assert!(journal.iter().any(|&(j, _)| j == i), "cell {i}");
+            }
+            map.clear_entropy_journal();
+            assert!(map.entropy_journal().is_empty());
+        }
+        map.keep_entropy_journal(false);
+        settling_scans(&mut map, 0..2);
+        assert!(map.entropy_journal().is_empty());
     }
 
     #[test]

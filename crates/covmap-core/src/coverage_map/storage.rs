@@ -158,6 +158,25 @@ impl CoverageMap {
         Ok(&self.data[i * self.bins..(i + 1) * self.bins])
     }
 
+    /// The ML coverage of the cell at row-major `index`, as
+    /// [`CoverageMap::ml`] computes it.
+    ///
+    /// # Panics
+    /// If `index` is not a cell of the grid.
+    pub(crate) fn ml_at(&self, index: usize) -> f32 {
+        ml_value(self.bins)(&self.data[index * self.bins..(index + 1) * self.bins])
+    }
+
+    /// Keep `map`'s kernel table (if it has one) as this map's, so that a
+    /// copy planned on (a [`CoverageMap::with_contacts`]) finds the kernels
+    /// of the model the map is integrated with instead of computing them at
+    /// every plan: a table is a function of the range model, the
+    /// resolution and the bins alone, and is checked against them before
+    /// use.
+    pub(crate) fn share_kernel_table(&mut self, map: &CoverageMap) {
+        self.table.clone_from(&map.table);
+    }
+
     /// The maximum-likelihood map: each cell's most probable coverage value.
     ///
     /// Ties go to the lower bin, so a cell still at the uniform prior reads 0:
@@ -204,7 +223,7 @@ impl CoverageMap {
 
 /// A histogram's most probable coverage value with `bins` bins (ties to the
 /// lower bin).
-fn ml_value(bins: usize) -> impl Fn(&[f32]) -> f32 {
+pub(super) fn ml_value(bins: usize) -> impl Fn(&[f32]) -> f32 {
     let scale = 1.0 / (bins - 1) as f32;
     move |h| histogram::argmax(h) as f32 * scale
 }

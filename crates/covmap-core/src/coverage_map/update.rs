@@ -4,6 +4,7 @@
 use std::borrow::Cow;
 
 use super::CoverageMap;
+use super::history::{History, Touches};
 use super::storage::cached_or_new;
 use crate::error::Result;
 use crate::footprint::{CellVisitor, visit};
@@ -70,6 +71,8 @@ impl CoverageMap {
             &self.grid,
             self.bins,
         )?;
+        // The history's cells are marked as the update visits them.
+        let mut touches = self.history.as_deref_mut().map(History::begin_scan);
         // Pick the update once per scan, so the per-cell loop is straight code.
         let updates = with_bins!(self.bins, |N| apply::<N, M>(
             &self.grid,
@@ -77,13 +80,14 @@ impl CoverageMap {
             &table,
             pose,
             (ranges, bearings, no_echo_reach_m),
-            model
+            model,
+            touches.as_mut(),
         ));
         if let Cow::Owned(table) = table {
             // The table of the model the next scans most likely come from.
             self.table = Some(Box::new(table));
         }
-        self.record_history(pose, ranges, bearings, no_echo_reach_m, model);
+        self.record_history();
         Ok(updates)
     }
 }
@@ -125,7 +129,7 @@ pub(super) fn beam_reach(
 
 /// Multiply the kernels of a validated scan into `data`, the histograms of
 /// `grid`'s cells, `N` bins each (`N = 0`: any number), as many as `table`
-/// serves.
+/// serves; every cell updated marked in `touches`, if given.
 fn apply<const N: usize, M: SensorModel + ?Sized>(
     grid: &Grid,
     data: &mut [f32],
@@ -133,6 +137,7 @@ fn apply<const N: usize, M: SensorModel + ?Sized>(
     pose: &Pose,
     (ranges, bearings, no_echo_reach_m): (&[f64], &[f64], Option<&[f64]>),
     model: &M,
+    mut touches: Option<&mut Touches<'_>>,
 ) -> usize {
     let bins = table.bins();
     debug_assert_eq!(data.len(), grid.len() * bins);
@@ -149,6 +154,7 @@ fn apply<const N: usize, M: SensorModel + ?Sized>(
             mix: (range.posterior_floor * bins as f64) as f32,
             lookup: table.reading(r.min(range.max_range_m), echo),
             updates: 0,
+            touches: touches.as_deref_mut(),
         };
         visit(
             grid,
@@ -163,8 +169,9 @@ fn apply<const N: usize, M: SensorModel + ?Sized>(
     updates
 }
 
-/// The per-cell work of one beam: look the kernel up, multiply it in.
-struct BeamUpdate<'a, const N: usize> {
+/// The per-cell work of one beam: look the kernel up, multiply it in, mark
+/// the cell for the history.
+struct BeamUpdate<'a, 't, const N: usize> {
     data: &'a mut [f32],
     table: &'a KernelTable,
     bins: usize,
@@ -174,9 +181,10 @@ struct BeamUpdate<'a, const N: usize> {
     mix: f32,
     lookup: ReadingLookup,
     updates: usize,
+    touches: Option<&'a mut Touches<'t>>,
 }
 
-impl<const N: usize> CellVisitor for BeamUpdate<'_, N> {
+impl<const N: usize> CellVisitor for BeamUpdate<'_, '_, N> {
     #[inline(always)]
     fn cell(&mut self, index: usize, d_l: f64, _enter_m: f64) {
         let h = &mut self.data[index * self.bins..(index + 1) * self.bins];
@@ -184,6 +192,9 @@ impl<const N: usize> CellVisitor for BeamUpdate<'_, N> {
         histogram::update_bins::<N>(h, k, self.floor);
         if self.mix > 0.0 {
             histogram::mix_uniform(h, self.mix);
+        }
+        if let Some(touches) = self.touches.as_deref_mut() {
+            touches.mark(index);
         }
         self.updates += 1;
     }

@@ -37,7 +37,6 @@ use crate::counting::ScanCounts;
 use crate::coverage_map::CoverageMap;
 use crate::error::{CovmapError, Result};
 use crate::grid::{Cell, Grid};
-use crate::histogram;
 use crate::histogram::DEFAULT_BINS;
 use crate::occupancy::{OccupancyGrid, OccupancyModel};
 use crate::pose::{Pose, check_bearings, check_pose};
@@ -103,12 +102,15 @@ pub struct Exploration<S, M> {
     chooser: Chooser,
     map: CoverageMap,
     occupancy: OccupancyGrid,
-    /// The coverage map's entropy after the last scan.
+    /// The coverage map's entropy after the last scan, kept up to date from
+    /// the map's entropy journal (see [`Exploration::refresh_entropy`]).
     entropy: Vec<f32>,
-    /// The histograms `entropy` was computed from: a refresh recomputes the
-    /// entropy of the cells whose histogram differs, and only those.
-    entropy_of: Vec<f32>,
+    /// How many entries of the map's entropy journal `entropy` has taken in.
+    entropy_read: usize,
     report_cells: Option<Vec<bool>>,
+    /// The report cells whose entropy is above epsilon, and all of them:
+    /// counted at the start and kept as the entropy map changes.
+    uncertain: (usize, usize),
     pose: Pose,
     trajectory: Trajectory,
     path_length_m: f64,
@@ -124,9 +126,58 @@ pub struct Exploration<S, M> {
     failed_goals: Vec<usize>,
     /// Every cell the robot has run into, in the order it did.
     contact_cells: Vec<Cell>,
-    /// The coverage map with the contact cells pinned, for planning
-    /// (`None`: no contact yet, the map itself).
+    /// The coverage map with the contact cells pinned, for a strategy that
+    /// plans on it (`None`: no contact yet, the map itself; or a strategy
+    /// that reads its ML coverage alone), kept up to date from the map's
+    /// entropy journal (see [`Exploration::update_planning_map`]).
     planning_map: Option<CoverageMap>,
+    /// The ML coverage of the coverage map with the contact cells pinned,
+    /// kept with it.
+    planning_ml: Vec<f32>,
+    /// The ML coverage of a pinned cell.
+    pinned_ml: f32,
+    /// How many entries of the map's entropy journal the planning map and
+    /// its ML coverage have taken in.
+    planning_read: usize,
+    /// The cells the journal names, each once, for the planning map.
+    changed: Distinct,
+}
+
+/// The distinct cells of a list that names some more than once, in the
+/// order they first appear: a cell's stamp says which list last took it.
+struct Distinct {
+    stamp: Vec<u32>,
+    list: u32,
+    cells: Vec<usize>,
+}
+
+impl Distinct {
+    /// For a grid of `cells` cells.
+    fn new(cells: usize) -> Self {
+        Self {
+            stamp: vec![0; cells],
+            list: 0,
+            cells: Vec::new(),
+        }
+    }
+
+    /// The distinct cells of `cells`, in the order they first appear.
+    fn of(&mut self, cells: impl Iterator<Item = usize>) -> &[usize] {
+        self.list = self.list.wrapping_add(1);
+        if self.list == 0 {
+            // Stamps of earlier lists would read as this one's.
+            self.stamp.fill(0);
+            self.list = 1;
+        }
+        self.cells.clear();
+        for i in cells {
+            if self.stamp[i] != self.list {
+                self.stamp[i] = self.list;
+                self.cells.push(i);
+            }
+        }
+        &self.cells
+    }
 }
 
 /// How one drive along a path went.
@@ -184,6 +235,7 @@ impl<S: ScanSource, M: Motion> Exploration<S, M> {
         }
         let mut map = CoverageMap::with_bins(grid, bins)?;
         map.track_history(true);
+        map.keep_entropy_journal(true);
         let counts = match strategy {
             Strategy::Counting {
                 discount_beyond_m: Some(d),
@@ -194,7 +246,8 @@ impl<S: ScanSource, M: Motion> Exploration<S, M> {
         let occupancy = OccupancyGrid::with_model(OccupancyModel::default(), counts)?;
         let chooser = Chooser::new(&strategy, &config, &grid, bins, &bearings)?;
         let entropy = map.entropy();
-        let entropy_of = map.histograms().to_vec();
+        let uncertain = uncertain_cells(&entropy, report_cells.as_deref(), config.epsilon);
+        let planning_ml = map.ml();
         Ok(Self {
             source,
             motion,
@@ -205,9 +258,10 @@ impl<S: ScanSource, M: Motion> Exploration<S, M> {
             chooser,
             map,
             occupancy,
-            entropy_of,
             entropy,
+            entropy_read: 0,
             report_cells,
+            uncertain,
             pose: start,
             trajectory: Trajectory::default(),
             path_length_m: 0.0,
@@ -221,6 +275,10 @@ impl<S: ScanSource, M: Motion> Exploration<S, M> {
             failed_goals: Vec::new(),
             contact_cells: Vec::new(),
             planning_map: None,
+            planning_ml,
+            pinned_ml: CoverageMap::pinned_ml(bins),
+            planning_read: 0,
+            changed: Distinct::new(grid.len()),
         })
     }
 
@@ -248,11 +306,7 @@ impl<S: ScanSource, M: Motion> Exploration<S, M> {
         // 1. Decide on the maps (the cells the robot ran into pinned: see
         //    `CoverageMap::with_contacts`).
         let started = Instant::now();
-        self.planning_map = if self.contact_cells.is_empty() {
-            None
-        } else {
-            Some(self.map.with_contacts(&self.contact_cells)?)
-        };
+        self.update_planning_map()?;
         let decision = {
             let (chooser, view) = self.chooser_and_view();
             chooser.decide(&view)?
@@ -543,34 +597,90 @@ impl<S: ScanSource, M: Motion> Exploration<S, M> {
     }
 
     /// Bring the entropy map up to date after the scans of a step: the
-    /// entropy of every cell whose histogram changed since, computed as
-    /// [`CoverageMap::entropy`] computes it (the same bits; most of a large
-    /// map is untouched by a step's scans).
+    /// entropy of every cell measured since, as the map's entropy history
+    /// computed it after its last measurement (its journal). Every change of
+    /// the map is a measurement (a scan's cells, a contact's cell, with the
+    /// history kept), so that entropy is the one [`CoverageMap::entropy`]
+    /// computes now, the same bits, with no histogram compared or entropy
+    /// computed again (a step's scans touch a small part of a large map,
+    /// and the history has just computed their entropies).
     fn refresh_entropy(&mut self) {
         let started = Instant::now();
-        let bins = self.map.bins();
-        let now = self.map.histograms();
-        for ((entropy, seen), h) in self
-            .entropy
-            .iter_mut()
-            .zip(self.entropy_of.chunks_exact_mut(bins))
-            .zip(now.chunks_exact(bins))
-        {
-            // Compared bit for bit, as the planning cache compares them.
-            if seen.iter().zip(h).any(|(a, b)| a.to_bits() != b.to_bits()) {
-                seen.copy_from_slice(h);
-                *entropy = histogram::entropy(h);
+        let epsilon = self.config.epsilon;
+        let reported = |i: usize| self.report_cells.as_ref().is_none_or(|cells| cells[i]);
+        for &(i, e) in &self.map.entropy_journal()[self.entropy_read..] {
+            if reported(i) {
+                let (was, now) = (f64::from(self.entropy[i]) > epsilon, f64::from(e) > epsilon);
+                self.uncertain.0 = self.uncertain.0 + usize::from(now) - usize::from(was);
             }
+            self.entropy[i] = e;
         }
+        self.entropy_read = self.map.entropy_journal().len();
+        self.done_with_journal();
         debug_assert_eq!(self.entropy, self.map.entropy());
         self.timing.integration_s += started.elapsed().as_secs_f64();
+    }
+
+    /// Bring what the strategies plan on up to date before they decide:
+    /// the ML coverage of the coverage map with every contact cell pinned,
+    /// of the cells the journal names since (the map's) and of the contact
+    /// cells (a pinned cell's); and, for a strategy that plans on the
+    /// histograms, the map with the contacts pinned
+    /// ([`CoverageMap::with_contacts`]), made at the first contact and then
+    /// kept, the cells the journal names copied and the contacts pinned
+    /// again. The same histograms and ML coverage as a copy made anew,
+    /// without copying the whole map at every step; the copy keeps the
+    /// map's kernel table, so that planning does not compute the kernels
+    /// again every time.
+    fn update_planning_map(&mut self) -> Result<()> {
+        // The journal names a cell once a scan that measured it: each
+        // changed cell is taken once.
+        let fresh = &self.map.entropy_journal()[self.planning_read..];
+        let changed = self.changed.of(fresh.iter().map(|&(i, _)| i));
+        for &i in changed {
+            self.planning_ml[i] = self.map.ml_at(i);
+        }
+        let grid = *self.map.grid();
+        for &cell in &self.contact_cells {
+            self.planning_ml[grid.index(cell)?] = self.pinned_ml;
+        }
+        if self.strategy.plans_on_histograms() && !self.contact_cells.is_empty() {
+            match &mut self.planning_map {
+                Some(planned) => {
+                    let cells = changed.iter().copied();
+                    planned.update_with_contacts(&self.map, cells, &self.contact_cells)?;
+                }
+                None => {
+                    let mut planned = self.map.with_contacts(&self.contact_cells)?;
+                    planned.share_kernel_table(&self.map);
+                    self.planning_map = Some(planned);
+                }
+            }
+        }
+        self.planning_read = self.map.entropy_journal().len();
+        self.done_with_journal();
+        Ok(())
+    }
+
+    /// Clear the map's entropy journal once both the entropy map and the
+    /// planning map have taken it in.
+    fn done_with_journal(&mut self) {
+        let len = self.map.entropy_journal().len();
+        if self.entropy_read == len && self.planning_read == len {
+            self.map.clear_entropy_journal();
+            (self.entropy_read, self.planning_read) = (0, 0);
+        }
     }
 
     /// The strategy, and what it sees.
     fn chooser_and_view(&mut self) -> (&mut Chooser, View<'_>) {
         let view = View {
             map: &self.map,
-            planning_map: self.planning_map.as_ref().unwrap_or(&self.map),
+            planning_map: self
+                .strategy
+                .plans_on_histograms()
+                .then(|| self.planning_map.as_ref().unwrap_or(&self.map)),
+            planning_ml: &self.planning_ml,
             contact_cells: &self.contact_cells,
             occupancy: &self.occupancy,
             entropy: &self.entropy,
@@ -604,21 +714,9 @@ impl<S, M> Exploration<S, M> {
 
     /// The fraction of the report cells whose entropy is above epsilon now.
     pub fn uncertain_fraction(&self) -> f64 {
-        let epsilon = self.config.epsilon;
-        let uncertain = |i: usize| f64::from(self.entropy[i]) > epsilon;
-        let (count, total) = match &self.report_cells {
-            Some(cells) => (0..cells.len())
-                .filter(|&i| cells[i])
-                .fold((0, 0), |(u, t), i| (u + usize::from(uncertain(i)), t + 1)),
-            None => (
-                (0..self.entropy.len()).filter(|&i| uncertain(i)).count(),
-                self.entropy.len(),
-            ),
-        };
-        if total == 0 {
-            0.0
-        } else {
-            count as f64 / total as f64
+        match self.uncertain {
+            (_, 0) => 0.0,
+            (count, total) => count as f64 / total as f64,
         }
     }
 
@@ -695,7 +793,7 @@ impl<S, M> Exploration<S, M> {
             trajectory: self.trajectory.clone(),
             trace: self.trace.clone(),
             timing: self.timing,
-            map: self.map.clone(),
+            map: without_journal(self.map.clone()),
             occupancy: self.occupancy.clone(),
         }
     }
@@ -712,10 +810,32 @@ impl<S, M> Exploration<S, M> {
             trajectory: self.trajectory,
             trace: self.trace,
             timing: self.timing,
-            map: self.map,
+            map: without_journal(self.map),
             occupancy: self.occupancy,
         }
     }
+}
+
+/// How many of the report cells (`None`: every cell) have an entropy above
+/// `epsilon` (nats), and how many report cells there are.
+fn uncertain_cells(entropy: &[f32], report_cells: Option<&[bool]>, epsilon: f64) -> (usize, usize) {
+    let uncertain = |i: usize| f64::from(entropy[i]) > epsilon;
+    match report_cells {
+        Some(cells) => (0..cells.len())
+            .filter(|&i| cells[i])
+            .fold((0, 0), |(u, t), i| (u + usize::from(uncertain(i)), t + 1)),
+        None => (
+            (0..entropy.len()).filter(|&i| uncertain(i)).count(),
+            entropy.len(),
+        ),
+    }
+}
+
+/// `map` without the loop's entropy journal: a map handed out may be
+/// integrated into further, and nothing would read or clear its journal.
+fn without_journal(mut map: CoverageMap) -> CoverageMap {
+    map.keep_entropy_journal(false);
+    map
 }
 
 /// The corners of `path` (cell centres, 8-connected steps): its first and
@@ -740,6 +860,135 @@ fn straight_runs(path: &[[f64; 2]], resolution_m: f64) -> Vec<[f64; 2]> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::sensor::LaserModel;
+
+    /// A room `[0, 4] x [0, 3]` m with a pane `[2.2, 2.6] x [0.9, 2.1]` the
+    /// sensor sees through and the robot runs into: the runs of
+    /// [`every_step_keeps_the_loops_read_outs`] scan, drive and touch.
+    const PANE: [f64; 4] = [2.2, 0.9, 2.6, 2.1];
+
+    /// Exact laser ranges to the room's walls.
+    struct RoomRing(Vec<f64>);
+    impl ScanSource for RoomRing {
+        fn bearings(&self) -> &[f64] {
+            &self.0
+        }
+        fn scan(&mut self, p: &Pose) -> Result<Vec<f64>> {
+            let to = |v: f64, high: f64, at: f64| match v {
+                v if v > 1e-12 => (high - at) / v,
+                v if v < -1e-12 => -at / v,
+                _ => f64::INFINITY,
+            };
+            Ok(self
+                .0
+                .iter()
+                .map(|b| {
+                    let (s, c) = (p.theta_rad + b).sin_cos();
+                    to(c, 4.0, p.x_m).min(to(s, 3.0, p.y_m))
+                })
+                .collect())
+        }
+    }
+
+    /// A disc of 0.25 m stopped by the walls and the pane, in steps of a
+    /// millimetre; the contact is the nearest point of what stopped it.
+    struct Bumper;
+    impl Motion for Bumper {
+        fn drive(&mut self, from: [f64; 2], to: [f64; 2]) -> Result<Travel> {
+            const R: f64 = 0.25;
+            let nearest = |[x, y]: [f64; 2]| -> ([f64; 2], f64) {
+                let [x0, y0, x1, y1] = PANE;
+                let pane = [x.clamp(x0, x1), y.clamp(y0, y1)];
+                [pane, [0.0, y], [4.0, y], [x, 0.0], [x, 3.0]]
+                    .into_iter()
+                    .map(|q| (q, (q[0] - x).hypot(q[1] - y)))
+                    .fold(
+                        ([0.0; 2], f64::INFINITY),
+                        |a, b| if b.1 < a.1 { b } else { a },
+                    )
+            };
+            let length = (to[0] - from[0]).hypot(to[1] - from[1]);
+            let steps = (length / 1e-3).ceil() as usize;
+            for k in 1..=steps {
+                let t = k as f64 / steps as f64;
+                let at = [
+                    from[0] + t * (to[0] - from[0]),
+                    from[1] + t * (to[1] - from[1]),
+                ];
+                let (contact, gap) = nearest(at);
+                if gap < R {
+                    return Ok(Travel {
+                        travelled_m: (k - 1) as f64 / steps as f64 * length,
+                        contact_m: Some(contact),
+                    });
+                }
+            }
+            Ok(Travel {
+                travelled_m: length,
+                contact_m: None,
+            })
+        }
+    }
+
+    /// After every step, the entropy map the loop keeps from the map's
+    /// journal is the map's entropy, and the map it plans on and its ML
+    /// coverage are the ones made anew from the map and the contacts, bit
+    /// for bit, for every strategy, in runs that scan, drive and run into
+    /// the pane.
+    #[test]
+    fn every_step_keeps_the_loops_read_outs() {
+        let bearings: Vec<f64> = (0..90)
+            .map(|i| i as f64 * std::f64::consts::TAU / 90.0)
+            .collect();
+        let grid = Grid::covering(-0.5, -0.5, 4.5, 3.5, 0.05).unwrap();
+        for strategy in [
+            Strategy::coverage(0.5).unwrap(),
+            Strategy::counting(3, Some(2.0)).unwrap(),
+            Strategy::frontier(),
+        ] {
+            let mut setup = ExplorationSetup::new(grid, Pose::new(1.0, 1.5, 0.0), strategy);
+            setup.model = AnySensorModel::Laser(LaserModel::default());
+            setup.config.max_path_m = 40.0;
+            let mut run = Exploration::new(setup, RoomRing(bearings.clone()), Bumper).unwrap();
+            while run.step().unwrap().is_some() {
+                let entropy = run.map.entropy();
+                let differs =
+                    (0..entropy.len()).find(|&i| run.entropy[i].to_bits() != entropy[i].to_bits());
+                assert_eq!(differs, None, "{strategy:?}, step {}: cell", run.steps);
+                let epsilon = run.config.epsilon;
+                let counted = uncertain_cells(&entropy, run.report_cells.as_deref(), epsilon);
+                assert_eq!(run.uncertain, counted, "{strategy:?}, step {}", run.steps);
+                assert!(counted.0 > 0 && counted.0 < counted.1);
+                // What the next step plans on, made anew.
+                run.update_planning_map().unwrap();
+                let made = run.map.with_contacts(&run.contact_cells).unwrap();
+                if let Some(planned) = run.chooser_and_view().1.planning_map {
+                    let differs = (0..made.histograms().len()).find(|&i| {
+                        made.histograms()[i].to_bits() != planned.histograms()[i].to_bits()
+                    });
+                    assert_eq!(differs, None, "{strategy:?}, step {}: value", run.steps);
+                }
+                assert_eq!(
+                    run.planning_ml,
+                    made.ml(),
+                    "{strategy:?}, step {}",
+                    run.steps
+                );
+                assert!(run.map.entropy_journal().len() < 20_000);
+            }
+            assert_eq!(
+                run.planning_map.is_some(),
+                strategy.plans_on_histograms(),
+                "{strategy:?}"
+            );
+            assert!(
+                run.contacts > 0 && run.steps > 3,
+                "{strategy:?}: {} contacts, {} steps",
+                run.contacts,
+                run.steps
+            );
+        }
+    }
 
     #[test]
     fn straight_runs_keep_the_corners() {

@@ -112,6 +112,7 @@
 //! ```
 
 mod config;
+mod dilation;
 mod evaluation;
 #[allow(clippy::module_inception)]
 mod exploration;

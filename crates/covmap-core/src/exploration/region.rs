@@ -99,25 +99,39 @@ pub(super) fn region_of(
 /// assert_eq!(grown.iter().filter(|&&g| g).count(), 5); // and its 4 neighbours
 /// ```
 pub fn dilate(grid: &Grid, mask: &[bool], radius_m: f64) -> Vec<bool> {
+    grow(grid, mask, &dilation_offsets(grid, radius_m))
+}
+
+/// The offsets `(rows, columns)` [`dilate`] grows a mask by on `grid`: the
+/// cells whose centres lie within `radius_m` of a cell's.
+pub(super) fn dilation_offsets(grid: &Grid, radius_m: f64) -> Vec<(i64, i64)> {
     // A radius of whole cells is not lost to the rounding of the division.
     let radius = radius_m / grid.resolution_m() * (1.0 + 1e-12);
-    let offsets = disc(radius, |dr, dc| {
+    disc(radius, |dr, dc| {
         ((dr * dr + dc * dc) as f64).sqrt() <= radius
-    });
-    grow(grid, mask, &offsets)
+    })
 }
 
 /// The cells where a disc of `radius_m` may stand clear of every `blocked`
 /// cell: no blocked cell's area lies closer than `radius_m` to the cell's
 /// centre (the obstacles, whole cells, inflated by the radius).
 pub(super) fn clear_of(grid: &Grid, blocked: &[bool], radius_m: f64) -> Vec<bool> {
+    grow(grid, blocked, &clearance_offsets(grid, radius_m))
+        .iter()
+        .map(|b| !b)
+        .collect()
+}
+
+/// The offsets `(rows, columns)` a blocked cell takes from the free space
+/// of a disc of `radius_m` on `grid` ([`clear_of`]): the cell itself, and
+/// the cells whose centres lie closer than `radius_m` to some point of it.
+pub(super) fn clearance_offsets(grid: &Grid, radius_m: f64) -> Vec<(i64, i64)> {
     let radius = radius_m / grid.resolution_m();
     // Distance from a centre `offset` cells away to the nearest point of a cell.
     let gap = |offset: i64| (offset.abs() as f64 - 0.5).max(0.0);
-    let offsets = disc(radius, |dr, dc| {
+    disc(radius, |dr, dc| {
         (dr == 0 && dc == 0) || gap(dr).hypot(gap(dc)) < radius
-    });
-    grow(grid, blocked, &offsets).iter().map(|b| !b).collect()
+    })
 }
 
 /// Shortest paths from `pose` for a disc of `radius_m` over a map whose
@@ -133,6 +147,26 @@ pub(super) fn paths_from(
     let start = check_pose(grid, pose)?;
     let free = clear_of(grid, blocked, radius_m);
     let mut passable = free.clone();
+    open_start(grid, blocked, radius_m, pose, &mut passable)?;
+    let reach = shortest_paths(grid, &passable, start)?;
+    Ok((free, reach))
+}
+
+/// Make passable, among the cells `passable` (the clear cells of a map
+/// whose cells `blocked` holds, for a disc of `radius_m`), the robot's own
+/// cell and the unblocked cells its disc at `pose` overlaps: what
+/// [`paths_from`] passes through besides the clear cells.
+///
+/// # Errors
+/// As [`paths_from`] for the pose.
+pub(super) fn open_start(
+    grid: &Grid,
+    blocked: &[bool],
+    radius_m: f64,
+    pose: &Pose,
+    passable: &mut [bool],
+) -> Result<()> {
+    let start = check_pose(grid, pose)?;
     let start_index = grid.index(start)?;
     passable[start_index] = true;
     // The cells the disc at `pose` overlaps: some point of theirs lies
@@ -156,8 +190,7 @@ pub(super) fn paths_from(
             }
         }
     }
-    let reach = shortest_paths(grid, &passable, start)?;
-    Ok((free, reach))
+    Ok(())
 }
 
 /// Which cells of `occupancy` are known (some evidence reached them), and
@@ -179,8 +212,9 @@ pub(super) fn blocked_on_occupancy(
     occupancy: &OccupancyGrid,
     contact_cells: &[Cell],
 ) -> Result<Vec<bool>> {
-    let (_, known_free) = known_cells(occupancy);
-    let mut blocked: Vec<bool> = known_free.iter().map(|f| !f).collect();
+    // Known free is a log-odds below 0, which no unknown cell has (its
+    // log-odds is 0): one pass over the log-odds.
+    let mut blocked: Vec<bool> = occupancy.log_odds().iter().map(|&l| !(l < 0.0)).collect();
     for &cell in contact_cells {
         blocked[occupancy.grid().index(cell)?] = true;
     }

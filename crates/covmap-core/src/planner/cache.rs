@@ -361,12 +361,33 @@ impl Planner {
             !self.config.unknown_is_free,
         );
         let (free, reach) = self.free_and_reachable_of(map.grid(), &blocked, start)?;
-        let (cells, poses) = self.candidates(map.grid(), pose, &free, &reach);
-        let mut stats = cache.gains(map, model, self.config.gain, &cells, &poses, bearings)?;
-        stats.changed_cells = changed_cells;
+        let plan = self.next_viewpoint_on(cache, map, pose, bearings, model, (&free, &reach))?;
+        cache.stats.changed_cells = changed_cells;
+        Ok(plan)
+    }
+
+    /// [`Self::next_viewpoint_cached`] on the free space `free` and paths
+    /// `reach` that [`Self::free_and_reachable_cached`] has just found for
+    /// `map` and a pose in the same cell as `pose`: the same plan, without
+    /// finding them again (the cache's stats count no changed cells: that
+    /// call took them in).
+    ///
+    /// # Errors
+    /// As [`Self::next_viewpoint_cached`] past the pose.
+    pub(crate) fn next_viewpoint_on<M: SensorModel + ?Sized>(
+        &self,
+        cache: &mut PlanningCache,
+        map: &CoverageMap,
+        pose: &Pose,
+        bearings: &[f64],
+        model: &M,
+        (free, reach): (&[bool], &Reachability),
+    ) -> Result<Plan> {
+        let (cells, poses) = self.candidates(map.grid(), pose, free, reach);
+        let stats = cache.gains(map, model, self.config.gain, &cells, &poses, bearings)?;
         let gains = cache.gathered(&cells, &poses);
         cache.stats = stats;
-        self.choose(&reach, &cells, poses, gains)
+        self.choose(reach, &cells, poses, gains)
     }
 }
 
@@ -383,6 +404,20 @@ impl Planner {
         map: &CoverageMap,
         pose: &Pose,
     ) -> Result<Reachability> {
+        Ok(self.free_and_reachable_cached(cache, map, pose)?.1)
+    }
+
+    /// [`Self::reachability_cached`], and the free space it runs through
+    /// (what [`Self::next_viewpoint_on`] plans on).
+    ///
+    /// # Errors
+    /// As [`Self::reachability`].
+    pub(crate) fn free_and_reachable_cached(
+        &self,
+        cache: &mut PlanningCache,
+        map: &CoverageMap,
+        pose: &Pose,
+    ) -> Result<(Vec<bool>, Reachability)> {
         let start = check_pose(map.grid(), pose)?;
         cache.see(map);
         let blocked = match cache.seen.as_ref() {
@@ -394,7 +429,7 @@ impl Planner {
             ),
             None => self.blocked(map, !self.config.unknown_is_free),
         };
-        Ok(self.free_and_reachable_of(map.grid(), &blocked, start)?.1)
+        self.free_and_reachable_of(map.grid(), &blocked, start)
     }
 }
 

@@ -64,5 +64,6 @@ mod viewpoint;
 pub use cache::{CacheStats, PlanningCache};
 pub use config::{MAX_CANDIDATE_HEADINGS, PlannerConfig};
 pub use path::{Reachability, shortest_paths};
+pub(crate) use path::{Search, SearchMemory, reachable_cells};
 pub use termination::ExplorationStatus;
 pub use viewpoint::{Candidates, Plan, Planner, fixed_headings};

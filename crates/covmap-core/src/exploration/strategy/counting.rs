@@ -47,11 +47,16 @@
 
 use super::{Decision, Outcome, View, viewpoint_headings};
 use crate::error::Result;
-use crate::exploration::region::{blocked_on_occupancy, dilate, paths_from, planning_radius_m};
+use crate::exploration::config::ExplorationConfig;
+use crate::exploration::dilation::Dilation;
+use crate::exploration::region::{
+    blocked_on_occupancy, clearance_offsets, dilation_offsets, open_start, planning_radius_m,
+};
 use crate::exploration::result::Termination;
 use crate::footprint::visit;
 use crate::grid::Grid;
-use crate::pose::Pose;
+use crate::planner::{Search, SearchMemory, reachable_cells};
+use crate::pose::{Pose, check_pose};
 use crate::sensor::{SensorModel, trace_readings};
 
 /// Visits that miss a cell after which it is given up.
@@ -65,65 +70,105 @@ pub(crate) struct Counting {
     misses: Vec<u8>,
     /// The cells the last goal was chosen for, and their counts then.
     targets: Vec<(usize, f32)>,
+    /// The blocked cells grown by the planning radius: the cells where the
+    /// robot is not clear of them, kept from step to step.
+    unclear: Dilation,
+    /// The reachable cells grown by the planning radius and a cell: the
+    /// region, kept from step to step.
+    region: Dilation,
+    /// The memory of the candidates' searches, kept from step to step.
+    search: SearchMemory,
 }
 
 impl Counting {
-    pub fn new(n: u32, grid: &Grid) -> Self {
+    pub fn new(n: u32, config: &ExplorationConfig, grid: &Grid) -> Self {
+        let radius_m = planning_radius_m(config.robot_radius_m, grid);
         Self {
             n: n as f32,
             misses: vec![0; grid.len()],
             targets: Vec::new(),
+            unclear: Dilation::new(grid, &clearance_offsets(grid, radius_m)),
+            region: Dilation::new(
+                grid,
+                &dilation_offsets(grid, radius_m + grid.resolution_m()),
+            ),
+            search: SearchMemory::default(),
         }
     }
 
+    /// The nearest candidate that would intercept an unexplored cell of the
+    /// region (see the module documentation). The free space and the region
+    /// are kept from the last step and brought up to date with the cells
+    /// that changed; the region needs only which cells the robot reaches (a
+    /// fill), and the candidates come in the order of their path lengths
+    /// (ties to the lower index) from a search that stops at the first one
+    /// that would intercept something: the goal and path that sorting every
+    /// reachable candidate by the lengths of a whole search gives.
     pub fn decide(&mut self, view: &View) -> Result<Decision> {
         let grid = view.grid();
         let model = view.model.as_dyn();
         let radius_m = planning_radius_m(view.config.robot_radius_m, grid);
         let blocked = blocked_on_occupancy(view.occupancy, view.contact_cells)?;
-        let (free, reach) = paths_from(grid, &blocked, radius_m, &view.pose)?;
-        let reachable: Vec<bool> = reach.costs().iter().map(|c| c.is_finite()).collect();
-        let region = dilate(grid, &reachable, radius_m + grid.resolution_m());
+        let start = check_pose(grid, &view.pose)?;
+        self.unclear.take_in(&blocked);
+        let unclear = &self.unclear;
+        let free = |i: usize| !unclear.covers(i);
+        let mut passable: Vec<bool> = (0..grid.len()).map(free).collect();
+        open_start(grid, &blocked, radius_m, &view.pose, &mut passable)?;
+        self.region
+            .take_in(&reachable_cells(grid, &passable, start)?);
         let counts = view.occupancy.counts().counts();
-        let unexplored: Vec<bool> = (0..region.len())
-            .map(|i| region[i] && counts[i] < self.n && self.misses[i] < GIVE_UP_AFTER)
-            .collect();
-        if !unexplored.iter().any(|&u| u) {
+        let (region, misses, n) = (&self.region, &self.misses, self.n);
+        let unexplored = |i: usize| region.covers(i) && counts[i] < n && misses[i] < GIVE_UP_AFTER;
+        if !(0..grid.len()).any(unexplored) {
             return Ok(Decision::Done(Termination::NoGoal));
         }
         let stride =
             ((view.config.candidate_stride_m / grid.resolution_m()).round() as usize).max(1);
-        let mut candidates = Vec::new();
-        for row in (stride / 2..grid.rows()).step_by(stride) {
-            for col in (stride / 2..grid.cols()).step_by(stride) {
-                let i = row * grid.cols() + col;
-                if free[i]
-                    && reach.reachable(i)
-                    && reach.cost(i) >= view.config.min_travel_m
-                    && !view.failed_goals.contains(&i)
-                {
-                    candidates.push(i);
-                }
-            }
-        }
-        candidates.sort_by(|&a, &b| reach.cost(a).total_cmp(&reach.cost(b)).then(a.cmp(&b)));
-        let ml = view.planning_map.ml();
+        let on_lattice = |i: usize| {
+            let (row, col) = (i / grid.cols(), i % grid.cols());
+            row >= stride / 2
+                && (row - stride / 2) % stride == 0
+                && col >= stride / 2
+                && (col - stride / 2) % stride == 0
+        };
         let headings = viewpoint_headings(view.bearings, view.pose.theta_rad);
-        for &i in &candidates {
+        let memory = std::mem::take(&mut self.search);
+        let mut search = Search::with_memory(grid, &passable, start, memory)?;
+        let mut goal = None;
+        'candidates: while let Some((i, cost_m)) = search.settle_next() {
+            if !(on_lattice(i)
+                && free(i)
+                && cost_m >= view.config.min_travel_m
+                && !view.failed_goals.contains(&i))
+            {
+                continue;
+            }
             let [x, y] = grid.cell_center(grid.cell(i));
             for &heading in &headings {
                 let pose = Pose::new(x, y, heading);
-                let targets = intercepted(grid, &ml, &pose, view.bearings, model, &unexplored);
+                let targets = intercepted(
+                    grid,
+                    view.planning_ml,
+                    &pose,
+                    view.bearings,
+                    model,
+                    unexplored,
+                );
                 if !targets.is_empty() {
-                    self.targets = targets.into_iter().map(|t| (t, counts[t])).collect();
-                    return Ok(Decision::Goal {
-                        pose,
-                        path: reach.path_to(i),
-                    });
+                    goal = Some((pose, search.path_to(i), targets));
+                    break 'candidates;
                 }
             }
         }
-        Ok(Decision::Done(Termination::NoGoal))
+        self.search = search.into_memory();
+        Ok(match goal {
+            Some((pose, path, targets)) => {
+                self.targets = targets.into_iter().map(|t| (t, counts[t])).collect();
+                Decision::Goal { pose, path }
+            }
+            None => Decision::Done(Termination::NoGoal),
+        })
     }
 
     pub fn learn(&mut self, view: &View, outcome: &Outcome) {
@@ -140,7 +185,7 @@ impl Counting {
     }
 }
 
-/// The cells flagged in `wanted` that a scan from `pose` would intercept
+/// The cells `wanted` holds for that a scan from `pose` would intercept
 /// (in increasing index order, each once), predicting each beam's
 /// reading as its median reading on the ML map `ml`.
 fn intercepted(
@@ -149,7 +194,7 @@ fn intercepted(
     pose: &Pose,
     bearings: &[f64],
     model: &dyn SensorModel,
-    wanted: &[bool],
+    wanted: impl Fn(usize) -> bool,
 ) -> Vec<usize> {
     let range = model.range_model();
     let half = 0.5 * grid.resolution_m();
@@ -181,7 +226,7 @@ fn intercepted(
             reach,
             model.footprint(),
             &mut |i: usize, _| {
-                if wanted[i] {
+                if wanted(i) {
                     found.push(i);
                 }
             },

@@ -53,12 +53,13 @@
 //! of a nat from them.
 
 use super::{Decision, HEADINGS, Outcome, View, sees_all_around};
+use crate::coverage_map::CoverageMap;
 use crate::error::Result;
 use crate::exploration::ExplorationConfig;
 use crate::exploration::region::{navigator, reachable_region, region_of};
 use crate::exploration::result::Termination;
 use crate::grid::Grid;
-use crate::planner::{Plan, Planner, PlannerConfig, PlanningCache};
+use crate::planner::{Plan, Planner, PlannerConfig, PlanningCache, Reachability};
 use crate::pose::Pose;
 
 /// Steps without a new settled cell after which the run has stagnated.
@@ -116,10 +117,18 @@ impl Coverage {
     }
 
     pub fn decide(&mut self, view: &View) -> Result<Decision> {
-        if let Some(done) = self.termination(view)? {
+        // The free space and the paths, found once for the termination
+        // rule, the plan and the path to a goal other than the plan's (the
+        // planner's cache keeps the map's read-outs they need).
+        let (free, reach) = self.planner.free_and_reachable_cached(
+            &mut self.cache,
+            planning_map(view),
+            &view.pose,
+        )?;
+        if let Some(done) = self.termination(view, &reach)? {
             return Ok(Decision::Done(done));
         }
-        let plan = self.plan(view)?;
+        let plan = self.plan(view, (&free, &reach))?;
         let grid = view.grid();
         let index_of = |k: usize| {
             let p = &plan.candidates.poses[k];
@@ -137,7 +146,6 @@ impl Coverage {
         let path = if Some(k) == plan.chosen {
             plan.path
         } else {
-            let reach = self.planner.reachability(view.planning_map, &view.pose)?;
             index_of(k).map_or_else(Vec::new, |i| reach.path_to(i))
         };
         self.last = index_of(k).map(|i| (i, total_entropy(view.entropy)));
@@ -148,37 +156,35 @@ impl Coverage {
     }
 
     /// The one call of the planner's choice (eq. 14), keeping in the cache
-    /// every candidate's gain for the next call. A sensor that sees all
+    /// every candidate's gain for the next call, on the free space and
+    /// paths `space` found for the robot's pose. A sensor that sees all
     /// around plans with the fixed heading 0, so that the gains of the
     /// candidates the scan did not reach are kept whichever way the robot
     /// faces; the others consider [`HEADINGS`] fixed headings a candidate.
-    fn plan(&mut self, view: &View) -> Result<Plan> {
+    fn plan(&mut self, view: &View, space: (&[bool], &Reachability)) -> Result<Plan> {
         let pose = if self.all_around {
             Pose::new(view.pose.x_m, view.pose.y_m, 0.0)
         } else {
             view.pose
         };
-        self.planner.next_viewpoint_cached(
+        self.planner.next_viewpoint_on(
             &mut self.cache,
-            view.planning_map,
+            planning_map(view),
             &pose,
             view.bearings,
             view.model,
+            space,
         )
     }
 
     /// Whether every cell of the reachable region is certain or stagnated,
     /// or the run has stagnated (see the module documentation).
-    fn termination(&mut self, view: &View) -> Result<Option<Termination>> {
+    fn termination(&mut self, view: &View, reach: &Reachability) -> Result<Option<Termination>> {
         let band_m = view.model.as_dyn().range_model().band_m;
-        // The planner's cache keeps the map's read-outs the region needs.
-        let reach =
-            self.planner
-                .reachability_cached(&mut self.cache, view.planning_map, &view.pose)?;
-        let region = region_of(&reach, view.planning_map.grid(), &self.planner, band_m);
+        let region = region_of(reach, planning_map(view).grid(), &self.planner, band_m);
         debug_assert_eq!(
             region,
-            reachable_region(&self.planner, view.planning_map, &view.pose, band_m)?
+            reachable_region(&self.planner, planning_map(view), &view.pose, band_m)?
         );
         let epsilon = view.config.epsilon;
         let (mut certain, mut stagnated, mut open) = (0usize, 0usize, 0usize);
@@ -223,6 +229,17 @@ impl Coverage {
             self.exhausted.push(goal);
         }
     }
+}
+
+/// The map the strategy plans on, which the loop keeps for it
+/// ([`Strategy::plans_on_histograms`](super::Strategy)).
+fn planning_map<'v>(view: &View<'v>) -> &'v CoverageMap {
+    #[allow(
+        clippy::expect_used,
+        reason = "the loop keeps the map planned on for the coverage strategy"
+    )]
+    view.planning_map
+        .expect("the loop keeps the map planned on for the coverage strategy")
 }
 
 /// The least gain a goal must promise, nats: what making one cell at the
@@ -271,10 +288,11 @@ mod tests {
         let bearings: Vec<f64> = (0..180)
             .map(|i| i as f64 * std::f64::consts::TAU / 180.0)
             .collect();
-        let entropy = map.entropy();
+        let (entropy, ml) = (map.entropy(), map.ml());
         let view = View {
             map: &map,
-            planning_map: &map,
+            planning_map: Some(&map),
+            planning_ml: &ml,
             contact_cells: &[],
             occupancy: &occupancy,
             entropy: &entropy,
@@ -291,7 +309,18 @@ mod tests {
             let Decision::Goal { pose: goal, path } = strategy.decide(&view).unwrap() else {
                 panic!("alpha {alpha}: no goal in a room not yet explored");
             };
-            let plan = strategy.plan(&view).unwrap();
+            let (free, reach) = strategy
+                .planner
+                .free_and_reachable_cached(&mut strategy.cache, &map, &pose)
+                .unwrap();
+            let plan = strategy.plan(&view, (&free, &reach)).unwrap();
+            assert_eq!(
+                plan,
+                strategy
+                    .planner
+                    .next_viewpoint_cached(&mut strategy.cache, &map, &pose, &bearings, &model)
+                    .unwrap()
+            );
             let c = &plan.candidates;
             let worth: Vec<usize> = (0..c.gains.len())
                 .filter(|&k| c.gains[k] > strategy.planner.config().min_gain_nats)

@@ -132,6 +132,13 @@ impl Strategy {
         }
     }
 
+    /// Whether the strategy plans on the coverage map's histograms (with
+    /// the contacts pinned), not only on its ML coverage: the loop keeps a
+    /// copy of the map for it.
+    pub(super) fn plans_on_histograms(&self) -> bool {
+        matches!(self, Self::Coverage { .. })
+    }
+
     /// Errors as the constructors do.
     pub fn validate(&self) -> Result<()> {
         match *self {
@@ -167,8 +174,13 @@ pub(super) struct View<'a> {
     pub map: &'a CoverageMap,
     /// The coverage map to plan on: `map` with every cell the robot has run
     /// into pinned as covered (the robot remembers its contacts, whatever
-    /// the readings say since).
-    pub planning_map: &'a CoverageMap,
+    /// the readings say since). Kept by the loop for the strategy that
+    /// plans on its histograms, coverage's ([`Strategy::plans_on_histograms`]);
+    /// `None` for the others, which read `planning_ml`.
+    pub planning_map: Option<&'a CoverageMap>,
+    /// The ML coverage of the map to plan on ([`CoverageMap::ml`] of
+    /// `map` with the contacts pinned), kept by the loop from step to step.
+    pub planning_ml: &'a [f32],
     /// The cells the robot has run into.
     pub contact_cells: &'a [Cell],
     pub occupancy: &'a OccupancyGrid,
@@ -269,7 +281,9 @@ impl Chooser {
             Strategy::Coverage { alpha } => Self::Coverage(Box::new(coverage::Coverage::new(
                 alpha, config, grid, bins, bearings,
             )?)),
-            Strategy::Counting { n, .. } => Self::Counting(counting::Counting::new(n, grid)),
+            Strategy::Counting { n, .. } => {
+                Self::Counting(counting::Counting::new(n, config, grid))
+            }
             Strategy::Frontier => Self::Frontier(frontier::Frontier::new(grid)),
         })
     }
