@@ -105,16 +105,26 @@ class Fig7:
 def specs(
     world_name: str, *, ns: Sequence[int], seeds: Sequence[int], alpha: float, **options: Any
 ) -> list[dict[str, Any]]:
-    """The sweep's specs: counting (discounted beyond
-    :data:`~covmap.DEFAULT_DISCOUNT_BEYOND_M`) for each ``n`` and seed, then
-    coverage with ``alpha`` for each seed."""
+    """The sweep's specs: coverage with ``alpha`` for each seed, then
+    counting (discounted beyond :data:`~covmap.DEFAULT_DISCOUNT_BEYOND_M`)
+    for each ``n`` from the largest down and each seed.
+
+    The order is the order the runs start in: the long runs (coverage's, a
+    large ``n``'s) first and the short ones last, so that the cores finish
+    together rather than one of them running a long run alone at the end.
+    """
+    coverage = [{"world": world_name, "strategy": Strategy.coverage(alpha), "seed": s, **options} for s in seeds]
     counting = [
         {"world": world_name, "strategy": Strategy.counting(n, DEFAULT_DISCOUNT_BEYOND_M), "seed": s, **options}
-        for n in ns
+        for n in _largest_first(ns)
         for s in seeds
     ]
-    coverage = [{"world": world_name, "strategy": Strategy.coverage(alpha), "seed": s, **options} for s in seeds]
-    return counting + coverage
+    return coverage + counting
+
+
+def _largest_first(ns: Sequence[int]) -> list[int]:
+    """``ns`` from the largest down (equal values in their order)."""
+    return sorted(ns, key=lambda n: -n)
 
 
 def run(
@@ -127,12 +137,21 @@ def run(
     progress: bool | Callable[[int, RunSummary | SweepFailure], None] = True,
     **options: Any,
 ) -> Fig7:
-    """Run the sweep of Fig. 7 (:func:`specs`) with :func:`covmap.sweep` on
-    ``executor`` (``None``: the local cores)."""
+    """Run the sweep of Fig. 7 (:func:`specs`; a failure's index is its
+    spec's there) with :func:`covmap.sweep` on ``executor`` (``None``: the
+    local cores)."""
     all_specs = specs(world_name, ns=ns, seeds=seeds, alpha=alpha, **options)
     summaries = sweep(all_specs, executor=executor, progress=progress)
-    split = len(ns) * len(seeds)
-    return Fig7(world_name, list(ns), list(seeds), alpha, dict(options), summaries[:split], summaries[split:])
+    k = len(seeds)
+    coverage, counting = summaries[:k], summaries[k:]
+    # Counting in the order of ``ns`` (the specs run the largest first),
+    # the seeds within.
+    positions = sorted(range(len(ns)), key=lambda j: -ns[j])
+    blocks: list[list[RunSummary]] = [[] for _ in ns]
+    for place, j in enumerate(positions):
+        blocks[j] = counting[place * k : (place + 1) * k]
+    ordered = [r for block in blocks for r in block]
+    return Fig7(world_name, list(ns), list(seeds), alpha, dict(options), ordered, coverage)
 
 
 def path_at(curve: Sequence[Point], fraction: float) -> float | None:

@@ -128,9 +128,9 @@ impl Counting {
         let on_lattice = |i: usize| {
             let (row, col) = (i / grid.cols(), i % grid.cols());
             row >= stride / 2
-                && (row - stride / 2) % stride == 0
+                && (row - stride / 2).is_multiple_of(stride)
                 && col >= stride / 2
-                && (col - stride / 2) % stride == 0
+                && (col - stride / 2).is_multiple_of(stride)
         };
         let headings = viewpoint_headings(view.bearings, view.pose.theta_rad);
         let memory = std::mem::take(&mut self.search);

@@ -261,9 +261,10 @@ pub(super) struct Outcome {
 
 /// A strategy at work: its settings and what it remembers between steps.
 pub(super) enum Chooser {
-    // Boxed: the planner and its state outweigh the other strategies'.
+    // Boxed: the planner's state and the counting strategy's kept
+    // dilations outweigh the frontier strategy's.
     Coverage(Box<coverage::Coverage>),
-    Counting(counting::Counting),
+    Counting(Box<counting::Counting>),
     Frontier(frontier::Frontier),
 }
 
@@ -282,7 +283,7 @@ impl Chooser {
                 alpha, config, grid, bins, bearings,
             )?)),
             Strategy::Counting { n, .. } => {
-                Self::Counting(counting::Counting::new(n, config, grid))
+                Self::Counting(Box::new(counting::Counting::new(n, config, grid)))
             }
             Strategy::Frontier => Self::Frontier(frontier::Frontier::new(grid)),
         })
