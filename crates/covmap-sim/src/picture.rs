@@ -35,16 +35,7 @@ pub fn write_map_png(path: impl AsRef<Path>, grid: &Grid, values: &[f64]) -> Res
             right: grid.len(),
         });
     }
-    let (width, height) = match (u32::try_from(cols), u32::try_from(rows)) {
-        (Ok(w), Ok(h)) => (w, h),
-        _ => {
-            return Err(SimError::InvalidParameter {
-                name: "grid size",
-                value: grid.len() as f64,
-                expected: "at most 2^32 - 1 rows and columns for a PNG",
-            });
-        }
-    };
+    let (width, height) = image_size(grid, "at most 2^32 - 1 rows and columns for a PNG")?;
     let mut pixels = Vec::with_capacity(rows * cols);
     for row in (0..rows).rev() {
         for v in &values[row * cols..(row + 1) * cols] {
@@ -66,6 +57,21 @@ pub fn write_map_png(path: impl AsRef<Path>, grid: &Grid, values: &[f64]) -> Res
             source: std::io::Error::other(e.to_string()),
         })?;
     write_atomic(path, &bytes)
+}
+
+/// The grid's width and height (columns, rows) as an image's; a grid of
+/// more than `u32::MAX` rows or columns is an error that says `expected`
+/// (the limit and the format).
+pub(crate) fn image_size(grid: &Grid, expected: &'static str) -> Result<(u32, u32)> {
+    let (rows, cols) = grid.shape();
+    match (u32::try_from(cols), u32::try_from(rows)) {
+        (Ok(w), Ok(h)) => Ok((w, h)),
+        _ => Err(SimError::InvalidParameter {
+            name: "grid size",
+            value: grid.len() as f64,
+            expected,
+        }),
+    }
 }
 
 #[cfg(test)]

@@ -140,14 +140,7 @@ impl<'p> Search<'p> {
         start: Cell,
         memory: SearchMemory,
     ) -> Result<Self> {
-        if passable.len() != grid.len() {
-            return Err(CovmapError::LengthMismatch {
-                what: "passable mask and grid cells",
-                left: passable.len(),
-                right: grid.len(),
-            });
-        }
-        let start = grid.index(start)?;
+        let start = check_search(grid, passable, start)?;
         let SearchMemory {
             mut cost,
             mut previous,
@@ -286,14 +279,7 @@ fn path_of(grid: &Grid, cost: &[f64], previous: &[usize], index: usize) -> Vec<[
 /// # Errors
 /// As [`shortest_paths`].
 pub(crate) fn reachable_cells(grid: &Grid, passable: &[bool], start: Cell) -> Result<Vec<bool>> {
-    if passable.len() != grid.len() {
-        return Err(CovmapError::LengthMismatch {
-            what: "passable mask and grid cells",
-            left: passable.len(),
-            right: grid.len(),
-        });
-    }
-    let start = grid.index(start)?;
+    let start = check_search(grid, passable, start)?;
     let (cells, cols) = (grid.len(), grid.cols());
     let mut reached = vec![false; cells];
     reached[start] = true;
@@ -315,6 +301,19 @@ pub(crate) fn reachable_cells(grid: &Grid, passable: &[bool], start: Cell) -> Re
         }
     }
     Ok(reached)
+}
+
+/// The index of `start`, once the mask `passable` is checked to have a
+/// value for every cell of `grid` and `start` to be on it.
+fn check_search(grid: &Grid, passable: &[bool], start: Cell) -> Result<usize> {
+    if passable.len() != grid.len() {
+        return Err(CovmapError::LengthMismatch {
+            what: "passable mask and grid cells",
+            left: passable.len(),
+            right: grid.len(),
+        });
+    }
+    grid.index(start)
 }
 
 #[cfg(test)]

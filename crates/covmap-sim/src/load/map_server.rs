@@ -203,16 +203,8 @@ pub fn write_ros_map(
         }
     };
     let (rows, cols) = grid.shape();
-    let (width, height) = match (u32::try_from(cols), u32::try_from(rows)) {
-        (Ok(w), Ok(h)) => (w, h),
-        _ => {
-            return Err(SimError::InvalidParameter {
-                name: "grid size",
-                value: grid.len() as f64,
-                expected: "at most 2^32 - 1 rows and columns for a PGM",
-            });
-        }
-    };
+    let (width, height) =
+        crate::picture::image_size(grid, "at most 2^32 - 1 rows and columns for a PGM")?;
     let mut pixels = Vec::with_capacity(occupancy.len());
     for row in (0..rows).rev() {
         pixels.extend(
