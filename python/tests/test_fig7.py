@@ -2,7 +2,7 @@
 scan counting's path grows with n, and where 85 % or more of the cells must
 be certain, coverage maps travel less than counting reaching the same
 fraction. Whole runs at the exploration's 5 cm cells, in parallel on the
-local cores (about a minute and a half of two cores)."""
+local cores (about half a minute of two cores)."""
 
 from __future__ import annotations
 

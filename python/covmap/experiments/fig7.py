@@ -116,15 +116,10 @@ def specs(
     coverage = [{"world": world_name, "strategy": Strategy.coverage(alpha), "seed": s, **options} for s in seeds]
     counting = [
         {"world": world_name, "strategy": Strategy.counting(n, DEFAULT_DISCOUNT_BEYOND_M), "seed": s, **options}
-        for n in _largest_first(ns)
+        for n in sorted(ns, reverse=True)
         for s in seeds
     ]
     return coverage + counting
-
-
-def _largest_first(ns: Sequence[int]) -> list[int]:
-    """``ns`` from the largest down (equal values in their order)."""
-    return sorted(ns, key=lambda n: -n)
 
 
 def run(
@@ -142,16 +137,11 @@ def run(
     local cores)."""
     all_specs = specs(world_name, ns=ns, seeds=seeds, alpha=alpha, **options)
     summaries = sweep(all_specs, executor=executor, progress=progress)
-    k = len(seeds)
-    coverage, counting = summaries[:k], summaries[k:]
+    coverage, counting = summaries[: len(seeds)], summaries[len(seeds) :]
     # Counting in the order of ``ns`` (the specs run the largest first),
-    # the seeds within.
-    positions = sorted(range(len(ns)), key=lambda j: -ns[j])
-    blocks: list[list[RunSummary]] = [[] for _ in ns]
-    for place, j in enumerate(positions):
-        blocks[j] = counting[place * k : (place + 1) * k]
-    ordered = [r for block in blocks for r in block]
-    return Fig7(world_name, list(ns), list(seeds), alpha, dict(options), ordered, coverage)
+    # the seeds within (the sort keeps their order).
+    counting.sort(key=lambda r: ns.index(r.strategy.n))
+    return Fig7(world_name, list(ns), list(seeds), alpha, dict(options), counting, coverage)
 
 
 def path_at(curve: Sequence[Point], fraction: float) -> float | None:

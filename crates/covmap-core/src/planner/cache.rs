@@ -350,17 +350,7 @@ impl Planner {
         bearings: &[f64],
         model: &M,
     ) -> Result<Plan> {
-        let start = check_pose(map.grid(), pose)?;
-        let changed_cells = cache.see(map);
-        #[allow(clippy::expect_used, reason = "`see` has just set it")]
-        let seen = cache.seen.as_ref().expect("the map was seen");
-        let blocked = self.blocked_of(
-            map.bins(),
-            &seen.ml,
-            &seen.entropy,
-            !self.config.unknown_is_free,
-        );
-        let (free, reach) = self.free_and_reachable_of(map.grid(), &blocked, start)?;
+        let (changed_cells, free, reach) = self.see_free_and_reachable(cache, map, pose)?;
         let plan = self.next_viewpoint_on(cache, map, pose, bearings, model, (&free, &reach))?;
         cache.stats.changed_cells = changed_cells;
         Ok(plan)
@@ -418,18 +408,31 @@ impl Planner {
         map: &CoverageMap,
         pose: &Pose,
     ) -> Result<(Vec<bool>, Reachability)> {
+        let (_, free, reach) = self.see_free_and_reachable(cache, map, pose)?;
+        Ok((free, reach))
+    }
+
+    /// Bring `cache` up to date with `map` (how many cells changed) and
+    /// find the free space and the paths from `pose` on the map's read-outs
+    /// it keeps.
+    fn see_free_and_reachable(
+        &self,
+        cache: &mut PlanningCache,
+        map: &CoverageMap,
+        pose: &Pose,
+    ) -> Result<(usize, Vec<bool>, Reachability)> {
         let start = check_pose(map.grid(), pose)?;
-        cache.see(map);
-        let blocked = match cache.seen.as_ref() {
-            Some(seen) => self.blocked_of(
-                map.bins(),
-                &seen.ml,
-                &seen.entropy,
-                !self.config.unknown_is_free,
-            ),
-            None => self.blocked(map, !self.config.unknown_is_free),
-        };
-        self.free_and_reachable_of(map.grid(), &blocked, start)
+        let changed_cells = cache.see(map);
+        #[allow(clippy::expect_used, reason = "`see` has just set it")]
+        let seen = cache.seen.as_ref().expect("the map was seen");
+        let blocked = self.blocked_of(
+            map.bins(),
+            &seen.ml,
+            &seen.entropy,
+            !self.config.unknown_is_free,
+        );
+        let (free, reach) = self.free_and_reachable_of(map.grid(), &blocked, start)?;
+        Ok((changed_cells, free, reach))
     }
 }
 

@@ -270,6 +270,7 @@ impl Drive {
     pub fn score(&self, model: &AnySensorModel, occlude_no_echo: bool) -> Result<DriveScore> {
         let map = map_of_log(&self.fit_data(None), DEFAULT_BINS, model, occlude_no_echo)?;
         let mean = map.mean();
+        let walls = self.faced_walls();
         Ok(DriveScore {
             log_likelihood: log_likelihood(&map, &self.truth, None)?,
             judged_log_likelihood: log_likelihood(&map, &self.truth, Some(&self.judged))?,
@@ -278,8 +279,8 @@ impl Drive {
             obstacle_error: self.error_where(&mean, |t| t > 0.0),
             occupancy_error: self.error_where(&self.occupancy, |_| true),
             cells_reached: self.judged.iter().filter(|&&r| r).count(),
-            wall_coverage: mean_over(&mean, &self.faced_walls()),
-            occupancy_wall: mean_over(&self.occupancy, &self.faced_walls()),
+            wall_coverage: mean_over(&mean, &walls),
+            occupancy_wall: mean_over(&self.occupancy, &walls),
         })
     }
 
