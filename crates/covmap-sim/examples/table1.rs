@@ -3,8 +3,8 @@
 //!
 //! ```text
 //! cargo run --release -p covmap-sim --example table1 -- [--worlds corridor,office] [--seeds N]
-//!     [--strategies coverage,count1,count50,frontier] [--scan-spacing M] [--resolution M] [--clear-no-echo]
-//!     [--no-multipath] [--laser] [--verbose] [--digest]
+//!     [--strategies coverage,count1,count50,frontier] [--scan-spacing M] [--resolution M] [--max-path M] [--clear-no-echo]
+//!     [--no-multipath] [--laser] [--verbose] [--digest] [--where]
 //! ```
 //!
 //! Prints one row a run: path length, the fraction of evaluation cells whose
@@ -18,6 +18,10 @@
 //! (the trajectory, the per-step trace, the coverage map's histograms and
 //! entropy history, the occupancy grid, the scan counts), so that a change
 //! meant to leave the runs as they were can be checked bit for bit.
+//! `--where`: where the evaluation cells left uncertain lie, by their
+//! distance from the nearest surface of the true world, and how many are
+//! split between two neighbouring bins or have stagnated. `--max-path M`:
+//! the run's path limit (`max_path_m`, default 2000 m).
 
 use std::process::ExitCode;
 use std::sync::Arc;
@@ -48,8 +52,10 @@ fn main() -> ExitCode {
         .to_vec();
     let (mut verbose, mut laser, mut clear_no_echo, mut no_multipath, mut digest) =
         (false, false, false, false, false);
+    let mut where_uncertain = false;
     let mut scan_spacing_m = None;
     let mut resolution_m = None;
+    let mut max_path_m = None;
     let mut args = std::env::args().skip(1);
     while let Some(a) = args.next() {
         let list = |v: Option<String>| -> Vec<String> {
@@ -70,11 +76,16 @@ fn main() -> ExitCode {
                 Some(m) => resolution_m = Some(m),
                 None => return usage("--resolution needs a cell size in metres"),
             },
+            "--max-path" => match args.next().and_then(|s| s.parse().ok()) {
+                Some(m) => max_path_m = Some(m),
+                None => return usage("--max-path needs a distance in metres"),
+            },
             "--verbose" => verbose = true,
             "--laser" => laser = true,
             "--clear-no-echo" => clear_no_echo = true,
             "--no-multipath" => no_multipath = true,
             "--digest" => digest = true,
+            "--where" => where_uncertain = true,
             _ => return usage(&format!("unexpected argument {a:?}")),
         }
     }
@@ -123,7 +134,10 @@ fn main() -> ExitCode {
                 if let Some(m) = resolution_m {
                     options.resolution_m = m;
                 }
-                match run(&world, s, &options, verbose, digest) {
+                if let Some(m) = max_path_m {
+                    options.config.max_path_m = m;
+                }
+                match run(&world, s, &options, verbose, digest, where_uncertain) {
                     Ok(row) => println!("{:<9} {:<8} {:>4} {row}", name, world_name, seed),
                     Err(e) => {
                         eprintln!("table1: {e}");
@@ -142,6 +156,7 @@ fn run(
     options: &ExploreOptions,
     verbose: bool,
     digest: bool,
+    where_uncertain: bool,
 ) -> Result<String, Box<dyn std::error::Error>> {
     let mut sim = SimExploration::new(Arc::clone(world), strategy, options)?;
     while let Some(step) = sim.step()? {
@@ -179,6 +194,9 @@ fn run(
         first(0.02),
         first(0.01)
     );
+    if where_uncertain {
+        eprintln!("{}", uncertain_cells(&run, options.config.epsilon));
+    }
     let real_s = r.path_length_m / 0.5;
     let digest = if digest {
         format!("   digest {:016x}", run_digest(r))
@@ -201,6 +219,101 @@ fn run(
         r.timing.sensing_s,
         r.timing.integration_s,
     ))
+}
+
+/// Where the evaluation cells left uncertain (entropy at least `epsilon`)
+/// lie: by their distance (8-connected steps, in cells) from the nearest
+/// surface cell (a cell the truth holds partly covered, or a free or
+/// covered cell next to one of the other kind), and how many of them have
+/// most of their mass on two neighbouring bins (a split that readings tip
+/// back and forth) or have stagnated.
+fn uncertain_cells(run: &covmap_sim::exploration::ExplorationRun, epsilon: f64) -> String {
+    let grid = &run.grid;
+    let (rows, cols) = (grid.rows(), grid.cols());
+    let truth = &run.truth;
+    let covered = |i: usize| truth[i] > 0.0;
+    let neighbours = |i: usize| {
+        let (r, c) = ((i / cols) as i64, (i % cols) as i64);
+        [
+            (-1, 0),
+            (1, 0),
+            (0, -1),
+            (0, 1),
+            (-1, -1),
+            (-1, 1),
+            (1, -1),
+            (1, 1),
+        ]
+        .into_iter()
+        .map(move |(dr, dc)| (r + dr, c + dc))
+        .filter(|&(r, c)| r >= 0 && c >= 0 && (r as usize) < rows && (c as usize) < cols)
+        .map(|(r, c)| r as usize * cols + c as usize)
+    };
+    let surface = |i: usize| {
+        (truth[i] > 0.0 && truth[i] < 1.0) || neighbours(i).any(|j| covered(j) != covered(i))
+    };
+    // Breadth-first distances from the surface cells.
+    let mut distance = vec![usize::MAX; truth.len()];
+    let mut frontier: Vec<usize> = (0..truth.len()).filter(|&i| surface(i)).collect();
+    for &i in &frontier {
+        distance[i] = 0;
+    }
+    let mut d = 0;
+    while !frontier.is_empty() {
+        d += 1;
+        let mut next = Vec::new();
+        for &i in &frontier {
+            for j in neighbours(i) {
+                if distance[j] == usize::MAX {
+                    distance[j] = d;
+                    next.push(j);
+                }
+            }
+        }
+        frontier = next;
+    }
+    let map = &run.result.map;
+    let entropy = map.entropy();
+    let bins = map.bins();
+    let histograms = map.histograms();
+    let stagnation = map.stagnation();
+    let mut by_distance = [0usize; 7];
+    let (mut total, mut split, mut stagnated) = (0, 0, 0);
+    for i in (0..truth.len()).filter(|&i| run.evaluation_cells[i]) {
+        if f64::from(entropy[i]) < epsilon {
+            continue;
+        }
+        total += 1;
+        by_distance[distance[i].min(by_distance.len() - 1)] += 1;
+        let h = &histograms[i * bins..(i + 1) * bins];
+        let top: usize = (0..bins)
+            .max_by(|&a, &b| h[a].total_cmp(&h[b]))
+            .unwrap_or(0);
+        let pair = [top.wrapping_sub(1), top + 1]
+            .into_iter()
+            .filter(|&k| k < bins)
+            .map(|k| h[k])
+            .fold(0.0_f32, f32::max);
+        if h[top] + pair > 0.9 {
+            split += 1;
+        }
+        if stagnation[i] {
+            stagnated += 1;
+        }
+    }
+    let columns: Vec<String> = by_distance
+        .iter()
+        .enumerate()
+        .map(|(d, n)| {
+            let plus = if d + 1 == by_distance.len() { "+" } else { "" };
+            format!("{d}{plus}: {n}")
+        })
+        .collect();
+    format!(
+        "    uncertain evaluation cells: {total}; by cells from the nearest surface {}; \
+         {split} with 90 % of their mass on two neighbouring bins; {stagnated} stagnated",
+        columns.join(", ")
+    )
 }
 
 /// FNV-1a over the bits of everything `r` holds but its timing: equal
@@ -259,7 +372,7 @@ fn run_digest(r: &covmap_core::exploration::ExplorationResult) -> u64 {
 
 fn usage(problem: &str) -> ExitCode {
     eprintln!(
-        "table1: {problem}\nusage: table1 [--worlds corridor,office] [--seeds N] [--strategies coverage,count1,count1d,count50,count50u,frontier] [--scan-spacing M] [--resolution M] [--clear-no-echo] [--no-multipath] [--laser] [--verbose] [--digest]"
+        "table1: {problem}\nusage: table1 [--worlds corridor,office] [--seeds N] [--strategies coverage,count1,count1d,count50,count50u,frontier] [--scan-spacing M] [--resolution M] [--max-path M] [--clear-no-echo] [--no-multipath] [--laser] [--verbose] [--digest] [--where]"
     );
     ExitCode::from(2)
 }
