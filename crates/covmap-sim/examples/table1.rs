@@ -286,13 +286,11 @@ fn uncertain_cells(run: &covmap_sim::exploration::ExplorationRun, epsilon: f64) 
         total += 1;
         by_distance[distance[i].min(by_distance.len() - 1)] += 1;
         let h = &histograms[i * bins..(i + 1) * bins];
-        let top: usize = (0..bins)
-            .max_by(|&a, &b| h[a].total_cmp(&h[b]))
-            .unwrap_or(0);
-        let pair = [top.wrapping_sub(1), top + 1]
+        let top = covmap_core::histogram::argmax(h);
+        let pair = [top.checked_sub(1), Some(top + 1)]
             .into_iter()
-            .filter(|&k| k < bins)
-            .map(|k| h[k])
+            .flatten()
+            .filter_map(|k| h.get(k).copied())
             .fold(0.0_f32, f32::max);
         if h[top] + pair > 0.9 {
             split += 1;
