@@ -34,8 +34,8 @@
 //! Run: `cargo bench --bench planning` (short: `-- --measurement-time 5`).
 //! `PLANNING_WORLDS` names the worlds of the step and window cases
 //! (default `corridor,office`; empty: none, for the whole run alone). The
-//! office's run reaches the loop's 2000 m limit, and replaying its 8 000
-//! scans with a plan after each takes several minutes.
+//! office's coverage run drives 2.5 km, and replaying its 10 000 scans
+//! with a plan after each takes many minutes.
 
 use std::sync::Arc;
 use std::time::{Duration, Instant};

@@ -1341,8 +1341,8 @@ def explore(
     robot_radius_m: float = 0.25,
     candidate_stride_m: float = 0.5,
     scan_spacing_m: float = 0.25,
-    max_path_m: float = 2000.0,
-    max_steps: int = 5000,
+    max_path_m: float = 10000.0,
+    max_steps: int = 20000,
 ) -> ExplorationResult:
     """Explore ``world`` (a ``World``) with ``strategy`` (a ``Strategy``) until
     the strategy is done or a limit is reached; returns an
@@ -1401,8 +1401,8 @@ class Exploration:
         robot_radius_m: float = 0.25,
         candidate_stride_m: float = 0.5,
         scan_spacing_m: float = 0.25,
-        max_path_m: float = 2000.0,
-        max_steps: int = 5000,
+        max_path_m: float = 10000.0,
+        max_steps: int = 20000,
     ) -> Exploration: ...
     def step(self) -> Step | None:
         """Take one step: a ``Step``, or ``None`` once the run is over."""

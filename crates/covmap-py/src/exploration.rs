@@ -140,9 +140,9 @@ macro_rules! run_keywords {
             signature: (
                 world, strategy, *, start=None, seed=Seed(0), sensor=None, model=None,
                 resolution=0.05, bins=16, epsilon=0.65, robot_radius_m=0.25,
-                candidate_stride_m=0.5, scan_spacing_m=0.25, max_path_m=2000.0, max_steps=5000
+                candidate_stride_m=0.5, scan_spacing_m=0.25, max_path_m=10000.0, max_steps=20000
             ),
-            text: "(world, strategy, *, start=None, seed=0, sensor=None, model=None, resolution=0.05, bins=16, epsilon=0.65, robot_radius_m=0.25, candidate_stride_m=0.5, scan_spacing_m=0.25, max_path_m=2000.0, max_steps=5000)",
+            text: "(world, strategy, *, start=None, seed=0, sensor=None, model=None, resolution=0.05, bins=16, epsilon=0.65, robot_radius_m=0.25, candidate_stride_m=0.5, scan_spacing_m=0.25, max_path_m=10000.0, max_steps=20000)",
             params: (
                 start: Option<&Bound<'_, PyAny>>,
                 seed: Seed,

@@ -21,7 +21,7 @@
 //! `--where`: where the evaluation cells left uncertain lie, by their
 //! distance from the nearest surface of the true world, and how many are
 //! split between two neighbouring bins or have stagnated. `--max-path M`:
-//! the run's path limit (`max_path_m`, default 2000 m).
+//! the run's path limit (`max_path_m`, default 10 km).
 
 use std::process::ExitCode;
 use std::sync::Arc;

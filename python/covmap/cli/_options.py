@@ -123,11 +123,13 @@ def add_seed(command: argparse.ArgumentParser) -> None:
     command.add_argument("--seed", type=seed, default=0, help="random seed, 0 to 2**64 - 1 (default 0)")
 
 
-def add_run_limits(command: argparse.ArgumentParser) -> None:
+def add_run_limits(command: argparse.ArgumentParser, *, max_path_m: float | None = None) -> None:
     """The ``--max-steps`` and ``--max-path-m`` options of an exploration
-    (default: the library's limits)."""
+    (default: the library's limits, or ``max_path_m`` where the command has
+    its own)."""
     from covmap._native import _EXPLORE_DEFAULTS as defaults
 
+    max_path_m = defaults["max_path_m"] if max_path_m is None else max_path_m
     command.add_argument(
         "--max-steps",
         type=positive_int,
@@ -136,7 +138,7 @@ def add_run_limits(command: argparse.ArgumentParser) -> None:
     command.add_argument(
         "--max-path-m",
         type=path_limit,
-        help=f"stop a run after driving this far, metres (default {defaults['max_path_m']:g})",
+        help=f"stop a run after driving this far, metres (default {max_path_m:g})",
     )
 
 

@@ -59,7 +59,7 @@ def _ns(text: str) -> list[int]:
 
 def add_arguments(command: argparse.ArgumentParser) -> None:
     """The command's arguments."""
-    from covmap.experiments.fig7 import DEFAULT_NS
+    from covmap.experiments.fig7 import DEFAULT_NS, MAX_PATH_M
 
     _options.add_world(command)
     command.add_argument(
@@ -89,7 +89,7 @@ def add_arguments(command: argparse.ArgumentParser) -> None:
     )
     _options.add_dask(command)
     _options.add_out(command, NAME)
-    _options.add_run_limits(command)
+    _options.add_run_limits(command, max_path_m=MAX_PATH_M)
 
 
 def run(args: argparse.Namespace) -> int:

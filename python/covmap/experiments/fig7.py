@@ -102,17 +102,26 @@ class Fig7:
         return _point(f"coverage, alpha {self.alpha:g}", self.coverage)
 
 
+MAX_PATH_M = 2000.0
+"""Where the sweep's runs stop, metres (unless told otherwise): the range
+of the figure. Scan counting with a large ``n`` drives on for kilometres
+on the corridor (the loop's own limit is a safety net of 10 km), and the
+curve needs no more than this to show where it crosses coverage maps."""
+
+
 def specs(
     world_name: str, *, ns: Sequence[int], seeds: Sequence[int], alpha: float, **options: Any
 ) -> list[dict[str, Any]]:
     """The sweep's specs: coverage with ``alpha`` for each seed, then
     counting (discounted beyond :data:`~covmap.DEFAULT_DISCOUNT_BEYOND_M`)
-    for each ``n`` from the largest down and each seed.
+    for each ``n`` from the largest down and each seed. Every run stops at
+    :data:`MAX_PATH_M` unless ``options`` give ``max_path_m``.
 
     The order is the order the runs start in: the long runs (coverage's, a
     large ``n``'s) first and the short ones last, so that the cores finish
     together rather than one of them running a long run alone at the end.
     """
+    options = {"max_path_m": MAX_PATH_M, **options}
     coverage = [{"world": world_name, "strategy": Strategy.coverage(alpha), "seed": s, **options} for s in seeds]
     counting = [
         {"world": world_name, "strategy": Strategy.counting(n, DEFAULT_DISCOUNT_BEYOND_M), "seed": s, **options}

@@ -27,8 +27,12 @@ pub struct ExplorationConfig {
     pub min_travel_m: f64,
     /// The run stops when the robot has driven this far, metres (it stops
     /// driving there, scans and ends with [`Termination::Limit`](super::Termination::Limit)).
+    /// A safety net: the default (10 km) lies well beyond where every
+    /// strategy's runs in the built-in worlds end by their rule (scan
+    /// counting to 50 drives up to 2.3 km on the corridor).
     pub max_path_m: f64,
-    /// The run stops after this many steps ([`Termination::Limit`](super::Termination::Limit)).
+    /// The run stops after this many steps ([`Termination::Limit`](super::Termination::Limit));
+    /// a safety net too (default 20 000).
     pub max_steps: usize,
     /// Whether a reading at the maximum range ("no echo") clears only the
     /// cells nearer than the nearest obstacle the coverage map holds in its
@@ -45,8 +49,8 @@ impl Default for ExplorationConfig {
             candidate_stride_m: 0.5,
             scan_spacing_m: 0.25,
             min_travel_m: 0.25,
-            max_path_m: 2000.0,
-            max_steps: 5000,
+            max_path_m: 10_000.0,
+            max_steps: 20_000,
             occlude_no_echo: true,
         }
     }

@@ -126,6 +126,9 @@ pub struct Exploration<S, M> {
     failed_goals: Vec<usize>,
     /// Every cell the robot has run into, in the order it did.
     contact_cells: Vec<Cell>,
+    /// The cells the robot's centre has driven through, row-major (the
+    /// start's cell and every cell a straight leg crossed).
+    driven: Vec<bool>,
     /// The coverage map with the contact cells pinned, for a strategy that
     /// plans on it (`None`: no contact yet, the map itself; or a strategy
     /// that reads its ML coverage alone), kept up to date from the map's
@@ -274,6 +277,13 @@ impl<S: ScanSource, M: Motion> Exploration<S, M> {
             termination: None,
             failed_goals: Vec::new(),
             contact_cells: Vec::new(),
+            driven: {
+                let mut driven = vec![false; grid.len()];
+                if let Some(cell) = grid.world_to_cell(start.x_m, start.y_m) {
+                    driven[grid.index(cell)?] = true;
+                }
+                driven
+            },
             planning_map: None,
             planning_ml,
             pinned_ml: CoverageMap::pinned_ml(bins),
@@ -588,6 +598,17 @@ impl<S: ScanSource, M: Motion> Exploration<S, M> {
             theta_rad,
         );
         self.trajectory.push(self.pose, false);
+        if travelled_m > 0.0 {
+            let driven = &mut self.driven;
+            crate::footprint::visit(
+                self.map.grid(),
+                here,
+                direction[1].atan2(direction[0]),
+                travelled_m,
+                crate::sensor::Footprint::Ray,
+                &mut |i: usize, _| driven[i] = true,
+            );
+        }
         self.path_length_m += travelled_m;
         self.since_scan_m += travelled_m;
         Ok(Travel {
@@ -682,6 +703,7 @@ impl<S: ScanSource, M: Motion> Exploration<S, M> {
                 .then(|| self.planning_map.as_ref().unwrap_or(&self.map)),
             planning_ml: &self.planning_ml,
             contact_cells: &self.contact_cells,
+            driven: &self.driven,
             occupancy: &self.occupancy,
             entropy: &self.entropy,
             pose: self.pose,

@@ -44,6 +44,12 @@
 //! - **Planning radius**: paths are planned for a disc a cell (at least 5 cm) wider than
 //!   the robot, since a cell less than half covered reads free and a sonar
 //!   map often holds the face row of a wall as free (see `region`).
+//! - **The way back**: counting and frontier, which navigate the occupancy
+//!   grid, may always pass the cells the robot's centre has driven through,
+//!   whatever the grid says of them since (the robot fitted there, and the
+//!   world does not change): the end arcs of readings that catch a door's
+//!   jambs close the door on the grid behind the robot, and it would end
+//!   shut in the room it drove into (see `region`).
 //! - **The reachable region**: the cells the robot can reach through known
 //!   free space (of the coverage map; counting: of the occupancy grid, what
 //!   the beams have seen), plus a shell of the planning radius and the

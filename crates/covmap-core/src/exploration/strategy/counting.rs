@@ -15,7 +15,9 @@
 //! # Choice
 //! Scan counting knows a cell once a beam has intercepted it, so the robot
 //! navigates as the frontier strategy does, on what the beams have seen:
-//! the occupancy grid's known-free cells (and never a cell it ran into).
+//! the occupancy grid's known-free cells (and never a cell it ran into),
+//! and every cell its centre has driven through (the way back, see the
+//! [loop's documentation](crate::exploration)).
 //! Its region is the cells it can reach so, and those within the planning
 //! radius and one cell of them (the cells its disc touches and the end
 //! points' cells: what a count can reach). (On the coverage map a cell one
@@ -50,7 +52,8 @@ use crate::error::Result;
 use crate::exploration::config::ExplorationConfig;
 use crate::exploration::dilation::Dilation;
 use crate::exploration::region::{
-    blocked_on_occupancy, clearance_offsets, dilation_offsets, open_start, planning_radius_m,
+    blocked_on_occupancy, clearance_offsets, dilation_offsets, open_start, pass_where_driven,
+    planning_radius_m,
 };
 use crate::exploration::result::Termination;
 use crate::footprint::visit;
@@ -115,6 +118,7 @@ impl Counting {
         let free = |i: usize| !unclear.covers(i);
         let mut passable: Vec<bool> = (0..grid.len()).map(free).collect();
         open_start(grid, &blocked, radius_m, &view.pose, &mut passable)?;
+        pass_where_driven(&mut passable, view.driven);
         self.region
             .take_in(&reachable_cells(grid, &passable, start)?);
         let counts = view.occupancy.counts().counts();

@@ -289,11 +289,13 @@ mod tests {
             .map(|i| i as f64 * std::f64::consts::TAU / 180.0)
             .collect();
         let (entropy, ml) = (map.entropy(), map.ml());
+        let driven = vec![false; map.grid().len()];
         let view = View {
             map: &map,
             planning_map: Some(&map),
             planning_ml: &ml,
             contact_cells: &[],
+            driven: &driven,
             occupancy: &occupancy,
             entropy: &entropy,
             pose,

@@ -13,13 +13,16 @@
 //!
 //! # Choice
 //! The robot navigates the occupancy grid: cells not known free block, and
-//! the robot's centre keeps the planning radius (the robot's and a cell, at least 5 cm)
-//! from every blocked cell. A frontier group is reached from any reachable
-//! cell within the planning radius and two cells of one of its cells (the
-//! robot cannot stand on the frontier itself: the unknown cells next to it
-//! block). The goal is the nearest such cell of the nearest group (by path
-//! length, at least `min_travel_m`; ties to the lower cell index). A robot
-//! whose sensor does not see all around (a 180-degree laser) faces the
+//! the robot's centre keeps the planning radius (the robot's and a cell,
+//! at least 5 cm) from every blocked cell, but may always pass the cells it
+//! has driven through (the way back, see the
+//! [loop's documentation](crate::exploration)). A frontier group is reached
+//! from any reachable cell within the planning radius and two cells of one
+//! of its cells (the robot cannot stand on the frontier itself: the unknown
+//! cells next to it block). The goal is the nearest such cell of the
+//! nearest group (by path length, at least `min_travel_m`; ties to the
+//! lower cell index). A robot whose sensor does not see all around (a
+//! 180-degree laser) faces the
 //! frontier cell the goal was chosen for when it scans there.
 //!
 //! When the robot has reached the goal and scanned there and not one cell
@@ -58,7 +61,7 @@ impl Frontier {
         let radius_m = planning_radius_m(view.config.robot_radius_m, grid);
         let (known, known_free) = known_cells(view.occupancy);
         let blocked = blocked_on_occupancy(view.occupancy, view.contact_cells)?;
-        let (free, reach) = paths_from(grid, &blocked, radius_m, &view.pose)?;
+        let (free, reach) = paths_from(grid, &blocked, radius_m, &view.pose, view.driven)?;
         let frontier: Vec<bool> = frontier_cells(grid, &known, &known_free)
             .into_iter()
             .zip(&self.given_up)

@@ -183,6 +183,9 @@ pub(super) struct View<'a> {
     pub planning_ml: &'a [f32],
     /// The cells the robot has run into.
     pub contact_cells: &'a [Cell],
+    /// The cells the robot's centre has driven through (row-major), which
+    /// the strategies navigating the occupancy grid may always pass.
+    pub driven: &'a [bool],
     pub occupancy: &'a OccupancyGrid,
     /// The coverage map's entropy, nats, computed once after the last scan.
     pub entropy: &'a [f32],
