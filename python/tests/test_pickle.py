@@ -36,3 +36,19 @@ def test_worlds_pickle_with_their_polygons_and_materials() -> None:
         np.testing.assert_array_equal(a, b)
     grid = covmap.Grid.covering(world.bounds, resolution=0.25)
     np.testing.assert_array_equal(back.coverage(grid), world.coverage(grid))
+
+
+def test_a_log_with_dropped_beams_pickles_and_copies() -> None:
+    """A laser log's dropped beams (NaN ranges, as every REP 117 bag has)
+    survive pickling and copying, still dropped."""
+    log = covmap.Log.from_laser_scans(
+        np.zeros((1, 3)),
+        np.array([[np.nan, 1.0]]),
+        angle_min=0.0,
+        angle_increment=0.1,
+        range_min=0.0,
+        range_max=5.0,
+    )
+    for back in (pickle.loads(pickle.dumps(log)), copy.deepcopy(log)):
+        ranges = back.ranges
+        assert np.isnan(ranges[0, 0]) and ranges[0, 1] == 1.0

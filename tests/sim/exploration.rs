@@ -104,6 +104,35 @@ fn a_seed_fixes_the_run_at_any_thread_count() {
     assert_ne!(one.result.trajectory, other.result.trajectory);
 }
 
+/// A run stopped by its path limit ends there, by the limit: the legs'
+/// lengths, added up, can fall short of the limit by a rounding error, and
+/// the run must not go on with steps that drive nothing (it took 81 steps,
+/// 78 of them empty, and ended `no_goal` at 0.9999999999999999 m).
+#[test]
+fn a_run_at_its_path_limit_ends_there() {
+    let world = corridor();
+    for strategy in [
+        Strategy::counting(5, None).unwrap(),
+        Strategy::coverage(0.5).unwrap(),
+    ] {
+        for max_path_m in [1.0, 0.5, 0.01] {
+            let mut options = short(0, max_path_m);
+            options.start = Some(Pose::new(3.4, 1.3, 0.0));
+            let run = explore(&world, strategy, &options).unwrap();
+            let figures = format!(
+                "{strategy:?}, limit {max_path_m} m: {:?} after {} steps, {} m",
+                run.result.termination, run.result.steps, run.result.path_length_m
+            );
+            assert_eq!(
+                run.result.termination,
+                Some(Termination::Limit),
+                "{figures}"
+            );
+            assert!(run.result.steps < 10, "{figures}");
+        }
+    }
+}
+
 /// Eq. 14 with alpha = 0 goes to the nearest candidate worth visiting, with
 /// alpha = 1 to the most informative one: the greedy robot's goals are
 /// nearer, and it learns less per goal.
@@ -168,8 +197,11 @@ fn bad_options_are_refused_before_anything_runs() {
         "alpha",
     );
     type Edit = fn(&mut ExploreOptions);
-    let cases: [(Edit, &str); 7] = [
+    let cases: [(Edit, &str); 9] = [
         (|o| o.resolution_m = 0.0, "resolution_m"),
+        // Finer than a tenth of a 5 cm cell: millions of scans a leg.
+        (|o| o.config.scan_spacing_m = 1e-9, "scan_spacing_m"),
+        (|o| o.config.scan_spacing_m = 0.0049, "scan_spacing_m"),
         (|o| o.resolution_m = -0.05, "resolution_m"),
         (|o| o.bins = 1, "bins"),
         (|o| o.config.robot_radius_m = 0.0, "robot_radius_m"),

@@ -23,7 +23,7 @@ use crate::world::PyWorld;
 fn truth_values(py: Python<'_>, truth: &Bound<'_, PyAny>, grid: &Grid) -> PyResult<Vec<f64>> {
     if let Ok(world) = truth.cast::<PyWorld>() {
         let world = &world.get().0;
-        return Ok(py.detach(|| world.coverage(grid)));
+        return py.detach(|| world.try_coverage(grid)).or_raise(py);
     }
     let (values, shape) = convert::matrix(truth, "truth")?;
     let (rows, cols) = grid.shape();

@@ -41,6 +41,10 @@ pub struct ExplorationConfig {
     pub occlude_no_echo: bool,
 }
 
+/// The finest scan spacing, as a fraction of a cell: a tenth
+/// ([`ExplorationConfig::check_scan_spacing`]).
+pub const MIN_SCANS_PER_CELL: f64 = 10.0;
+
 impl Default for ExplorationConfig {
     fn default() -> Self {
         Self {
@@ -57,6 +61,23 @@ impl Default for ExplorationConfig {
 }
 
 impl ExplorationConfig {
+    /// Errors unless `scan_spacing_m` is at least a cell of `resolution_m`
+    /// metres divided by [`MIN_SCANS_PER_CELL`] (a tenth of a cell): the
+    /// robot would scan more often than a map of that grid can tell apart,
+    /// and a leg of a few metres could take millions of scans.
+    ///
+    /// # Errors
+    /// [`CovmapError::InvalidParameter`](crate::CovmapError::InvalidParameter)
+    /// naming `scan_spacing_m`.
+    pub fn check_scan_spacing(&self, resolution_m: f64) -> Result<()> {
+        check_parameter(
+            self.scan_spacing_m >= resolution_m / MIN_SCANS_PER_CELL,
+            "scan_spacing_m",
+            self.scan_spacing_m,
+            "a distance of at least a tenth of the map's cell (metres)",
+        )
+    }
+
     /// Errors ([`CovmapError::InvalidParameter`](crate::CovmapError::InvalidParameter),
     /// naming the setting and its value) unless `epsilon`, `robot_radius_m`,
     /// `candidate_stride_m`, `scan_spacing_m` and `max_path_m` are positive

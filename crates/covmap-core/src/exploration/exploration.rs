@@ -49,6 +49,10 @@ const INTO_CONTACT_M: f64 = 1e-3;
 /// Headway below which a drive to a goal made none, metres.
 const NO_HEADWAY_M: f64 = 0.01;
 
+/// How far short of `max_path_m` the path may end and count as at the
+/// limit, metres (rounding in the sum of the legs' lengths).
+const PATH_LIMIT_TOLERANCE_M: f64 = 1e-9;
+
 /// Everything a run starts from, besides its scan source and motion.
 #[derive(Clone, Debug, PartialEq)]
 pub struct ExplorationSetup {
@@ -216,6 +220,7 @@ impl<S: ScanSource, M: Motion> Exploration<S, M> {
             report_cells,
         } = setup;
         config.validate()?;
+        config.check_scan_spacing(grid.resolution_m())?;
         strategy.validate()?;
         model.validate()?;
         check_pose(&grid, &start)?;
@@ -308,7 +313,7 @@ impl<S: ScanSource, M: Motion> Exploration<S, M> {
             self.look_around()?;
             self.refresh_entropy();
         }
-        if self.path_length_m >= self.config.max_path_m || self.steps >= self.config.max_steps {
+        if self.at_path_limit() || self.steps >= self.config.max_steps {
             self.termination = Some(Termination::Limit);
             return Ok(None);
         }
@@ -365,6 +370,14 @@ impl<S: ScanSource, M: Motion> Exploration<S, M> {
         self.trace.contact.push(drive.contact_m.is_some());
         self.trace.planning_s.push(planning_s);
         Ok(Some(report))
+    }
+
+    /// Whether the robot has driven as far as the run may (within
+    /// [`PATH_LIMIT_TOLERANCE_M`]: the legs' lengths, added up, can fall
+    /// short of the limit by a rounding error, and a run would then go on
+    /// with steps that drive nothing).
+    fn at_path_limit(&self) -> bool {
+        self.path_length_m >= self.config.max_path_m - PATH_LIMIT_TOLERANCE_M
     }
 
     /// Steps until the run is over; how it ended.
@@ -431,7 +444,7 @@ impl<S: ScanSource, M: Motion> Exploration<S, M> {
                 if self.since_scan_m >= self.config.scan_spacing_m - 1e-9 {
                     self.scan_here()?;
                 }
-                if self.path_length_m >= self.config.max_path_m - 1e-9 {
+                if self.at_path_limit() {
                     if self.since_scan_m > 0.0 {
                         self.scan_here()?;
                     }

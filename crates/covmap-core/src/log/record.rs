@@ -59,10 +59,28 @@ pub struct Log {
 struct LogData {
     poses: Vec<Pose>,
     timestamps_s: Vec<f64>,
+    #[serde(with = "dropped_as_null")]
     ranges_m: Vec<f64>,
     bearings_rad: Bearings,
     max_range_m: f64,
     sensor_offset: Pose,
+}
+
+/// A log's ranges with its dropped beams (NaN) as `null`, as JSON has no
+/// NaN (`serde_json` writes one as `null` and reads `null` as no number),
+/// and `null` back as a dropped beam.
+mod dropped_as_null {
+    use serde::{Deserialize, Deserializer, Serialize, Serializer};
+
+    pub fn serialize<S: Serializer>(ranges: &[f64], s: S) -> Result<S::Ok, S::Error> {
+        let kept: Vec<Option<f64>> = ranges.iter().map(|&r| (!r.is_nan()).then_some(r)).collect();
+        kept.serialize(s)
+    }
+
+    pub fn deserialize<'de, D: Deserializer<'de>>(d: D) -> Result<Vec<f64>, D::Error> {
+        let kept = Vec::<Option<f64>>::deserialize(d)?;
+        Ok(kept.into_iter().map(|r| r.unwrap_or(f64::NAN)).collect())
+    }
 }
 
 impl TryFrom<LogData> for Log {
@@ -468,5 +486,25 @@ mod tests {
         let broken = json.replace("\"max_range_m\":5.0", "\"max_range_m\":-5.0");
         assert_ne!(broken, json);
         assert!(serde_json::from_str::<Log>(&broken).is_err());
+    }
+
+    /// A log with dropped beams (NaN ranges, as laser drivers report them)
+    /// goes through its serialised form and back, the beams still dropped.
+    #[test]
+    fn dropped_beams_round_trip() {
+        let log = Log::with_dropped(
+            vec![Pose::new(0.0, 0.0, 0.0)],
+            vec![0.0],
+            vec![1.0, f64::NAN, 2.0],
+            Bearings::Fixed(vec![-0.1, 0.0, 0.1]),
+            5.0,
+        )
+        .unwrap();
+        let json = serde_json::to_string(&log).unwrap();
+        assert!(json.contains("[1.0,null,2.0]"), "{json}");
+        let back: Log = serde_json::from_str(&json).unwrap();
+        assert_eq!(back.scan_ranges(0)[0], 1.0);
+        assert!(back.scan_ranges(0)[1].is_nan());
+        assert_eq!(back.scan_ranges(0)[2], 2.0);
     }
 }

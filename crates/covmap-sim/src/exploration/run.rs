@@ -70,6 +70,28 @@ pub struct SimExploration {
     started: Instant,
 }
 
+/// Bytes a run keeps for each cell of its grid besides the histograms'
+/// `4 * bins`: the truth, the clearances, the entropy, history and
+/// planning maps, the occupancy grid and counts, and the flags, rounded up.
+const RUN_BYTES_PER_CELL: usize = 128;
+
+/// [`covmap_core::CovmapError::OutOfMemory`] unless what a run on `grid`
+/// with `bins` bins keeps could be allocated now: checked before the first
+/// of its per-cell arrays is computed, so that a grid too fine for the
+/// machine is an error, not an abort halfway through the set-up.
+fn check_run_memory(grid: &Grid, bins: usize) -> Result<()> {
+    let per_cell = RUN_BYTES_PER_CELL.saturating_add(bins.saturating_mul(4));
+    let bytes = grid.len().saturating_mul(per_cell);
+    let what = format!(
+        "an exploration on {} x {} cells of {bins} bins",
+        grid.rows(),
+        grid.cols()
+    );
+    let probe = covmap_core::memory::try_with_capacity::<u8>(bytes, &what)?;
+    std::hint::black_box(&probe);
+    Ok(())
+}
+
 impl SimExploration {
     /// A robot at the start of `options` in `world`, exploring with
     /// `strategy`; nothing scanned yet.
@@ -86,6 +108,7 @@ impl SimExploration {
         let [x0, y0, x1, y1] = world.bounds_m();
         let m = options.margin_m.max(options.resolution_m);
         let grid = Grid::covering(x0 - m, y0 - m, x1 + m, y1 + m, options.resolution_m)?;
+        check_run_memory(&grid, options.bins)?;
         if let Some(start) = &options.start {
             check_start(&world, &grid, &robot, start)?;
         }

@@ -297,6 +297,14 @@ fn read_scan(
         _ => state.beams = Some(n),
     }
     let at = state.ranges.len();
+    // A long log of wide scans can need more memory than there is: an
+    // error naming the line, not an abort.
+    state.ranges.try_reserve(n).map_err(|_| {
+        format!(
+            "{n} more readings (after {at}) need more memory than can be allocated ({} bytes)",
+            (at + n).saturating_mul(std::mem::size_of::<f64>())
+        )
+    })?;
     for k in 0..n {
         let r = f.number("range")?;
         if r < 0.0 {
