@@ -32,7 +32,7 @@ use image::codecs::pnm::{PnmEncoder, PnmSubtype, SampleEncoding};
 
 use super::image::ImageOptions;
 use super::{parse_error, read_text, write_atomic};
-use crate::error::{Result, SimError};
+use crate::error::{Result, SimError, check_param};
 use crate::world::World;
 
 impl World {
@@ -152,8 +152,8 @@ impl RosMapMode {
 /// never names a missing image).
 ///
 /// # Errors
-/// [`SimError::InvalidParameter`] unless `0 <= free_thresh <
-/// occupied_thresh <= 1` and the grid has fewer than 2^32 rows and columns; [`SimError::LengthMismatch`] unless there is one
+/// [`SimError::InvalidParameter`] naming the threshold at fault unless
+/// `0 <= free_thresh < occupied_thresh <= 1`, and unless the grid has fewer than 2^32 rows and columns; [`SimError::LengthMismatch`] unless there is one
 /// value a cell; [`SimError::InvalidValue`] for a value outside `-1..=100`;
 /// [`SimError::Io`] if a file cannot be written. Nothing is written then.
 pub fn write_ros_map(
@@ -164,16 +164,25 @@ pub fn write_ros_map(
     occupied_thresh: f64,
     free_thresh: f64,
 ) -> Result<()> {
-    let ordered = (0.0..=1.0).contains(&occupied_thresh)
-        && free_thresh >= 0.0
-        && free_thresh < occupied_thresh;
-    if !ordered {
-        return Err(SimError::InvalidParameter {
-            name: "free_thresh",
-            value: free_thresh,
-            expected: "0 <= free_thresh < occupied_thresh <= 1",
-        });
-    }
+    // Each threshold on its own first, so that the error names the bad one.
+    check_param(
+        "occupied_thresh",
+        occupied_thresh,
+        (0.0..=1.0).contains(&occupied_thresh),
+        "a number from 0 to 1",
+    )?;
+    check_param(
+        "free_thresh",
+        free_thresh,
+        (0.0..=1.0).contains(&free_thresh),
+        "a number from 0 to 1",
+    )?;
+    check_param(
+        "free_thresh",
+        free_thresh,
+        free_thresh < occupied_thresh,
+        "less than occupied_thresh",
+    )?;
     if occupancy.len() != grid.len() {
         return Err(SimError::LengthMismatch {
             what: "occupancy values and grid cells",
@@ -296,6 +305,32 @@ mod tests {
         assert!(write_ros_map(&yaml, &grid, &occupancy, RosMapMode::Trinary, 0.2, 0.65).is_err());
         assert!(!yaml.exists() && !yaml.with_extension("pgm").exists());
         std::fs::remove_dir_all(&dir).unwrap();
+    }
+
+    /// A bad `occupied_thresh` is reported as itself, not as the
+    /// `free_thresh` it was compared with; thresholds out of order blame
+    /// `free_thresh`.
+    #[test]
+    fn a_bad_occupied_thresh_is_named_as_itself() {
+        let dir = std::env::temp_dir().join(format!("covmap-ros-thresh-{}", std::process::id()));
+        let yaml = dir.join("map.yaml");
+        let grid = Grid::new([0.0, 0.0], 0.5, 2, 3).unwrap();
+        let occupancy = [100, 0, 0, 0, 0, 100];
+        let name = |occupied: f64, free: f64| {
+            match write_ros_map(&yaml, &grid, &occupancy, RosMapMode::Trinary, occupied, free) {
+                Err(SimError::InvalidParameter { name, .. }) => name,
+                other => panic!("({occupied}, {free}): {other:?}"),
+            }
+        };
+        for occupied in [f64::NAN, 1.5, -0.1, f64::INFINITY] {
+            assert_eq!(name(occupied, 0.196), "occupied_thresh");
+        }
+        for free in [f64::NAN, -0.1, 1.5] {
+            assert_eq!(name(0.65, free), "free_thresh");
+        }
+        assert_eq!(name(0.2, 0.65), "free_thresh");
+        assert_eq!(name(0.5, 0.5), "free_thresh");
+        assert!(!dir.exists());
     }
 
     /// The YAML names its image so that YAML reads the name back whole,
