@@ -155,7 +155,8 @@ impl RosMapMode {
 /// [`SimError::InvalidParameter`] naming the threshold at fault unless
 /// `0 <= free_thresh < occupied_thresh <= 1`, and unless the grid has fewer than 2^32 rows and columns; [`SimError::LengthMismatch`] unless there is one
 /// value a cell; [`SimError::InvalidValue`] for a value outside `-1..=100`;
-/// [`SimError::Io`] if a file cannot be written. Nothing is written then.
+/// [`SimError::Io`] if `yaml_path` ends in `.pgm` (its image would be the
+/// same file), or if a file cannot be written. Nothing is written then.
 pub fn write_ros_map(
     yaml_path: &Path,
     grid: &Grid,
@@ -183,6 +184,21 @@ pub fn write_ros_map(
         free_thresh < occupied_thresh,
         "less than occupied_thresh",
     )?;
+    // The image takes the YAML's name with `.pgm`: a YAML named `.pgm`
+    // (in any case, for file systems that ignore it) would overwrite it.
+    if yaml_path
+        .extension()
+        .is_some_and(|e| e.eq_ignore_ascii_case("pgm"))
+    {
+        return Err(SimError::Io {
+            path: yaml_path.to_path_buf(),
+            source: std::io::Error::new(
+                std::io::ErrorKind::InvalidInput,
+                "the YAML file would be written over its own image (the YAML's name with `.pgm`); \
+                 name the YAML `.yaml`",
+            ),
+        });
+    }
     if occupancy.len() != grid.len() {
         return Err(SimError::LengthMismatch {
             what: "occupancy values and grid cells",
@@ -304,6 +320,25 @@ mod tests {
         assert!(write_ros_map(&yaml, &grid, &[101; 24], RosMapMode::Trinary, 0.65, 0.2).is_err());
         assert!(write_ros_map(&yaml, &grid, &occupancy, RosMapMode::Trinary, 0.2, 0.65).is_err());
         assert!(!yaml.exists() && !yaml.with_extension("pgm").exists());
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+
+    /// A YAML path ending in `.pgm` would be its own image: it is refused,
+    /// naming the path, and nothing is written.
+    #[test]
+    fn a_yaml_path_ending_in_pgm_is_refused_before_anything_is_written() {
+        let dir = std::env::temp_dir().join(format!("covmap-ros-self-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let grid = Grid::new([0.0, 0.0], 0.5, 2, 3).unwrap();
+        let occupancy = [100, 0, 0, 0, 0, 100];
+        for name in ["x.pgm", "x.PGM"] {
+            let path = dir.join(name);
+            let err = write_ros_map(&path, &grid, &occupancy, RosMapMode::Trinary, 0.65, 0.196)
+                .unwrap_err();
+            assert!(matches!(err, SimError::Io { .. }), "{err:?}");
+            assert!(err.to_string().contains(&path.display().to_string()), "{err}");
+            assert_eq!(std::fs::read_dir(&dir).unwrap().count(), 0, "{name}");
+        }
         std::fs::remove_dir_all(&dir).unwrap();
     }
 
