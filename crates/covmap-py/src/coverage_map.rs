@@ -272,8 +272,10 @@ impl PyCoverageMap {
     /// unknown_within_nats=)``; ``mode`` ``"trinary"`` (black at or above
     /// ``occupied_thresh``, white at or below ``free_thresh``, grey between
     /// and unknown) or ``"scale"`` (grey by occupancy, unknown 205).
-    /// ``World.from_file(yaml_path)`` reads the pair back. Each file is
-    /// written atomically.
+    /// ``World.from_file(yaml_path)`` reads the pair back. The pair is
+    /// written together: both files whole to temporary files first, then
+    /// renamed into place, the old pair kept if either fails
+    /// (``FileIOError``); a ``yaml_path`` ending in ``.pgm`` is refused.
     #[pyo3(signature = (yaml_path, *, mode="trinary", occupied_thresh=0.65, free_thresh=0.196, source="ml", unknown_within_nats=0.05))]
     #[allow(
         clippy::too_many_arguments,

@@ -31,7 +31,7 @@ use image::ExtendedColorType;
 use image::codecs::pnm::{PnmEncoder, PnmSubtype, SampleEncoding};
 
 use super::image::ImageOptions;
-use super::{parse_error, read_text, write_atomic};
+use super::{parse_error, read_text, write_atomic_all};
 use crate::error::{Result, SimError, check_param};
 use crate::world::World;
 
@@ -148,8 +148,10 @@ impl RosMapMode {
 
 /// Write `occupancy` (one value a cell of `grid`, row-major from the
 /// origin's cell) as the map_server pair `yaml_path` and, beside it, the
-/// PGM of the same name, each atomically (the PGM first, so that the YAML
-/// never names a missing image).
+/// PGM of the same name, together: both are written whole to temporary
+/// files first and renamed into place only when both are complete, and if
+/// the YAML cannot be put in place the old PGM is put back, so that the
+/// pair is never half new (see [`super::write_atomic_all`]).
 ///
 /// # Errors
 /// [`SimError::InvalidParameter`] naming the threshold at fault unless
@@ -265,8 +267,7 @@ pub fn write_ros_map(
         path: yaml_path.to_path_buf(),
         source: std::io::Error::other(e.to_string()),
     })?;
-    write_atomic(&image_path, &pgm)?;
-    write_atomic(yaml_path, yaml.as_bytes())
+    write_atomic_all(&[(&image_path, &pgm), (yaml_path, yaml.as_bytes())])
 }
 
 /// The YAML file of a map_server pair, as serde writes it (`serde_norway`):
@@ -336,9 +337,34 @@ mod tests {
             let err = write_ros_map(&path, &grid, &occupancy, RosMapMode::Trinary, 0.65, 0.196)
                 .unwrap_err();
             assert!(matches!(err, SimError::Io { .. }), "{err:?}");
-            assert!(err.to_string().contains(&path.display().to_string()), "{err}");
+            assert!(
+                err.to_string().contains(&path.display().to_string()),
+                "{err}"
+            );
             assert_eq!(std::fs::read_dir(&dir).unwrap().count(), 0, "{name}");
         }
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+
+    /// A YAML path that is a directory is refused before the PGM is
+    /// written: no new image beside it, the old pair unchanged.
+    #[test]
+    fn a_yaml_path_that_is_a_directory_leaves_no_new_image() {
+        let dir = std::env::temp_dir().join(format!("covmap-ros-dir-{}", std::process::id()));
+        let yaml = dir.join("map.yaml");
+        std::fs::create_dir_all(&yaml).unwrap();
+        let grid = Grid::new([0.0, 0.0], 0.5, 2, 3).unwrap();
+        let occupancy = [100, 0, 0, 0, 0, 100];
+        let write = || write_ros_map(&yaml, &grid, &occupancy, RosMapMode::Trinary, 0.65, 0.196);
+        assert!(write().is_err());
+        assert_eq!(std::fs::read_dir(&dir).unwrap().count(), 1);
+        std::fs::write(yaml.with_extension("pgm"), b"old image").unwrap();
+        assert!(write().is_err());
+        assert_eq!(
+            std::fs::read(yaml.with_extension("pgm")).unwrap(),
+            b"old image"
+        );
+        assert_eq!(std::fs::read_dir(&dir).unwrap().count(), 2);
         std::fs::remove_dir_all(&dir).unwrap();
     }
 
@@ -351,11 +377,16 @@ mod tests {
         let yaml = dir.join("map.yaml");
         let grid = Grid::new([0.0, 0.0], 0.5, 2, 3).unwrap();
         let occupancy = [100, 0, 0, 0, 0, 100];
-        let name = |occupied: f64, free: f64| {
-            match write_ros_map(&yaml, &grid, &occupancy, RosMapMode::Trinary, occupied, free) {
-                Err(SimError::InvalidParameter { name, .. }) => name,
-                other => panic!("({occupied}, {free}): {other:?}"),
-            }
+        let name = |occupied: f64, free: f64| match write_ros_map(
+            &yaml,
+            &grid,
+            &occupancy,
+            RosMapMode::Trinary,
+            occupied,
+            free,
+        ) {
+            Err(SimError::InvalidParameter { name, .. }) => name,
+            other => panic!("({occupied}, {free}): {other:?}"),
         };
         for occupied in [f64::NAN, 1.5, -0.1, f64::INFINITY] {
             assert_eq!(name(occupied, 0.196), "occupied_thresh");

@@ -96,35 +96,154 @@ pub(crate) fn parse_error(
 /// file name still has room) that no existing file has: writes of one path
 /// from several threads or processes at once each land whole (the last
 /// rename wins), and a temporary file left over by a crash is stepped
-/// around, never reused.
+/// around, never reused. A path that is a directory is refused before
+/// anything is written.
 pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<()> {
-    let io = |source| SimError::Io {
+    write_atomic_all(&[(path, bytes)])
+}
+
+/// Write each `(path, bytes)` of `files` as [`write_atomic`] does, all or
+/// none as far as the file system allows: every file is written whole to a
+/// temporary file beside its path first, and only when all are complete are
+/// they renamed into place, in order. If a rename fails, the files already
+/// renamed are put back as they were (the old file kept under a temporary
+/// hard link until then, or removed if there was none) and the temporary
+/// files are removed.
+pub(crate) fn write_atomic_all(files: &[(&Path, &[u8])]) -> Result<()> {
+    write_atomic_all_with(files, |from, to| std::fs::rename(from, to))
+}
+
+/// [`write_atomic_all`], renaming by `rename` (a test's can fail).
+fn write_atomic_all_with(
+    files: &[(&Path, &[u8])],
+    rename: impl Fn(&Path, &Path) -> std::io::Result<()>,
+) -> Result<()> {
+    let io = |path: &Path, source| SimError::Io {
         path: path.to_path_buf(),
         source,
     };
-    if path.file_name().is_none() {
-        return Err(io(std::io::Error::new(
-            std::io::ErrorKind::InvalidInput,
-            "the path names no file",
-        )));
+    for &(path, _) in files {
+        let refuse = |reason| {
+            io(
+                path,
+                std::io::Error::new(std::io::ErrorKind::InvalidInput, reason),
+            )
+        };
+        if path.file_name().is_none() {
+            return Err(refuse("the path names no file"));
+        }
+        if std::fs::symlink_metadata(path).is_ok_and(|m| m.is_dir()) {
+            return Err(refuse("the path is a directory"));
+        }
     }
-    let (tmp, mut f) = create_temporary(path).map_err(io)?;
-    let result = (|| {
-        use std::io::Write;
-        f.write_all(bytes)?;
-        f.sync_all()?;
-        std::fs::rename(&tmp, path)
-    })();
-    if result.is_err() {
-        let _ = std::fs::remove_file(&tmp);
+    let remove = |paths: &[PathBuf]| {
+        for p in paths {
+            let _ = std::fs::remove_file(p);
+        }
+    };
+    let mut temporaries = Vec::with_capacity(files.len());
+    for &(path, bytes) in files {
+        match write_temporary(path, bytes) {
+            Ok(tmp) => temporaries.push(tmp),
+            Err(e) => {
+                remove(&temporaries);
+                return Err(io(path, e));
+            }
+        }
     }
-    result.map_err(io)
+    // Each file put in place but the last, with its old file if it had one.
+    let mut placed: Vec<(&Path, Option<PathBuf>)> = Vec::new();
+    for (i, (&(path, _), tmp)) in files.iter().zip(&temporaries).enumerate() {
+        // The last file needs no way back: nothing after it can fail.
+        let last = i + 1 == files.len();
+        let step = (|| {
+            let old = if last { None } else { keep_old(path)? };
+            if let Err(e) = rename(tmp, path) {
+                remove(old.as_slice());
+                return Err(e);
+            }
+            Ok(old)
+        })();
+        match step {
+            Ok(old) if !last => placed.push((path, old)),
+            Ok(_) => {}
+            Err(e) => {
+                for (done, old) in placed.into_iter().rev() {
+                    let _ = match old {
+                        Some(old) => std::fs::rename(old, done),
+                        None => std::fs::remove_file(done),
+                    };
+                }
+                remove(&temporaries[i..]);
+                return Err(io(path, e));
+            }
+        }
+    }
+    for (_, old) in placed {
+        remove(old.as_slice());
+    }
+    Ok(())
+}
+
+/// A temporary file beside `path` holding `bytes`, written and synced;
+/// removed again if that fails.
+fn write_temporary(path: &Path, bytes: &[u8]) -> std::io::Result<PathBuf> {
+    use std::io::Write;
+    let (tmp, mut f) = create_temporary(path)?;
+    let written = f.write_all(bytes).and_then(|()| f.sync_all());
+    match written {
+        Ok(()) => Ok(tmp),
+        Err(e) => {
+            let _ = std::fs::remove_file(&tmp);
+            Err(e)
+        }
+    }
+}
+
+/// The file at `path`, if there is one, kept under a new temporary name
+/// beside it (a hard link, a copy where the file system has none), so that
+/// replacing `path` can be undone.
+fn keep_old(path: &Path) -> std::io::Result<Option<PathBuf>> {
+    match std::fs::symlink_metadata(path) {
+        Err(e) if e.kind() == std::io::ErrorKind::NotFound => return Ok(None),
+        Err(e) => return Err(e),
+        Ok(_) => {}
+    }
+    if let Ok((link, ())) = with_temporary_name(path, |tmp| std::fs::hard_link(path, tmp)) {
+        return Ok(Some(link));
+    }
+    let (copy, mut f) = create_temporary(path)?;
+    let copied = std::fs::File::open(path)
+        .and_then(|mut old| std::io::copy(&mut old, &mut f))
+        .and_then(|_| f.sync_all());
+    match copied {
+        Ok(()) => Ok(Some(copy)),
+        Err(e) => {
+            let _ = std::fs::remove_file(&copy);
+            Err(e)
+        }
+    }
 }
 
 /// A new file beside `path`, `.covmap-<16 hex digits>.tmp`, created where
-/// no file of that name exists. The digits mix the process, a count of the
-/// calls and the clock, and a name that is taken is skipped for the next.
-fn create_temporary(path: &Path) -> std::io::Result<(std::path::PathBuf, std::fs::File)> {
+/// no file of that name exists.
+fn create_temporary(path: &Path) -> std::io::Result<(PathBuf, std::fs::File)> {
+    with_temporary_name(path, |tmp| {
+        std::fs::File::options()
+            .write(true)
+            .create_new(true)
+            .open(tmp)
+    })
+}
+
+/// `create(name)` for a name beside `path`, `.covmap-<16 hex digits>.tmp`,
+/// until it does not fail for a name that exists. The digits mix the
+/// process, a count of the calls and the clock, and a name that is taken is
+/// skipped for the next.
+fn with_temporary_name<T>(
+    path: &Path,
+    mut create: impl FnMut(&Path) -> std::io::Result<T>,
+) -> std::io::Result<(PathBuf, T)> {
     use std::hash::{BuildHasher, Hasher};
     use std::sync::atomic::{AtomicU64, Ordering};
     static CALLS: AtomicU64 = AtomicU64::new(0);
@@ -142,12 +261,8 @@ fn create_temporary(path: &Path) -> std::io::Result<(std::path::PathBuf, std::fs
                 .map_or(0, |d| d.as_nanos()),
         );
         let tmp = path.with_file_name(format!(".covmap-{:016x}.tmp", h.finish()));
-        match std::fs::File::options()
-            .write(true)
-            .create_new(true)
-            .open(&tmp)
-        {
-            Ok(f) => return Ok((tmp, f)),
+        match create(&tmp) {
+            Ok(made) => return Ok((tmp, made)),
             Err(e) if e.kind() == std::io::ErrorKind::AlreadyExists => last = Some(e),
             Err(e) => return Err(e),
         }
@@ -235,6 +350,53 @@ mod tests {
         write_atomic(&dir.join("out.json"), b"{}").unwrap();
         assert_eq!(std::fs::read(dir.join("out.json")).unwrap(), b"{}");
         assert_eq!(std::fs::read(&stale).unwrap(), b"left by a crash");
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+
+    /// A pair whose second file cannot be put in place leaves the first as
+    /// it was (or absent, if it was), and no temporary file behind.
+    #[test]
+    fn a_pair_whose_second_rename_fails_leaves_both_files_as_they_were() {
+        let dir =
+            std::env::temp_dir().join(format!("covmap-sim-write-pair-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let (first, second) = (dir.join("map.pgm"), dir.join("map.yaml"));
+        let fail_second = |from: &Path, to: &Path| {
+            if to.extension().is_some_and(|e| e == "yaml") {
+                Err(std::io::Error::from(std::io::ErrorKind::PermissionDenied))
+            } else {
+                std::fs::rename(from, to)
+            }
+        };
+        let files: [(&Path, &[u8]); 2] = [(&first, b"new image"), (&second, b"new yaml")];
+        let names = || {
+            let mut n: Vec<_> = std::fs::read_dir(&dir)
+                .unwrap()
+                .map(|e| e.unwrap().file_name().into_string().unwrap())
+                .collect();
+            n.sort();
+            n
+        };
+        let err = write_atomic_all_with(&files, fail_second).unwrap_err();
+        assert!(err.to_string().contains("map.yaml"), "{err}");
+        assert!(names().is_empty(), "{:?}", names());
+        std::fs::write(&first, b"old image").unwrap();
+        std::fs::write(&second, b"old yaml").unwrap();
+        write_atomic_all_with(&files, fail_second).unwrap_err();
+        assert_eq!(std::fs::read(&first).unwrap(), b"old image");
+        assert_eq!(std::fs::read(&second).unwrap(), b"old yaml");
+        assert_eq!(names(), ["map.pgm", "map.yaml"]);
+        write_atomic_all(&files).unwrap();
+        assert_eq!(std::fs::read(&first).unwrap(), b"new image");
+        assert_eq!(std::fs::read(&second).unwrap(), b"new yaml");
+        assert_eq!(names(), ["map.pgm", "map.yaml"]);
+        // A directory in the way is refused before anything is written.
+        std::fs::remove_file(&second).unwrap();
+        std::fs::create_dir(&second).unwrap();
+        let err = write_atomic_all(&[(&first, b"newer"), (&second, b"newer")]).unwrap_err();
+        assert!(err.to_string().contains("is a directory"), "{err}");
+        assert_eq!(std::fs::read(&first).unwrap(), b"new image");
+        assert_eq!(names(), ["map.pgm", "map.yaml"]);
         std::fs::remove_dir_all(&dir).unwrap();
     }
 }
