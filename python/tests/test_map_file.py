@@ -116,3 +116,21 @@ def test_map_server_pairs_read_back_as_the_map(tmp_path: Path, mode: str) -> Non
     with pytest.raises(covmap.InvalidParameterError):
         maps[1].to_ros_map(tmp_path / "y.yaml", occupied_thresh=0.1, free_thresh=0.5)
     assert not (tmp_path / "x.yaml").exists() and not (tmp_path / "y.pgm").exists()
+
+
+def test_to_ros_map_refuses_what_it_cannot_write_whole(tmp_path: Path) -> None:
+    cmap = scanned_map(False)
+    with pytest.raises(covmap.FileIOError, match="x.pgm"):
+        cmap.to_ros_map(tmp_path / "x.pgm")
+    assert list(tmp_path.iterdir()) == []
+    (tmp_path / "d.yaml").mkdir()
+    with pytest.raises(covmap.FileIOError, match="is a directory"):
+        cmap.to_ros_map(tmp_path / "d.yaml")
+    assert [p.name for p in tmp_path.iterdir()] == ["d.yaml"]
+    for bad in (float("nan"), 1.5):
+        with pytest.raises(covmap.InvalidParameterError, match="occupied_thresh"):
+            cmap.to_ros_map(tmp_path / "t.yaml", occupied_thresh=bad)
+    with pytest.raises(covmap.InvalidParameterError, match="free_thresh"):
+        cmap.to_ros_map(tmp_path / "t.yaml", free_thresh=float("nan"))
+    assert [p.name for p in tmp_path.iterdir()] == ["d.yaml"]
+
