@@ -182,7 +182,17 @@ class FileFormatError(CovmapError, ValueError):
 
 class FileIOError(CovmapError, OSError):
     """A file could not be read or written (``errno``, ``strerror`` and
-    ``filename`` as for any :class:`OSError`)."""
+    ``filename`` as for any :class:`OSError`; ``errno`` is ``None`` where
+    covmap refused the file itself, a directory given for a file, say)."""
+
+    def __str__(self) -> str:
+        # OSError's text, once ``filename`` is set, is built from ``errno`` and
+        # ``strerror`` alone: without an errno it would read
+        # "[Errno None] ...", so the message (which names the file and the
+        # reason) is the text then.
+        if self.errno is None and len(self.args) == 1:
+            return str(self.args[0])
+        return super().__str__()
 
 
 class InvalidSpecError(CovmapError, ValueError):

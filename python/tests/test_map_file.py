@@ -4,6 +4,8 @@ when empty, cut short or changed."""
 
 from __future__ import annotations
 
+import errno
+import os
 from pathlib import Path
 
 import numpy as np
@@ -134,3 +136,18 @@ def test_to_ros_map_refuses_what_it_cannot_write_whole(tmp_path: Path) -> None:
         cmap.to_ros_map(tmp_path / "t.yaml", free_thresh=float("nan"))
     assert [p.name for p in tmp_path.iterdir()] == ["d.yaml"]
 
+
+def test_file_io_errors_say_the_reason_and_the_file(tmp_path: Path) -> None:
+    missing = tmp_path / "missing.log"
+    for read in (covmap.Log.from_carmen, covmap.CoverageMap.load):
+        with pytest.raises(covmap.FileIOError) as caught:
+            read(missing)
+        assert caught.value.errno == errno.ENOENT, read
+        assert caught.value.filename == str(missing)
+        assert str(caught.value) == f"[Errno {errno.ENOENT}] {os.strerror(errno.ENOENT)}: {str(missing)!r}"
+        # Refused by covmap itself: no errno, the reason and the file in the text.
+        with pytest.raises(covmap.FileIOError) as caught:
+            read(tmp_path)
+        assert caught.value.errno is None and caught.value.filename == str(tmp_path)
+        assert "not a regular file" in str(caught.value) and str(tmp_path) in str(caught.value), read
+        assert "None" not in str(caught.value)

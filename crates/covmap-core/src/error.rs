@@ -146,6 +146,9 @@ pub enum CovmapError {
         file: String,
         /// The system's message.
         reason: String,
+        /// The system's error number (`ENOENT` for a missing file), if the
+        /// system gave the error.
+        errno: Option<i32>,
     },
     /// Bytes that are not a whole, unchanged covmap map file (see
     /// `CoverageMap::from_file_bytes`).
@@ -173,6 +176,16 @@ pub enum CovmapError {
 }
 
 impl CovmapError {
+    /// [`CovmapError::Io`] for `file` from the system's error `e`, its
+    /// error number kept.
+    pub(crate) fn io(file: impl Into<String>, e: &std::io::Error) -> Self {
+        Self::Io {
+            file: file.into(),
+            reason: e.to_string(),
+            errno: e.raw_os_error(),
+        }
+    }
+
     /// This error, as found in scan `scan` of a log.
     pub(crate) fn in_scan(self, scan: usize) -> Self {
         Self::InScan {

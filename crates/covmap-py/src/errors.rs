@@ -152,15 +152,18 @@ pub(crate) fn is_covmap_error(py: Python<'_>, err: &PyErr) -> bool {
 
 /// A core error as the matching Python exception.
 ///
-/// A file that cannot be read raises `FileIOError` with `filename`; a
+/// A file that cannot be read raises `FileIOError` with `filename` (and
+/// `errno` and `strerror` where the system gave the error); a
 /// malformed line `FileFormatError` with `filename`, `place` (`"line N"`)
 /// and `reason`, as the simulator's file errors do.
 pub(crate) fn to_py(py: Python<'_>, err: CovmapError) -> PyErr {
     let message = err.to_string();
     match err {
-        CovmapError::Io { file, .. } => {
-            Exception::FileIO.err_with(py, (message,), &[("filename", file)])
-        }
+        CovmapError::Io {
+            file,
+            reason,
+            errno,
+        } => file_io_error(py, message, file, errno, &reason),
         CovmapError::Parse { file, line, reason } => Exception::FileFormat.err_with(
             py,
             (message,),
@@ -171,6 +174,34 @@ pub(crate) fn to_py(py: Python<'_>, err: CovmapError) -> PyErr {
             ],
         ),
         other => Exception::of(&other).err(py, message),
+    }
+}
+
+/// `FileIOError` for `filename`, which failed for `reason`. With the
+/// system's error number it is built as `OSError(errno, strerror,
+/// filename)` is (`[Errno 2] No such file or directory: 'x.log'`); without
+/// one (a refusal of covmap's, "not a regular file") from `message`, which
+/// names the file and the reason, with `filename` and `strerror` set.
+fn file_io_error(
+    py: Python<'_>,
+    message: String,
+    filename: String,
+    errno: Option<i32>,
+    reason: &str,
+) -> PyErr {
+    // The OS's message without Rust's " (os error N)" suffix.
+    let strerror = reason
+        .split(" (os error")
+        .next()
+        .unwrap_or(reason)
+        .to_string();
+    match errno {
+        Some(errno) => Exception::FileIO.err_with(py, (errno, strerror, filename), &[]),
+        None => Exception::FileIO.err_with(
+            py,
+            (message,),
+            &[("filename", filename), ("strerror", strerror)],
+        ),
     }
 }
 
@@ -216,18 +247,13 @@ pub(crate) fn sim_to_py(py: Python<'_>, err: SimError) -> PyErr {
     let message = err.to_string();
     match err {
         SimError::InvalidPolygon { .. } => Exception::InvalidPolygon.err(py, message),
-        SimError::Io { path, source } => {
-            let filename = path.display().to_string();
-            match source.raw_os_error() {
-                Some(errno) => {
-                    // The OS's message without Rust's " (os error N)" suffix.
-                    let full = source.to_string();
-                    let strerror = full.split(" (os error").next().unwrap_or(&full).to_string();
-                    Exception::FileIO.err_with(py, (errno, strerror, filename), &[])
-                }
-                None => Exception::FileIO.err_with(py, (message,), &[("filename", filename)]),
-            }
-        }
+        SimError::Io { path, source } => file_io_error(
+            py,
+            message,
+            path.display().to_string(),
+            source.raw_os_error(),
+            &source.to_string(),
+        ),
         SimError::Parse {
             path,
             place,

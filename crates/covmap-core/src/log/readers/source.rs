@@ -27,15 +27,16 @@ pub(crate) struct Lines {
 /// before it is opened, so that it can neither block the open nor stream
 /// without end.
 pub(crate) fn open(path: &Path) -> Result<Lines> {
-    let io = |reason: String| CovmapError::Io {
-        file: path.display().to_string(),
-        reason,
-    };
-    let metadata = std::fs::metadata(path).map_err(|e| io(e.to_string()))?;
+    let file = path.display().to_string();
+    let metadata = std::fs::metadata(path).map_err(|e| CovmapError::io(&file, &e))?;
     if !metadata.is_file() {
-        return Err(io("not a regular file".to_owned()));
+        return Err(CovmapError::Io {
+            file,
+            reason: "not a regular file".to_owned(),
+            errno: None,
+        });
     }
-    let file = File::open(path).map_err(|e| io(e.to_string()))?;
+    let file = File::open(path).map_err(|e| CovmapError::io(&file, &e))?;
     lines(file, &path.display().to_string())
 }
 
@@ -43,10 +44,7 @@ pub(crate) fn open(path: &Path) -> Result<Lines> {
 /// bytes; `name` is the file's name in errors.
 pub(crate) fn lines<R: Read + 'static>(reader: R, name: &str) -> Result<Lines> {
     let mut buffered = BufReader::new(reader);
-    let head = buffered.fill_buf().map_err(|e| CovmapError::Io {
-        file: name.to_string(),
-        reason: e.to_string(),
-    })?;
+    let head = buffered.fill_buf().map_err(|e| CovmapError::io(name, &e))?;
     let reader: Box<dyn BufRead> = if head.starts_with(&[0x1f, 0x8b]) {
         Box::new(BufReader::new(MultiGzDecoder::new(buffered)))
     } else {
@@ -186,6 +184,21 @@ mod tests {
             assert!(matches!(err, CovmapError::Io { .. }), "{err}");
             assert!(err.to_string().contains("not a regular file"), "{err}");
         }
+    }
+
+    /// A missing file's error keeps the system's error number, which
+    /// Python's `OSError.errno` takes.
+    #[test]
+    fn a_missing_file_keeps_its_errno() {
+        let Err(err) = open(Path::new("/nonexistent/covmap-missing.log")) else {
+            panic!("a missing file was opened");
+        };
+        let CovmapError::Io { errno, file, .. } = &err else {
+            panic!("{err:?}");
+        };
+        let kind = errno.map(|n| std::io::Error::from_raw_os_error(n).kind());
+        assert_eq!(kind, Some(std::io::ErrorKind::NotFound), "{err}");
+        assert_eq!(file, "/nonexistent/covmap-missing.log");
     }
 
     #[test]
