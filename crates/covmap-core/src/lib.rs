@@ -57,7 +57,7 @@ pub use coverage_map::{
 pub use error::{CovmapError, Result};
 pub use grid::{Cell, Grid, MAX_CELLS, MAX_CELLS_FROM_ZERO, MIN_RESOLUTION_M};
 pub use log::{Bearings, CarmenLaser, CarmenOptions, Log, SonarTextOptions};
-pub use map_file::MAP_FILE_VERSION;
+pub use map_file::{MAP_FILE_VERSION, MAX_MAP_FILE_BYTES};
 pub use occupancy::{OccupancyGrid, OccupancyModel};
 pub use pose::Pose;
 pub use ros_occupancy::{CoverageValue, ROS_UNKNOWN};

@@ -243,7 +243,11 @@ impl PyCoverageMap {
         py: Python<'_>,
         #[pyo3(from_py_with = crate::convert::arg)] path: std::path::PathBuf,
     ) -> PyResult<Self> {
-        let bytes = py.detach(|| covmap::sim::read_bytes(&path)).or_raise(py)?;
+        // The map file's own limit, not other files': what `save` wrote
+        // (up to 4 GiB) must load.
+        let bytes = py
+            .detach(|| covmap::sim::read_bytes_at_most(&path, covmap::MAX_MAP_FILE_BYTES))
+            .or_raise(py)?;
         py.detach(|| CoverageMap::from_file_bytes(&bytes))
             .map(Self)
             .map_err(|e| crate::errors::file_to_py(py, &path, e))

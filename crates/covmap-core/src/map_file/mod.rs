@@ -14,4 +14,5 @@
 mod npz;
 mod posterior;
 
+pub use npz::MAX_MAP_FILE_BYTES;
 pub use posterior::MAP_FILE_VERSION;

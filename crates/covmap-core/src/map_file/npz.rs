@@ -100,10 +100,16 @@ fn shape_after(header: &str) -> Option<Vec<usize>> {
         .collect()
 }
 
+/// The largest map file written, and so the largest a reader of map files
+/// must take, bytes: 4 GiB - 1, the most a zip archive without zip64 spans
+/// (its offsets and sizes are 32-bit).
+pub const MAX_MAP_FILE_BYTES: u64 = u32::MAX as u64;
+
 /// A zip archive of `entries`, each stored as it is.
 ///
 /// # Errors
-/// If an entry or the archive would pass 4 GiB (zip64 is not written).
+/// If an entry or the archive would pass [`MAX_MAP_FILE_BYTES`] (zip64 is
+/// not written).
 pub(crate) fn zip(entries: &[(&str, Vec<u8>)]) -> Result<Vec<u8>, String> {
     let too_big = || "the archive would pass 4 GiB, more than a zip file without zip64 holds";
     let mut out = Vec::new();
@@ -148,7 +154,9 @@ pub(crate) fn zip(entries: &[(&str, Vec<u8>)]) -> Result<Vec<u8>, String> {
     out.extend_from_slice(&cd_size.to_le_bytes());
     out.extend_from_slice(&cd_offset.to_le_bytes());
     out.extend_from_slice(&0u16.to_le_bytes());
-    u32::try_from(out.len()).map_err(|_| too_big())?;
+    if out.len() as u64 > MAX_MAP_FILE_BYTES {
+        return Err(too_big().into());
+    }
     Ok(out)
 }
 

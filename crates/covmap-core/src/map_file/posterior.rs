@@ -33,7 +33,8 @@ impl CoverageMap {
     /// checks.
     ///
     /// # Errors
-    /// [`CovmapError::InvalidMapFile`] for a map whose file would pass 4 GiB.
+    /// [`CovmapError::InvalidMapFile`] for a map whose file would pass
+    /// [`MAX_MAP_FILE_BYTES`](crate::MAX_MAP_FILE_BYTES) (4 GiB - 1).
     ///
     /// # Example
     /// ```

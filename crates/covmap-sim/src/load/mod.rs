@@ -26,7 +26,8 @@ use std::path::{Path, PathBuf};
 
 use crate::error::{Result, SimError};
 
-/// The largest world or map file read, bytes (1 GiB).
+/// The largest world or image file read, bytes (1 GiB); a covmap map file
+/// has its own, [`MAX_MAP_FILE_BYTES`](covmap_core::MAX_MAP_FILE_BYTES).
 pub const MAX_FILE_BYTES: u64 = 1 << 30;
 
 /// The bytes of the regular file at `path`, at most [`MAX_FILE_BYTES`].
@@ -34,6 +35,15 @@ pub const MAX_FILE_BYTES: u64 = 1 << 30;
 /// device) is refused before it is opened, and a file that grows past the
 /// limit while it is read is refused too.
 pub fn read_bytes(path: &Path) -> Result<Vec<u8>> {
+    read_bytes_at_most(path, MAX_FILE_BYTES)
+}
+
+/// [`read_bytes`] with the limit `max_bytes` in place of
+/// [`MAX_FILE_BYTES`]: for files whose writer has a limit of its own (a
+/// covmap map file, up to
+/// [`MAX_MAP_FILE_BYTES`](covmap_core::MAX_MAP_FILE_BYTES)), so that what
+/// was written can be read back.
+pub fn read_bytes_at_most(path: &Path, max_bytes: u64) -> Result<Vec<u8>> {
     use std::io::Read;
     let io = |source| SimError::Io {
         path: path.to_path_buf(),
@@ -49,20 +59,20 @@ pub fn read_bytes(path: &Path) -> Result<Vec<u8>> {
     if !metadata.is_file() {
         return Err(refuse("not a regular file".into()));
     }
-    if metadata.len() > MAX_FILE_BYTES {
+    if metadata.len() > max_bytes {
         return Err(refuse(format!(
-            "{} bytes is larger than the limit of {MAX_FILE_BYTES} bytes",
+            "{} bytes is larger than the limit of {max_bytes} bytes",
             metadata.len()
         )));
     }
     let file = std::fs::File::open(path).map_err(io)?;
     let mut bytes = Vec::new();
-    file.take(MAX_FILE_BYTES + 1)
+    file.take(max_bytes.saturating_add(1))
         .read_to_end(&mut bytes)
         .map_err(io)?;
-    if bytes.len() as u64 > MAX_FILE_BYTES {
+    if bytes.len() as u64 > max_bytes {
         return Err(refuse(format!(
-            "the file grew past the limit of {MAX_FILE_BYTES} bytes while it was read"
+            "the file grew past the limit of {max_bytes} bytes while it was read"
         )));
     }
     Ok(bytes)
@@ -291,6 +301,29 @@ mod tests {
         std::fs::write(&file, b"twelve bytes").unwrap();
         assert_eq!(read_bytes(&file).unwrap(), b"twelve bytes");
         std::fs::remove_file(&file).unwrap();
+    }
+
+    /// A file up to the limit is read, one byte over it refused before it
+    /// is read, naming the limit.
+    #[test]
+    fn a_file_over_the_limit_is_refused() {
+        let file = std::env::temp_dir().join(format!("covmap-sim-limit-{}", std::process::id()));
+        std::fs::write(&file, b"twelve bytes").unwrap();
+        assert_eq!(read_bytes_at_most(&file, 12).unwrap(), b"twelve bytes");
+        let err = read_bytes_at_most(&file, 11).unwrap_err().to_string();
+        assert!(err.contains("limit of 11 bytes"), "{err}");
+        std::fs::remove_file(&file).unwrap();
+    }
+
+    /// Every map file the core writes is within what a reader of map
+    /// files takes, and that is more than the limit of other files: the
+    /// reader of map files must not use [`read_bytes`]' limit.
+    #[test]
+    fn map_files_up_to_the_writers_limit_can_be_read() {
+        const {
+            assert!(covmap_core::MAX_MAP_FILE_BYTES >= u32::MAX as u64);
+            assert!(covmap_core::MAX_MAP_FILE_BYTES > MAX_FILE_BYTES);
+        }
     }
 
     /// Writers of one path at once each write their own temporary file: every
