@@ -114,12 +114,9 @@ def read_specs(path: Path) -> list[dict[str, Any]]:
     :func:`sweep`.
 
     TOML needs Python 3.11 (``tomllib``) or the ``tomli`` package."""
-    from covmap._errors import FileIOError
+    from covmap._read import read_small_file
 
-    try:
-        data = path.read_bytes()
-    except OSError as e:
-        raise FileIOError(e.errno, e.strerror, str(path)) from None
+    data = read_small_file(path)
     suffix = path.suffix.lower()
     try:
         if suffix == ".json":
@@ -141,6 +138,8 @@ def read_specs(path: Path) -> list[dict[str, Any]]:
         if isinstance(e, CovmapError):
             raise
         raise _file_error(path, "content", str(e)) from None
+    except RecursionError:
+        raise _file_error(path, "content", "nested too deeply") from None
     if isinstance(document, list):
         document = {"runs": document}
     if not isinstance(document, dict):

@@ -244,3 +244,33 @@ def test_covmap_fig7_writes_its_figure_and_table(tmp_path: Path) -> None:
     assert sum(r["strategy"] == "coverage" for r in rows) == 2
     for fraction in ("85 %", "90 %", "95 %"):
         assert fraction in result.stdout
+
+
+def test_sweep_and_model_files_that_are_no_small_regular_files_are_refused(tmp_path: Path) -> None:
+    """A FIFO is refused before it is opened (it would hang the reader),
+    ``/dev/zero`` is no regular file, and a deeply nested file is a format
+    error, not a RecursionError: for sweep specs and for fig2's model."""
+    from covmap._sweep_files import read_specs
+    from covmap.cli.fig2 import load_model
+
+    fifo = tmp_path / "specs.json"
+    os.mkfifo(fifo)
+    deep = tmp_path / "deep.json"
+    deep.write_text("[" * 100_000 + "]" * 100_000)
+    for path in (fifo, Path("/dev/zero")):
+        with pytest.raises(covmap.FileIOError, match="not a regular file"):
+            read_specs(path)
+        with pytest.raises(covmap.FileIOError, match="not a regular file"):
+            load_model(str(path))
+    with pytest.raises(covmap.FileFormatError, match="nested too deeply"):
+        read_specs(deep)
+    with pytest.raises(covmap.InvalidValueError, match="nested too deeply"):
+        load_model(str(deep))
+
+
+def test_fig7_needs_an_n_and_a_seed() -> None:
+    from covmap.experiments import fig7
+
+    for ns, seeds in (([1], []), ([], [0])):
+        with pytest.raises(covmap.InvalidValueError, match="at least one n and one seed"):
+            fig7.run("corridor", ns=ns, seeds=seeds, progress=False)

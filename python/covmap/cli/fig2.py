@@ -41,13 +41,16 @@ def load_model(path: str) -> SonarModel | LaserModel:
     """The model a ``covmap learn`` JSON file holds: ``{"sensor": "sonar" |
     "laser", "model": {...}}``."""
     from covmap._errors import InvalidValueError
+    from covmap._read import read_small_file
 
-    with open(path, encoding="utf-8") as f:
-        try:
-            saved = json.load(f)
-            kind, parameters = saved["sensor"], saved["model"]
-        except (ValueError, KeyError, TypeError) as e:
-            raise InvalidValueError(f"{path}: not a covmap learn model file ({e})") from e
+    data = read_small_file(path)
+    try:
+        saved = json.loads(data)
+        kind, parameters = saved["sensor"], saved["model"]
+    except (ValueError, KeyError, TypeError) as e:
+        raise InvalidValueError(f"{path}: not a covmap learn model file ({e})") from e
+    except RecursionError:
+        raise InvalidValueError(f"{path}: not a covmap learn model file (nested too deeply)") from None
     if kind not in ("sonar", "laser") or not isinstance(parameters, dict):
         raise InvalidValueError(f"{path}: sensor must be 'sonar' or 'laser', got {kind!r}")
     cls = SonarModel if kind == "sonar" else LaserModel

@@ -143,7 +143,12 @@ def run(
 ) -> Fig7:
     """Run the sweep of Fig. 7 (:func:`specs`; a failure's index is its
     spec's there) with :func:`covmap.sweep` on ``executor`` (``None``: the
-    local cores)."""
+    local cores). :class:`~covmap.InvalidValueError` for no ``ns`` or no
+    ``seeds``: the figure would have no curve or no runs."""
+    if not ns or not seeds:
+        from covmap._errors import InvalidValueError
+
+        raise InvalidValueError(f"fig7 needs at least one n and one seed, got ns={list(ns)}, seeds={list(seeds)}")
     all_specs = specs(world_name, ns=ns, seeds=seeds, alpha=alpha, **options)
     summaries = sweep(all_specs, executor=executor, progress=progress)
     coverage, counting = summaries[: len(seeds)], summaries[len(seeds) :]
