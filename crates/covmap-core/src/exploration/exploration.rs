@@ -223,7 +223,7 @@ impl<S: ScanSource, M: Motion> Exploration<S, M> {
         config.check_scan_spacing(grid.resolution_m())?;
         strategy.validate()?;
         model.validate()?;
-        check_pose(&grid, &start)?;
+        let start_cell = grid.index(check_pose(&grid, &start)?)?;
         let bearings = source.bearings().to_vec();
         if bearings.is_empty() {
             return Err(CovmapError::InvalidBearing {
@@ -282,13 +282,7 @@ impl<S: ScanSource, M: Motion> Exploration<S, M> {
             termination: None,
             failed_goals: Vec::new(),
             contact_cells: Vec::new(),
-            driven: {
-                let mut driven = vec![false; grid.len()];
-                if let Some(cell) = grid.world_to_cell(start.x_m, start.y_m) {
-                    driven[grid.index(cell)?] = true;
-                }
-                driven
-            },
+            driven: (0..grid.len()).map(|i| i == start_cell).collect(),
             planning_map: None,
             planning_ml,
             pinned_ml: CoverageMap::pinned_ml(bins),

@@ -22,8 +22,8 @@
 //! cells next to it block). The goal is the nearest such cell of the
 //! nearest group (by path length, at least `min_travel_m`; ties to the
 //! lower cell index). A robot whose sensor does not see all around (a
-//! 180-degree laser) faces the
-//! frontier cell the goal was chosen for when it scans there.
+//! 180-degree laser) faces the frontier cell the goal was chosen for when
+//! it scans there.
 //!
 //! When the robot has reached the goal and scanned there and not one cell
 //! of the group stopped being a frontier, the group cannot be explored from
