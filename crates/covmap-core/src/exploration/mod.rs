@@ -62,10 +62,10 @@
 //!   `ln bins - epsilon` nats (what making one unknown cell certain is
 //!   worth). Ends [`Termination::Certain`] when every region cell is below
 //!   epsilon, [`Termination::Stagnated`] when the rest have stagnated (the
-//!   paper's rule) or when for 20 steps no more region cells became
+//!   paper's rule) or when for 60 steps no more region cells became
 //!   certain or stagnated and the region's entropy fell by less than that
 //!   least gain a step (cells split between two bins sit near `ln 2` nats,
-//!   above epsilon, for ever), [`Termination::NoGoal`] when no candidate is
+//!   above epsilon, and settle only slowly), [`Termination::NoGoal`] when no candidate is
 //!   worth visiting. A goal reached whose step gained less than that least
 //!   gain is not chosen again.
 //! - **Counting** ([`Strategy::Counting`]): the nearest candidate from which
