@@ -124,6 +124,20 @@ pub(super) fn parse_ros_yaml(text: &str, path: &Path) -> Result<(String, ImageOp
     options
         .validate()
         .map_err(|e| parse_error(path, "whole file", e.to_string()))?;
+    // `free_thresh` marks no pixel here (every pixel not an obstacle is
+    // free space to the simulator), but a map whose free cells would be
+    // more likely occupied than its obstacles is a wrong file.
+    if let Some(free) = yaml.free_thresh
+        && !((0.0..options.occupied_thresh).contains(&free))
+    {
+        return Err(at(
+            "free_thresh",
+            format!(
+                "free_thresh must be at least 0 and below occupied_thresh ({}), found {free}",
+                options.occupied_thresh
+            ),
+        ));
+    }
     Ok((image, options))
 }
 
