@@ -254,8 +254,10 @@ def test_a_given_start_is_where_the_robot_starts() -> None:
 def test_stepping_reaches_the_result_of_explore(corridor: covmap.World, short_run: covmap.ExplorationResult) -> None:
     run = covmap.Exploration(corridor, covmap.Strategy.coverage(0.5), seed=3, max_steps=STEPS)
     assert not run.done and run.termination is None and run.steps == 0 and run.scans == 0
-    assert run.trajectory.shape[1] == 3 and run.map.grid == run.grid == short_run.grid
+    assert run.map.grid == run.grid == short_run.grid
     np.testing.assert_array_equal(run.pose, short_run.start)
+    # The start is the trajectory's first pose before the first step.
+    np.testing.assert_array_equal(run.trajectory, [short_run.start])
     assert not run.map.observed().any()
     first = run.step()
     assert isinstance(first, covmap.Step) and first.index == 0 and first.scans >= 1

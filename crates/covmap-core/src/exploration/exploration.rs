@@ -271,7 +271,13 @@ impl<S: ScanSource, M: Motion> Exploration<S, M> {
             report_cells,
             uncertain,
             pose: start,
-            trajectory: Trajectory::default(),
+            // The start is the first pose before anything runs; the first
+            // scan, taken there, marks it scanned.
+            trajectory: {
+                let mut trajectory = Trajectory::default();
+                trajectory.push(start, false);
+                trajectory
+            },
             path_length_m: 0.0,
             since_scan_m: 0.0,
             scans: 0,

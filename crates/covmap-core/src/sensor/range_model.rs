@@ -76,10 +76,13 @@ const MIN_SIGMA: f64 = 1e-6;
 /// it the kernel is uniform to far below `f32` precision anyway, and the sum
 /// that normalises it could overflow.
 const MAX_XI: f64 = 1e6;
+/// The largest `max_range_m`: ten kilometres, far beyond any range sensor
+/// a robot carries (and any map's extent at a useful resolution).
+const MAX_RANGE_M: f64 = 1e4;
 
 impl RangeModel {
     /// Errors unless every parameter lies in its valid range: the distances
-    /// positive (`band_m` non-negative), `sigma_min` at least 1e-6,
+    /// positive (`band_m` non-negative, `max_range_m` at most 10 km), `sigma_min` at least 1e-6,
     /// `sigma_end` no smaller than `sigma` anywhere outside the band, `xi_min`
     /// positive, the growths non-negative, and the uniform weight at most 1e6
     /// out to the maximum range.
@@ -90,8 +93,8 @@ impl RangeModel {
         check(
             "max_range_m",
             self.max_range_m,
-            self.max_range_m > 0.0,
-            "a positive distance",
+            self.max_range_m > 0.0 && self.max_range_m <= MAX_RANGE_M,
+            "a positive distance of at most 10 km",
         )?;
         check(
             "band_m",
