@@ -7,6 +7,7 @@ use std::sync::OnceLock;
 
 use super::fast::{Arith, CellTerms, Queue};
 use super::map_terms::MapTerms;
+use super::reads::{Marks, TileSet, Tiles};
 use super::schedule::in_groups;
 use super::{GainMethod, GainOptions};
 use crate::coverage_map::CoverageMap;
@@ -17,7 +18,7 @@ use crate::parallel;
 use crate::pose::{Pose, check_bearings, check_pose};
 use crate::sensor::{
     Footprint, KernelTable, RangeModel, ReadingDistribution, SensorModel, StopCoverage,
-    check_range_step, trace_readings,
+    check_range_step, trace_readings, trace_readings_with,
 };
 
 /// Evaluates the expected information gain of candidate viewpoints on one map
@@ -167,22 +168,29 @@ impl<'a> GainEvaluator<'a> {
             let angle = pose.theta_rad + bearing;
             match evaluator {
                 Evaluator::Exact => self.exact_beam(origin, angle),
-                Evaluator::Fast(terms) => self.fast_beam(terms, origin, angle, queue),
+                Evaluator::Fast(terms) => self.fast_beam(terms, origin, angle, queue, None),
             }
         };
         Ok(in_groups(self.map.grid(), poses, bearings, beam))
     }
 
     /// The fast evaluator's expected gain (nats) of each beam of `beams`, a
-    /// pose and a bearing relative to its heading: the terms
-    /// [`Self::evaluate`] sums into a candidate's gain
-    /// ([`beam_sum`](super::schedule::beam_sum) sums them as it does). A
-    /// beam's gain depends on its pose and bearing alone, whatever beams it
-    /// is evaluated with. In parallel with the feature `parallel`.
+    /// pose and a bearing relative to its heading, with the tiles (of
+    /// `tiles`, this map's) of every cell it read (see
+    /// [`crate::gain::reads`]): the terms [`Self::evaluate`] sums into a
+    /// candidate's gain ([`beam_sum`](super::schedule::beam_sum) sums them
+    /// as it does), and what the planning cache needs to know when one has
+    /// changed. A beam's gain and tiles depend on its pose and bearing
+    /// alone, whatever beams it is evaluated with. In parallel with the
+    /// feature `parallel`.
     ///
     /// # Errors
     /// As [`Self::evaluate`], for each beam's pose and bearing.
-    pub(crate) fn beam_gains(&self, beams: &[(Pose, f64)]) -> Result<Vec<f64>> {
+    pub(crate) fn beam_gains_and_reads(
+        &self,
+        beams: &[(Pose, f64)],
+        tiles: &Tiles,
+    ) -> Result<Vec<(f64, TileSet)>> {
         for (pose, bearing) in beams {
             self.validate(std::slice::from_ref(pose), std::slice::from_ref(bearing))?;
         }
@@ -190,7 +198,7 @@ impl<'a> GainEvaluator<'a> {
         // Beams evaluated together, in the order of their directions, so
         // that consecutive ones find much of their data in the cache.
         const TOGETHER: usize = 64;
-        let chunk = |beams: &[(Pose, f64)]| -> Vec<f64> {
+        let chunk = |beams: &[(Pose, f64)]| -> Vec<(f64, TileSet)> {
             let mut order: Vec<(f64, usize)> = beams
                 .iter()
                 .enumerate()
@@ -198,13 +206,16 @@ impl<'a> GainEvaluator<'a> {
                 .collect();
             order.sort_by(|x, y| x.0.total_cmp(&y.0).then(x.1.cmp(&y.1)));
             let mut queue = Queue::default();
-            let mut gains = vec![0.0; beams.len()];
+            let mut marks = Marks::new(tiles);
+            let mut out = vec![(0.0, TileSet::default()); beams.len()];
             for (_, k) in order {
                 let (pose, bearing) = beams[k];
                 let angle = pose.theta_rad + bearing;
-                gains[k] = self.fast_beam(terms, [pose.x_m, pose.y_m], angle, &mut queue);
+                let origin = [pose.x_m, pose.y_m];
+                let gain = self.fast_beam(terms, origin, angle, &mut queue, Some(&mut marks));
+                out[k] = (gain, marks.take());
             }
-            gains
+            out
         };
         Ok(parallel::map(beams.chunks(TOGETHER).collect(), chunk).concat())
     }
@@ -255,6 +266,25 @@ impl<'a> GainEvaluator<'a> {
             angle,
             &self.range,
             self.step_m,
+        )
+    }
+
+    /// [`Self::distribution`], calling `read` with every cell whose stop
+    /// coverage it depends on (see `trace_readings_with`).
+    pub(super) fn distribution_with(
+        &self,
+        origin: [f64; 2],
+        angle: f64,
+        read: impl FnMut(usize),
+    ) -> ReadingDistribution {
+        trace_readings_with(
+            self.map.grid(),
+            &self.stop,
+            origin,
+            angle,
+            &self.range,
+            self.step_m,
+            read,
         )
     }
 

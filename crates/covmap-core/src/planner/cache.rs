@@ -545,12 +545,8 @@ impl PlanningCache {
             let evaluator = GainEvaluator::with_terms(map, model, options, &table, &state.terms)?;
             let beams: Vec<(Pose, f64)> =
                 jobs.iter().map(|&(k, j)| (poses[k], bearings[j])).collect();
-            let gains = evaluator.beam_gains(&beams)?;
-            let tiles = &state.tiles;
-            let reads = parallel::map(beams, |(pose, bearing)| {
-                evaluator.beam_reads(&pose, bearing, tiles)
-            });
-            for ((&(k, j), gain), reads) in jobs.iter().zip(gains).zip(reads) {
+            let gains = evaluator.beam_gains_and_reads(&beams, &state.tiles)?;
+            for (&(k, j), (gain, reads)) in jobs.iter().zip(gains) {
                 #[allow(
                     clippy::expect_used,
                     reason = "every touched slot was inserted before its beams were queued"

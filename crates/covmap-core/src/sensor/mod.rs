@@ -68,9 +68,9 @@ pub(crate) use kernel::ReadingLookup;
 pub use laser::LaserModel;
 pub use range_model::RangeModel;
 pub(crate) use range_model::kernel_values;
-pub(crate) use readings::trace_readings;
 pub use readings::{
     MIN_STEP_FRACTION, ReadingDistribution, StopCoverage, check_range_step, reading_distribution,
 };
+pub(crate) use readings::{trace_readings, trace_readings_with};
 pub use sensor_model::{Footprint, SensorModel};
 pub use sonar::SonarModel;

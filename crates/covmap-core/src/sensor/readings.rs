@@ -95,6 +95,23 @@ pub(crate) fn trace_readings(
     range: &RangeModel,
     step_m: f64,
 ) -> ReadingDistribution {
+    trace_readings_with(grid, stop, origin, angle_rad, range, step_m, |_| {})
+}
+
+/// [`trace_readings`], calling `read` with the row-major index of every cell
+/// whose stop coverage the result depends on: each cell of the ray, in
+/// order, up to and including the first that stops the beam with certainty
+/// (the trace reads none after it). What the planning cache needs to know
+/// of a gain's reads, found by the trace itself.
+pub(crate) fn trace_readings_with(
+    grid: &Grid,
+    stop: &[f32],
+    origin: [f64; 2],
+    angle_rad: f64,
+    range: &RangeModel,
+    step_m: f64,
+    mut read: impl FnMut(usize),
+) -> ReadingDistribution {
     let r = grid.resolution_m();
     // A reading ends at most half a cell past the centre of a cell the beam
     // crosses, so none lies beyond the map's farthest corner plus a cell.
@@ -118,8 +135,12 @@ pub(crate) fn trace_readings(
     let mut probabilities = vec![0.0; slots];
     let mut through = 1.0f64;
     let mut trace = |i: usize, d_l: f64| {
+        if through <= 0.0 {
+            return;
+        }
+        read(i);
         let c = f64::from(stop[i]);
-        if c <= 0.0 || through <= 0.0 {
+        if c <= 0.0 {
             return;
         }
         let d = (d_l + 0.5 * r - c * r).max(0.0);

@@ -8,6 +8,7 @@ use super::avx512::weighted_gains_avx512;
 use super::batch::{Queue, Rows, weighted_gains_with};
 use super::walk::Beam;
 use crate::gain::GainEvaluator;
+use crate::gain::reads::Marks;
 
 /// The arithmetic the fast evaluator is compiled for: what [`Arith::detect`]
 /// finds decides which one runs. Each wider one includes the narrower.
@@ -82,38 +83,53 @@ impl Arith {
 impl GainEvaluator<'_> {
     /// One beam's sum with `N` bins, the whole walk compiled for the widest
     /// arithmetic the processor has.
-    pub(super) fn run<const N: usize>(&self, beam: &Beam<'_>, queue: &mut Queue) -> f64 {
+    pub(super) fn run<const N: usize>(
+        &self,
+        beam: &Beam<'_>,
+        queue: &mut Queue,
+        marks: Option<&mut Marks<'_>>,
+    ) -> f64 {
         #[cfg(target_arch = "x86_64")]
         match self.arith {
             // SAFETY: `arith` is `Avx512` or `Avx2` only where the processor
             // has those instructions (`Arith::detect`).
-            Arith::Avx512 => return unsafe { self.run_avx512::<N>(beam, queue) },
-            Arith::Avx2 => return unsafe { self.run_avx2::<N>(beam, queue) },
+            Arith::Avx512 => return unsafe { self.run_avx512::<N>(beam, queue, marks) },
+            Arith::Avx2 => return unsafe { self.run_avx2::<N>(beam, queue, marks) },
             Arith::Baseline => {}
         }
         #[cfg(not(target_arch = "x86_64"))]
         let _ = self.arith;
-        self.run_with::<N, BASELINE>(Has::baseline(), beam, queue)
+        self.run_with::<N, BASELINE>(Has::baseline(), beam, queue, marks)
     }
 
     /// [`Self::run_with`] compiled for AVX-512 (F, DQ, VL), AVX2 and FMA.
     #[cfg(target_arch = "x86_64")]
     #[target_feature(enable = "avx512f,avx512dq,avx512vl,avx2,fma")]
-    fn run_avx512<const N: usize>(&self, beam: &Beam<'_>, queue: &mut Queue) -> f64 {
+    fn run_avx512<const N: usize>(
+        &self,
+        beam: &Beam<'_>,
+        queue: &mut Queue,
+        marks: Option<&mut Marks<'_>>,
+    ) -> f64 {
         // SAFETY: this function is compiled for AVX-512, so it may only be
         // called where the processor has it.
         let has = unsafe { Has::<AVX512>::new() };
-        self.run_with::<N, AVX512>(has, beam, queue)
+        self.run_with::<N, AVX512>(has, beam, queue, marks)
     }
 
     /// [`Self::run_with`] compiled for AVX2 and FMA.
     #[cfg(target_arch = "x86_64")]
     #[target_feature(enable = "avx2,fma")]
-    fn run_avx2<const N: usize>(&self, beam: &Beam<'_>, queue: &mut Queue) -> f64 {
+    fn run_avx2<const N: usize>(
+        &self,
+        beam: &Beam<'_>,
+        queue: &mut Queue,
+        marks: Option<&mut Marks<'_>>,
+    ) -> f64 {
         // SAFETY: this function is compiled for AVX2 and FMA, so it may only
         // be called where the processor has them.
         let has = unsafe { Has::<AVX2>::new() };
-        self.run_with::<N, AVX2>(has, beam, queue)
+        self.run_with::<N, AVX2>(has, beam, queue, marks)
     }
 }
 

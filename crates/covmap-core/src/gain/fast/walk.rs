@@ -8,21 +8,27 @@ use super::cell_terms::CellTerms;
 use crate::coverage_map::CoverageMap;
 use crate::footprint::{CellVisitor, ROW_BLOCK, cells_of_block, visit};
 use crate::gain::GainEvaluator;
+use crate::gain::reads::{Marks, Recording};
 use crate::histogram::with_bins;
 use crate::sensor::{KernelTable, ReadingDistribution, ReadingLookup};
 
 impl GainEvaluator<'_> {
     /// The expected gain of one beam from `origin` along `angle`, from the
     /// `terms` of this evaluator's map's cells, with `queue`, which it leaves
-    /// empty.
+    /// empty; with `marks`, marking there the tiles of the cells it reads
+    /// (see [`crate::gain::reads`]).
     pub(in crate::gain) fn fast_beam(
         &self,
         terms: &CellTerms,
         origin: [f64; 2],
         angle: f64,
         queue: &mut Queue,
+        mut marks: Option<&mut Marks<'_>>,
     ) -> f64 {
-        let dist = self.distribution(origin, angle);
+        let dist = match marks.as_deref_mut() {
+            Some(marks) => self.distribution_with(origin, angle, |i| marks.cell(i)),
+            None => self.distribution(origin, angle),
+        };
         let (none_reach, _) = self.range.reach(self.range.max_range_m);
         let n = dist.probabilities.len();
         // Only echoes of non-zero probability matter.
@@ -70,7 +76,7 @@ impl GainEvaluator<'_> {
         };
         // Fix the bin count at compile time for the common sizes, so that the
         // per-cell gain is straight vector code.
-        with_bins!(self.map.bins(), |N| self.run::<N>(&beam, queue))
+        with_bins!(self.map.bins(), |N| self.run::<N>(&beam, queue, marks))
     }
 
     /// How far the fast evaluator walks the footprint of a beam whose
@@ -79,7 +85,7 @@ impl GainEvaluator<'_> {
     /// updated by any (behind a wall the ML map marks as covered, none), and
     /// footprints of growing reaches are nested. The cells a beam's gain
     /// reads are its footprint out to here (and the traced axis, see
-    /// [`GainEvaluator::beam_reads`]).
+    /// [`crate::gain::reads`]).
     pub(in crate::gain) fn walked_reach(&self, dist: &ReadingDistribution) -> f64 {
         let (none_reach, _) = self.range.reach(self.range.max_range_m);
         let echo_reach = dist
@@ -95,13 +101,15 @@ impl GainEvaluator<'_> {
     }
 
     /// One beam's sum with `N` bins and the arithmetic `A`, which `has`
-    /// shows the processor to have.
+    /// shows the processor to have; with `marks`, marking the tiles of the
+    /// cells its walk reads.
     #[inline(always)]
     pub(super) fn run_with<const N: usize, const A: u8>(
         &self,
         has: Has<A>,
         beam: &Beam<'_>,
         queue: &mut Queue,
+        marks: Option<&mut Marks<'_>>,
     ) -> f64 {
         let rows = Rows::new(
             self.map.histograms(),
@@ -118,14 +126,18 @@ impl GainEvaluator<'_> {
             total: 0.0,
             queue,
         };
-        visit(
-            self.map.grid(),
-            beam.origin,
-            beam.angle,
-            beam.reach,
-            self.footprint,
-            &mut sweep,
-        );
+        let (grid, footprint) = (self.map.grid(), self.footprint);
+        let (origin, angle, reach) = (beam.origin, beam.angle, beam.reach);
+        match marks {
+            Some(marks) => {
+                let mut recording = Recording {
+                    marks,
+                    inner: &mut sweep,
+                };
+                visit(grid, origin, angle, reach, footprint, &mut recording);
+            }
+            None => visit(grid, origin, angle, reach, footprint, &mut sweep),
+        }
         sweep.flush();
         sweep.total
     }
