@@ -47,6 +47,7 @@ pub mod planner;
 mod pose;
 mod ros_occupancy;
 pub mod sensor;
+mod stamp;
 #[cfg(test)]
 mod test_rng;
 

@@ -52,6 +52,7 @@ use crate::grid::{Cell, Grid};
 use crate::occupancy::OccupancyGrid;
 use crate::planner::{Planner, PlannerConfig, Reachability, shortest_paths};
 use crate::pose::{Pose, check_pose};
+use crate::stamp::Stamp;
 
 /// The least margin beyond the robot's radius that the strategies plan
 /// with, metres (see the module documentation).
@@ -272,20 +273,15 @@ fn grow(grid: &Grid, mask: &[bool], offsets: &[(i64, i64)]) -> Vec<bool> {
     // lies inside its neighbours'.
     let (rows, cols) = (grid.rows() as i64, grid.cols() as i64);
     let inside = |r: i64, c: i64| r >= 0 && c >= 0 && r < rows && c < cols;
+    let stamp = Stamp::new(offsets);
     let mut grown = mask.to_vec();
     for (i, _) in mask.iter().enumerate().filter(|(_, m)| **m) {
         let (row, col) = ((i / grid.cols()) as i64, (i % grid.cols()) as i64);
         let edge = [(0, 1), (1, 0), (0, -1), (-1, 0)].iter().any(|&(dr, dc)| {
             !inside(row + dr, col + dc) || !mask[((row + dr) * cols + col + dc) as usize]
         });
-        if !edge {
-            continue;
-        }
-        for &(dr, dc) in offsets {
-            let (r, c) = (row + dr, col + dc);
-            if inside(r, c) {
-                grown[(r * cols + c) as usize] = true;
-            }
+        if edge {
+            stamp.apply(grid, &mut grown, row as usize, col as usize, true);
         }
     }
     grown

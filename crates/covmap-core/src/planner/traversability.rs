@@ -8,6 +8,7 @@ use crate::grid::{Cell, Grid};
 use crate::planner::path::{Reachability, shortest_paths};
 use crate::planner::viewpoint::Planner;
 use crate::pose::{Pose, check_pose};
+use crate::stamp::Stamp;
 
 impl Planner {
     /// Where the robot's centre may be on `map`: see the module documentation.
@@ -28,14 +29,14 @@ impl Planner {
         // is decided by that distance alone ([`disc_offsets`]). So a blocked
         // cell whose neighbours all block only takes itself; unknown space,
         // most of a map early on, is one large such region.
+        let stamp = Stamp::new(&offsets);
         let mut free: Vec<bool> = blocked.iter().map(|&b| !b).collect();
         for (i, _) in blocked.iter().enumerate().filter(|(_, b)| **b) {
             if cells_at(grid, i, &NEIGHBOURS).all(|n| blocked[n]) {
                 continue;
             }
-            for covered in cells_at(grid, i, &offsets) {
-                free[covered] = false;
-            }
+            let cell = grid.cell(i);
+            stamp.apply(grid, &mut free, cell.row, cell.col, false);
         }
         free
     }
