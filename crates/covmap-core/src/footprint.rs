@@ -35,6 +35,15 @@ pub(crate) trait CellVisitor {
     ) {
         cells_of_block(self, first, d, n, reach_m);
     }
+
+    /// Whether the visitor wants no more cells: a ray's walk stops after the
+    /// cell that made it so (a cone's walk does not ask). A visitor that
+    /// stops must do nothing with any later cell, so that stopping changes
+    /// nothing but the time taken.
+    #[inline(always)]
+    fn done(&self) -> bool {
+        false
+    }
 }
 
 /// Visit the cells of a row block ([`CellVisitor::row_block`]) one by one,
@@ -255,6 +264,9 @@ fn visit_ray(grid: &Grid, [sx, sy]: [f64; 2], angle: f64, reach: f64, f: &mut im
         let cx = ox + (col as f64 + 0.5) * r - sx;
         let cy = oy + (row as f64 + 0.5) * r - sy;
         f.cell((row * cols + col) as usize, cx * dx + cy * dy, enter);
+        if f.done() {
+            break;
+        }
         if t_c < t_r {
             if t_c > reach {
                 break;

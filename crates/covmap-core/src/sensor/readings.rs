@@ -4,7 +4,7 @@
 use serde::{Deserialize, Serialize};
 
 use crate::error::{CovmapError, Result, check_parameter};
-use crate::footprint::visit;
+use crate::footprint::{CellVisitor, visit};
 use crate::grid::Grid;
 use crate::pose::{Pose, check_pose};
 use crate::sensor::{Footprint, RangeModel};
@@ -110,7 +110,7 @@ pub(crate) fn trace_readings_with(
     angle_rad: f64,
     range: &RangeModel,
     step_m: f64,
-    mut read: impl FnMut(usize),
+    read: impl FnMut(usize),
 ) -> ReadingDistribution {
     let r = grid.resolution_m();
     // A reading ends at most half a cell past the centre of a cell the beam
@@ -132,23 +132,13 @@ pub(crate) fn trace_readings_with(
             .find(|&j| (j as f64) * step_m < range.max_range_m)
             .map_or(0, |j| j + 1)
     };
-    let mut probabilities = vec![0.0; slots];
-    let mut through = 1.0f64;
-    let mut trace = |i: usize, d_l: f64| {
-        if through <= 0.0 {
-            return;
-        }
-        read(i);
-        let c = f64::from(stop[i]);
-        if c <= 0.0 {
-            return;
-        }
-        let d = (d_l + 0.5 * r - c * r).max(0.0);
-        let j = (d / step_m).round() as usize;
-        if j < slots {
-            probabilities[j] += through * c;
-            through *= 1.0 - c;
-        }
+    let mut trace = Trace {
+        stop,
+        resolution_m: r,
+        step_m,
+        probabilities: vec![0.0; slots],
+        through: 1.0,
+        read,
     };
     visit(
         grid,
@@ -158,10 +148,55 @@ pub(crate) fn trace_readings_with(
         Footprint::Ray,
         &mut trace,
     );
+    let Trace {
+        probabilities,
+        through,
+        ..
+    } = trace;
     ReadingDistribution {
         step_m,
         probabilities,
         no_echo: through,
+    }
+}
+
+/// The trace of a beam's axis: the recurrence of the probability of getting
+/// through each cell, and the readings' probabilities it gives. Done once
+/// that probability is 0: no later cell changes anything, so the walk stops
+/// there (most beams end at a wall well inside the maximum range).
+struct Trace<'s, R> {
+    stop: &'s [f32],
+    resolution_m: f64,
+    step_m: f64,
+    probabilities: Vec<f64>,
+    /// The probability that the beam gets this far.
+    through: f64,
+    read: R,
+}
+
+impl<R: FnMut(usize)> CellVisitor for Trace<'_, R> {
+    #[inline(always)]
+    fn cell(&mut self, i: usize, d_l: f64, _enter_m: f64) {
+        if self.through <= 0.0 {
+            return;
+        }
+        (self.read)(i);
+        let c = f64::from(self.stop[i]);
+        if c <= 0.0 {
+            return;
+        }
+        let r = self.resolution_m;
+        let d = (d_l + 0.5 * r - c * r).max(0.0);
+        let j = (d / self.step_m).round() as usize;
+        if j < self.probabilities.len() {
+            self.probabilities[j] += self.through * c;
+            self.through *= 1.0 - c;
+        }
+    }
+
+    #[inline(always)]
+    fn done(&self) -> bool {
+        self.through <= 0.0
     }
 }
 
@@ -194,5 +229,62 @@ mod tests {
             reading_distribution(&grid, &vec![0.0; grid.len()], [1.0, 1.0], 0.3, &range, 0.05)
                 .unwrap();
         assert_eq!(open.no_echo, 1.0);
+    }
+
+    /// The trace stops where the beam can get no farther, and gives what a
+    /// walk of the whole ray gives, bit for bit, reading every cell up to
+    /// that one: on random maps of partly and fully stopping cells.
+    #[test]
+    fn stopping_the_trace_at_certain_stop_changes_nothing() {
+        let grid = Grid::new([0.0, 0.0], 0.05, 80, 120).unwrap();
+        let range = SonarModel::default().range;
+        let mut next = crate::test_rng::uniform(9);
+        for trial in 0..300 {
+            let stop: Vec<f32> = (0..grid.len())
+                .map(|_| match next() {
+                    u if u < 0.02 => 1.0,
+                    u if u < 0.06 => (0.1 + next()) as f32 * 0.8,
+                    _ => 0.0,
+                })
+                .collect();
+            let origin = [0.1 + 5.8 * next(), 0.1 + 3.8 * next()];
+            let angle = 7.0 * next();
+            let mut read = Vec::new();
+            let d =
+                trace_readings_with(&grid, &stop, origin, angle, &range, 0.05, |i| read.push(i));
+            // The whole ray, as the trace was first written.
+            let (r, step_m) = (grid.resolution_m(), 0.05);
+            let mut probabilities = vec![0.0; d.probabilities.len()];
+            let (mut through, mut reads) = (1.0f64, Vec::new());
+            visit(
+                &grid,
+                origin,
+                angle,
+                range.max_range_m,
+                Footprint::Ray,
+                &mut |i: usize, d_l: f64| {
+                    if through <= 0.0 {
+                        return;
+                    }
+                    reads.push(i);
+                    let c = f64::from(stop[i]);
+                    if c > 0.0 {
+                        let j = ((d_l + 0.5 * r - c * r).max(0.0) / step_m).round() as usize;
+                        if j < probabilities.len() {
+                            probabilities[j] += through * c;
+                            through *= 1.0 - c;
+                        }
+                    }
+                },
+            );
+            let bits = |p: &[f64]| p.iter().map(|p| p.to_bits()).collect::<Vec<_>>();
+            assert_eq!(
+                bits(&d.probabilities),
+                bits(&probabilities),
+                "trial {trial}"
+            );
+            assert_eq!(d.no_echo.to_bits(), through.to_bits(), "trial {trial}");
+            assert_eq!(read, reads, "trial {trial}");
+        }
     }
 }
