@@ -157,13 +157,23 @@ fn update_any(h: &mut [f32], k: &[f32], floor: f32) {
 /// Each bin's `p ln p`, summed in bin order. A bin at [`BIN_FLOOR`] (most
 /// bins of a map explored for a while: 80 % of those whose entropy a
 /// scan-counting run computes) takes its term from [`floor_term`], the
-/// same product computed once, so the entropy has the same bits as with
-/// every logarithm computed, and its cost is the other bins' logarithms.
+/// same product computed once, and a bin at 1 (a certain cell's) the 0 its
+/// term is, so the entropy has the same bits as with every logarithm
+/// computed, and its cost is the other bins' logarithms.
 pub fn entropy(h: &[f32]) -> f32 {
     let at_floor = floor_term();
     -h.iter()
         .filter(|&&p| p > 0.0)
-        .map(|&p| if p == BIN_FLOOR { at_floor } else { p * p.ln() })
+        .map(|&p| {
+            if p == BIN_FLOOR {
+                at_floor
+            } else if p == 1.0 {
+                // `1 ln 1`: `ln` gives exactly 0 there.
+                0.0
+            } else {
+                p * p.ln()
+            }
+        })
         .sum::<f32>()
 }
 

@@ -318,11 +318,7 @@ fn yaml_values_map_server_refuses_name_their_line() {
             "key `free_thresh`",
             "below occupied_thresh (0.3), found 0.6",
         ),
-        (
-            "free_thresh: -0.1\n",
-            "key `free_thresh`",
-            "at least 0",
-        ),
+        ("free_thresh: -0.1\n", "key `free_thresh`", "at least 0"),
     ] {
         let e = parse_ros_yaml(&format!("{base}{extra}"), Path::new("m.yaml")).unwrap_err();
         let text = e.to_string();
