@@ -203,6 +203,25 @@ mod tests {
     use crate::test_rng::uniform;
     use crate::{CoverageMap, grid::Grid};
 
+    /// A map of `grid` after `count` scans from poses and with ranges drawn
+    /// from `next`.
+    fn randomly_scanned(
+        grid: Grid,
+        count: usize,
+        bearings: &[f64],
+        model: &dyn SensorModel,
+        next: &mut impl FnMut() -> f64,
+    ) -> CoverageMap {
+        let scans: Vec<(Pose, Vec<f64>)> = (0..count)
+            .map(|_| {
+                let pose = Pose::new(0.5 + 7.0 * next(), 0.5 + 5.0 * next(), 6.0 * next());
+                (pose, bearings.iter().map(|_| 0.3 + 2.5 * next()).collect())
+            })
+            .collect();
+        let scans: Vec<(Pose, &[f64])> = scans.iter().map(|(p, r)| (*p, &r[..])).collect();
+        scanned(grid, &scans, bearings, model)
+    }
+
     /// The tiles marked for each beam, of many evaluated together, are the
     /// tiles of the cells its axis trace reads and of its footprint's cells
     /// out to the walked reach, found cell by cell: no more, no fewer.
@@ -215,14 +234,7 @@ mod tests {
             &SonarModel::default() as &dyn SensorModel,
             &LaserModel::default(),
         ] {
-            let scans: Vec<(Pose, Vec<f64>)> = (0..4)
-                .map(|_| {
-                    let pose = Pose::new(0.5 + 7.0 * next(), 0.5 + 5.0 * next(), 6.0 * next());
-                    (pose, bearings.iter().map(|_| 0.3 + 2.5 * next()).collect())
-                })
-                .collect();
-            let scans: Vec<(Pose, &[f64])> = scans.iter().map(|(p, r)| (*p, &r[..])).collect();
-            let map = scanned(grid, &scans, &bearings, model);
+            let map = randomly_scanned(grid, 4, &bearings, model, &mut next);
             let eval = GainEvaluator::new(&map, model, GainOptions::default()).unwrap();
             let tiles = Tiles::new(&grid);
             let beams: Vec<(Pose, f64)> = (0..150)
@@ -265,14 +277,7 @@ mod tests {
             &SonarModel::default() as &dyn SensorModel,
             &LaserModel::default(),
         ] {
-            let scans: Vec<(Pose, Vec<f64>)> = (0..5)
-                .map(|_| {
-                    let pose = Pose::new(0.5 + 7.0 * next(), 0.5 + 5.0 * next(), 6.0 * next());
-                    (pose, bearings.iter().map(|_| 0.3 + 2.5 * next()).collect())
-                })
-                .collect();
-            let scans: Vec<(Pose, &[f64])> = scans.iter().map(|(p, r)| (*p, &r[..])).collect();
-            let map = scanned(grid, &scans, &bearings, model);
+            let map = randomly_scanned(grid, 5, &bearings, model, &mut next);
             let eval = GainEvaluator::new(&map, model, GainOptions::default()).unwrap();
             let tiles = Tiles::new(&grid);
             for _ in 0..8 {
