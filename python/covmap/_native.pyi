@@ -323,7 +323,11 @@ class CoverageMap:
         sensor pose lies outside the map raises (``PoseOutsideMapError``, the
         message naming the scan) and leaves the map exactly as it was.
         ``progress``: ``True`` shows a bar (tqdm's if installed), a callable
-        is called as ``progress(done, total)``. Runs with the GIL released.
+        is called as ``progress(done, total)``; if it raises (or Ctrl-C
+        interrupts the bar), the error is raised once the scans are in and
+        the map is left as it was (with a progress display the scans go into
+        a copy, which takes as much memory again). Runs with the GIL
+        released.
         """
     def save(self, path: str | PathLike[str]) -> None:
         """Save the whole posterior (grid, bins, histograms, the entropy history
@@ -586,7 +590,11 @@ class OccupancyGrid:
         sensor pose lies outside the map raises (``PoseOutsideMapError``, the
         message naming the scan) and leaves the map exactly as it was.
         ``progress``: ``True`` shows a bar (tqdm's if installed), a callable
-        is called as ``progress(done, total)``. Runs with the GIL released.
+        is called as ``progress(done, total)``; if it raises (or Ctrl-C
+        interrupts the bar), the error is raised once the scans are in and
+        the grid is left as it was (with a progress display the scans go into
+        a copy, which takes as much memory again). Runs with the GIL
+        released.
         """
     def probabilities(self) -> npt.NDArray[np.float32]:
         """Probability of occupancy, float32, ``(rows, cols)``."""

@@ -120,6 +120,33 @@ def test_integrate_log_equals_scan_by_scan_and_a_bad_scan_changes_nothing() -> N
         occupancy.integrate_log(log, model, progress="yes")  # type: ignore[arg-type]
 
 
+def test_a_progress_callable_that_raises_leaves_the_maps_as_they_were() -> None:
+    grid = covmap.Grid(origin=(0.0, 0.0), resolution=0.05, shape=(60, 60))
+    log = small_log(6)
+    model = covmap.SonarModel()
+
+    def fails(done: int, total: int) -> None:
+        if done >= 2:
+            raise KeyError("stop")
+
+    coverage, occupancy = covmap.CoverageMap(grid), covmap.OccupancyGrid(grid)
+    coverage.integrate_log(small_log(2), model)
+    occupancy.integrate_log(small_log(2), model)
+    before = coverage.histograms.copy(), occupancy.log_odds().copy(), occupancy.counts().copy()
+    with pytest.raises(KeyError, match="stop"):
+        coverage.integrate_log(log, model, progress=fails)
+    with pytest.raises(KeyError, match="stop"):
+        occupancy.integrate_log(log, model, progress=fails)
+    np.testing.assert_array_equal(coverage.histograms, before[0])
+    np.testing.assert_array_equal(occupancy.log_odds(), before[1])
+    np.testing.assert_array_equal(occupancy.counts(), before[2])
+    # Without an error the copy takes the map's place: the same as no display.
+    plain = covmap.CoverageMap(grid)
+    plain.integrate_log(small_log(2), model)
+    assert coverage.integrate_log(log, model, progress=lambda done, total: None) == plain.integrate_log(log, model)
+    np.testing.assert_array_equal(coverage.histograms, plain.histograms)
+
+
 def test_the_sensor_offset_moves_every_scan() -> None:
     grid = covmap.Grid(origin=(0.0, 0.0), resolution=0.05, shape=(60, 60))
     log = small_log(3)

@@ -114,6 +114,20 @@ impl TryFrom<OccupancyGridData> for OccupancyGrid {
 }
 
 impl OccupancyGrid {
+    /// A copy of the grid, or [`CovmapError::OutOfMemory`] where `clone`
+    /// would abort the process: the memory of its log-odds and counts is
+    /// asked for first.
+    ///
+    /// # Errors
+    /// [`CovmapError::OutOfMemory`] naming the copy.
+    pub fn try_clone(&self) -> Result<Self> {
+        drop(crate::memory::try_with_capacity::<f32>(
+            2 * self.log_odds.len(),
+            "a copy of the occupancy grid",
+        )?);
+        Ok(self.clone())
+    }
+
     /// An unknown (p = 0.5) grid with the default model and undiscounted counts.
     ///
     /// # Panics

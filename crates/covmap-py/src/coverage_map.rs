@@ -161,7 +161,11 @@ impl PyCoverageMap {
     /// sensor pose lies outside the map raises (``PoseOutsideMapError``, the
     /// message naming the scan) and leaves the map exactly as it was.
     /// ``progress``: ``True`` shows a bar (tqdm's if installed), a callable
-    /// is called as ``progress(done, total)``. Runs with the GIL released.
+    /// is called as ``progress(done, total)``; if it raises (or Ctrl-C
+    /// interrupts the bar), the error is raised once the scans are in and
+    /// the map is left as it was (with a progress display the scans go into
+    /// a copy, which takes as much memory again). Runs with the GIL
+    /// released.
     #[pyo3(signature = (log, model, *, progress=crate::log::ProgressArg::Flag(false)), text_signature = "($self, log, model, *, progress=False)")]
     fn integrate_log(
         &mut self,
@@ -172,10 +176,21 @@ impl PyCoverageMap {
     ) -> PyResult<usize> {
         let model = crate::sensor::any_model(model)?;
         let log = &log.get().0;
-        let map = &mut self.0;
-        crate::log::with_progress(py, progress, (log.len(), " scans"), |show| {
-            map.integrate_log_with_progress(log, &model, &mut |done| show(done))
-        })
+        if matches!(progress, crate::log::ProgressArg::Flag(false)) {
+            let map = &mut self.0;
+            return crate::log::with_progress(py, progress, (log.len(), " scans"), |_| {
+                map.integrate_log(log, &model)
+            });
+        }
+        // A progress display can raise (the callable's exception, Ctrl-C in
+        // a bar) once scans went in: they go into a copy, which replaces the
+        // map only if nothing raised.
+        let mut copy = self.0.try_clone().or_raise(py)?;
+        let updates = crate::log::with_progress(py, progress, (log.len(), " scans"), |show| {
+            copy.integrate_log_with_progress(log, &model, &mut |done| show(done))
+        })?;
+        self.0 = copy;
+        Ok(updates)
     }
 
     /// Keep (``True``) or stop keeping (``False``) each cell's entropy after

@@ -49,6 +49,23 @@ pub struct CoverageMap {
 }
 
 impl CoverageMap {
+    /// A copy of the map, or [`CovmapError::OutOfMemory`](crate::CovmapError::OutOfMemory)
+    /// where `clone` would abort the process: the memory of its histograms
+    /// is asked for first (twice that with the entropy history kept, more
+    /// than the history takes).
+    ///
+    /// # Errors
+    /// [`CovmapError::OutOfMemory`](crate::CovmapError::OutOfMemory) naming
+    /// the copy.
+    pub fn try_clone(&self) -> Result<Self> {
+        let floats = self.data.len() * if self.history.is_some() { 2 } else { 1 };
+        drop(crate::memory::try_with_capacity::<f32>(
+            floats,
+            "a copy of the coverage map",
+        )?);
+        Ok(self.clone())
+    }
+
     /// A map at the uniform prior with [`DEFAULT_BINS`] bins.
     ///
     /// # Panics
