@@ -176,21 +176,13 @@ impl PyCoverageMap {
     ) -> PyResult<usize> {
         let model = crate::sensor::any_model(model)?;
         let log = &log.get().0;
-        if matches!(progress, crate::log::ProgressArg::Flag(false)) {
-            let map = &mut self.0;
-            return crate::log::with_progress(py, progress, (log.len(), " scans"), |_| {
-                map.integrate_log(log, &model)
-            });
-        }
-        // A progress display can raise (the callable's exception, Ctrl-C in
-        // a bar) once scans went in: they go into a copy, which replaces the
-        // map only if nothing raised.
-        let mut copy = self.0.try_clone().or_raise(py)?;
-        let updates = crate::log::with_progress(py, progress, (log.len(), " scans"), |show| {
-            copy.integrate_log_with_progress(log, &model, &mut |done| show(done))
-        })?;
-        self.0 = copy;
-        Ok(updates)
+        crate::log::integrate_log_shown(
+            py,
+            &mut self.0,
+            covmap::CoverageMap::try_clone,
+            (progress, log.len()),
+            |map, show| map.integrate_log_with_progress(log, &model, show),
+        )
     }
 
     /// Keep (``True``) or stop keeping (``False``) each cell's entropy after

@@ -445,6 +445,32 @@ impl Progress {
     }
 }
 
+/// A log's `scans` integrated into `map` by `integrate` (which calls its
+/// second argument with the scans done so far), shown by `progress`. A
+/// display can raise (the callable's exception, Ctrl-C in a bar) once scans
+/// went in: with one, the scans go into a copy (`try_clone`) that replaces
+/// `map` only if nothing raised, so that an error leaves `map` as it was;
+/// without one, into `map` itself.
+pub(crate) fn integrate_log_shown<M: Send>(
+    py: Python<'_>,
+    map: &mut M,
+    try_clone: impl FnOnce(&M) -> covmap::Result<M>,
+    (progress, scans): (ProgressArg, usize),
+    integrate: impl FnOnce(&mut M, &mut dyn FnMut(usize)) -> covmap::Result<usize> + Send,
+) -> PyResult<usize> {
+    if matches!(progress, ProgressArg::Flag(false)) {
+        return with_progress(py, progress, (scans, " scans"), |_| {
+            integrate(map, &mut |_| {})
+        });
+    }
+    let mut copy = try_clone(map).or_raise(py)?;
+    let updates = with_progress(py, progress, (scans, " scans"), |show| {
+        integrate(&mut copy, &mut |done| show(done))
+    })?;
+    *map = copy;
+    Ok(updates)
+}
+
 /// Run `work` with the GIL released, showing progress over `total` steps
 /// counted in `unit` (a word with a leading space) as `progress` asks,
 /// about once a percent: `work` reports the steps done so far, from any of
