@@ -2,7 +2,9 @@
 //! 24-sonar ring through the built-in corridor at 5 cm, built and scored
 //! against the exact ground truth (what `fit_sensor_model` does per
 //! parameter set). The default scan integration is measured beside the
-//! occluded one (no-echo readings stopped by the map).
+//! occluded one (no-echo readings stopped by the map) and beside a model
+//! whose update reads the map (attribution, yield and the contradiction
+//! floor on, as fits choose them).
 //!
 //! Run: `cargo bench --bench learn`. A whole fit is timed by
 //! `cargo run --release -p covmap-sim --example learn` (see BENCHMARKS.md).
@@ -31,6 +33,19 @@ fn evaluation(c: &mut Criterion) {
             let mut map = CoverageMap::new(drive.grid);
             map.integrate_log_occluding(&drive.log, &model)
                 .expect("valid log");
+            log_likelihood(&map, &drive.truth, None).expect("valid truth")
+        })
+    });
+    let mut reading = model;
+    if let AnySensorModel::Sonar(m) = &mut reading {
+        m.range.posterior_floor = 0.001;
+        m.range.end_attribution = 0.05;
+        m.range.free_yield = 0.09;
+    }
+    group.bench_function("corridor_300_scans_24_sonars_map_terms", |b| {
+        b.iter(|| {
+            let mut map = CoverageMap::new(drive.grid);
+            map.integrate_log(&drive.log, &reading).expect("valid log");
             log_likelihood(&map, &drive.truth, None).expect("valid truth")
         })
     });

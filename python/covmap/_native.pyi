@@ -168,7 +168,13 @@ class _RangeModel:
         """How strongly an echo marks the cells at and behind its end, in [0, 1]: 1 the paper's kernels."""
     @property
     def posterior_floor(self) -> float:
-        """The least probability an update leaves any bin, in [0, 1/256]: 0 the paper's Bayes update."""
+        """The least probability an update that contradicts a cell leaves any of its bins, in [0, 1/256]: 0 the paper's Bayes update."""
+    @property
+    def end_attribution(self) -> float:
+        """How far an echo's marks follow the coverage the map holds on its arc, in [0, 1]: 0 the paper's arc."""
+    @property
+    def free_yield(self) -> float:
+        """How much a free-space update spares a cell the map holds covered, in [0, 1]: 0 the paper's update."""
     def kernel(
         self,
         cell_distance: float,
@@ -220,6 +226,8 @@ class SonarModel(_RangeModel):
         no_echo_weight: float | None = None,
         end_weight: float | None = None,
         posterior_floor: float | None = None,
+        end_attribution: float | None = None,
+        free_yield: float | None = None,
         opening_angle_rad: float | None = None,
     ) -> SonarModel: ...
     @property
@@ -251,6 +259,8 @@ class LaserModel(_RangeModel):
         no_echo_weight: float | None = None,
         end_weight: float | None = None,
         posterior_floor: float | None = None,
+        end_attribution: float | None = None,
+        free_yield: float | None = None,
     ) -> LaserModel: ...
 
 @final

@@ -21,6 +21,8 @@ SONAR_PARAMETERS = [
     "no_echo_weight",
     "end_weight",
     "posterior_floor",
+    "end_attribution",
+    "free_yield",
     "opening_angle_rad",
 ]
 
@@ -59,6 +61,9 @@ def test_one_override_keeps_the_other_defaults() -> None:
         {"sigma_end": 0.01},
         {"xi_min": 0.0},
         {"xi_per_m": math.inf},
+        {"end_attribution": 1.5},
+        {"free_yield": -0.1},
+        {"free_yield": math.nan},
         {"opening_angle_rad": 0.0},
         {"opening_angle_rad": math.pi},
     ],

@@ -1,6 +1,6 @@
 //! `covmap.SonarModel` and `covmap.LaserModel`: the inverse sensor models.
 //!
-//! Both are a range model (eleven parameters) and, for the sonar, the opening
+//! Both are a range model (thirteen parameters) and, for the sonar, the opening
 //! angle of its cone; [`sensor_model_class!`] writes their Python methods
 //! once for both.
 
@@ -64,8 +64,12 @@ macro_rules! sensor_model_class {
                 no_echo_weight
                 /// How strongly an echo marks the cells at and behind its end, in [0, 1]: 1 the paper's kernels.
                 end_weight
-                /// The least probability an update leaves any bin, in [0, 1/256]: 0 the paper's Bayes update.
+                /// The least probability an update that contradicts a cell leaves any of its bins, in [0, 1/256]: 0 the paper's Bayes update.
                 posterior_floor
+                /// How far an echo's marks follow the coverage the map holds on its arc, in [0, 1]: 0 the paper's arc.
+                end_attribution
+                /// How much a free-space update spares a cell the map holds covered, in [0, 1]: 0 the paper's update.
+                free_yield
             ],
             [ $( $(#[doc = $doc])* $extra )* ]
         );

@@ -3,7 +3,13 @@
 //!
 //! `cargo run --release -p covmap-sim --example learn -- [--train corridor]
 //! [--test office] [--laser] [--evaluations 300] [--scans 300]
-//! [--parameters a,b,...] [--breakdown]`
+//! [--parameters a,b,...] [--set name=value ...] [--seed 0] [--test-seed 1]
+//! [--breakdown]`
+//!
+//! `--set` changes a parameter of the starting model (after `--laser`); the
+//! drives are simulated with the starting model's cone and range, so a
+//! changed `opening_angle_rad` changes the drives too. `--seed` seeds the
+//! fit's restarts, `--test-seed` the test drive.
 //!
 //! `--breakdown` also prints where the starting model's log-likelihood of
 //! the training drive comes from: the cells scoring below -20 nats (and how
@@ -23,10 +29,27 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             "--train" => config.train_world = value()?,
             "--test" => config.test_world = value()?,
             "--laser" => config.model = AnySensorModel::laser(),
+            "--set" => {
+                let v = value()?;
+                let (name, x) = v
+                    .split_once('=')
+                    .ok_or(format!("--set {v}: expected NAME=VALUE"))?;
+                let x: f64 = x.parse()?;
+                use covmap_core::learn::Fittable;
+                let known = match &mut config.model {
+                    AnySensorModel::Sonar(m) => m.set(name, x),
+                    AnySensorModel::Laser(m) => m.set(name, x),
+                };
+                if !known {
+                    return Err(format!("--set: the model has no parameter {name}").into());
+                }
+            }
             "--evaluations" => config.fit.max_evaluations = value()?.parse()?,
             "--judged" => config.judged_only = true,
             "--breakdown" => breakdown = true,
             "--occlude" => config.fit.occlude_no_echo = true,
+            "--seed" => config.fit.seed = value()?.parse()?,
+            "--test-seed" => config.test_seed = value()?.parse()?,
             "--restarts" => config.fit.restarts = value()?.parse()?,
             "--scans" => config.scans = value()?.parse()?,
             "--parameters" => {

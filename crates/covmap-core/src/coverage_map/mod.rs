@@ -2,6 +2,7 @@
 
 mod contact;
 mod history;
+mod map_terms;
 mod occlusion;
 mod storage;
 mod update;

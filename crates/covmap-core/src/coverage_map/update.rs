@@ -5,6 +5,7 @@ use std::borrow::Cow;
 
 use super::CoverageMap;
 use super::history::{History, Touches};
+use super::map_terms::MapTerms;
 use super::storage::cached_or_new;
 use crate::error::Result;
 use crate::footprint::{CellVisitor, visit};
@@ -143,16 +144,22 @@ fn apply<const N: usize, M: SensorModel + ?Sized>(
     debug_assert_eq!(data.len(), grid.len() * bins);
     let range = model.range_model();
     let footprint = model.footprint();
+    let mut terms = MapTerms::of(range, grid, bins);
     let mut updates = 0;
     for (k, (&r, &bearing)) in ranges.iter().zip(bearings).enumerate() {
         let (reach, echo) = beam_reach(range, r, k, no_echo_reach_m);
+        let d = r.min(range.max_range_m);
+        if let Some(terms) = terms.as_mut() {
+            terms.begin(d, echo);
+        }
+        let lookup = table.reading(d, echo);
         let mut beam = BeamUpdate::<N> {
             data,
             table,
             bins,
             floor: histogram::BIN_FLOOR,
-            mix: (range.posterior_floor * bins as f64) as f32,
-            lookup: table.reading(r.min(range.max_range_m), echo),
+            terms: terms.as_mut(),
+            lookup,
             updates: 0,
             touches: touches.as_deref_mut(),
         };
@@ -165,6 +172,15 @@ fn apply<const N: usize, M: SensorModel + ?Sized>(
             &mut beam,
         );
         updates += beam.updates;
+        if let Some(terms) = terms.as_mut() {
+            // The marks of an attributed echo, now that its arc is known.
+            let marked = terms.take_marked();
+            for &(i, d_l) in &marked {
+                let h = &mut data[i * bins..(i + 1) * bins];
+                terms.update::<N>(h, table.at(lookup.offset(d_l)), d_l, histogram::BIN_FLOOR);
+            }
+            terms.give_back(marked);
+        }
     }
     updates
 }
@@ -176,9 +192,9 @@ struct BeamUpdate<'a, 't, const N: usize> {
     table: &'a KernelTable,
     bins: usize,
     floor: f32,
-    /// The weight of the uniform prior mixed into each updated histogram
-    /// (the model's `posterior_floor` times the bin count; 0: none).
-    mix: f32,
+    /// The model's terms that read the map, begun for this beam (`None`:
+    /// the paper's update, which multiplies the kernel in unread).
+    terms: Option<&'a mut MapTerms>,
     lookup: ReadingLookup,
     updates: usize,
     touches: Option<&'a mut Touches<'t>>,
@@ -188,10 +204,17 @@ impl<const N: usize> CellVisitor for BeamUpdate<'_, '_, N> {
     #[inline(always)]
     fn cell(&mut self, index: usize, d_l: f64, _enter_m: f64) {
         let h = &mut self.data[index * self.bins..(index + 1) * self.bins];
-        let k = self.table.at(self.lookup.offset(d_l));
-        histogram::update_bins::<N>(h, k, self.floor);
-        if self.mix > 0.0 {
-            histogram::mix_uniform(h, self.mix);
+        match self.terms.as_deref_mut() {
+            None => {
+                let k = self.table.at(self.lookup.offset(d_l));
+                histogram::update_bins::<N>(h, k, self.floor);
+            }
+            Some(terms) => {
+                if !terms.defer(index, d_l, h) {
+                    let k = self.table.at(self.lookup.offset(d_l));
+                    terms.update::<N>(h, k, d_l, self.floor);
+                }
+            }
         }
         if let Some(touches) = self.touches.as_deref_mut() {
             touches.mark(index);

@@ -16,7 +16,7 @@ use crate::log::Log;
 use crate::sensor::SensorModel;
 
 /// The most evaluations a fit may be asked for (a day's work here at 70 ms
-/// each is about a million; a fit of 11 parameters converges in hundreds).
+/// each is about a million; a fit of 13 parameters converges in hundreds).
 pub const MAX_EVALUATIONS: usize = 100_000;
 
 /// What a fit scores models on: a recorded drive, the grid its maps are

@@ -33,7 +33,7 @@ pub trait Fittable: SensorModel + Clone + Send + Sync {
 /// enough to hold every sensible sonar and laser (a standard deviation of
 /// coverage up to 1, a uniform weight up to 4 times the peak of a unit
 /// Gaussian, an end band up to 1 m deep).
-const RANGE: [Parameter; 10] = [
+const RANGE: [Parameter; 12] = [
     Parameter {
         name: "band_m",
         bounds: [0.0, 1.0],
@@ -74,11 +74,19 @@ const RANGE: [Parameter; 10] = [
         name: "posterior_floor",
         bounds: [0.0, 1.0 / 256.0],
     },
+    Parameter {
+        name: "end_attribution",
+        bounds: [0.0, 1.0],
+    },
+    Parameter {
+        name: "free_yield",
+        bounds: [0.0, 1.0],
+    },
 ];
 
 /// The sonar's: the range model's and the cone's opening angle (2 to 60
 /// degrees).
-const SONAR: [Parameter; 11] = [
+const SONAR: [Parameter; 13] = [
     RANGE[0],
     RANGE[1],
     RANGE[2],
@@ -89,6 +97,8 @@ const SONAR: [Parameter; 11] = [
     RANGE[7],
     RANGE[8],
     RANGE[9],
+    RANGE[10],
+    RANGE[11],
     Parameter {
         name: "opening_angle_rad",
         bounds: [PI / 90.0, PI / 3.0],
@@ -108,6 +118,8 @@ fn range_field<'a>(range: &'a mut RangeModel, name: &str) -> Option<&'a mut f64>
         "no_echo_weight" => &mut range.no_echo_weight,
         "end_weight" => &mut range.end_weight,
         "posterior_floor" => &mut range.posterior_floor,
+        "end_attribution" => &mut range.end_attribution,
+        "free_yield" => &mut range.free_yield,
         _ => return None,
     })
 }

@@ -43,6 +43,8 @@ impl Default for LaserModel {
                 no_echo_weight: 1.0,
                 end_weight: 1.0,
                 posterior_floor: 0.0,
+                end_attribution: 0.0,
+                free_yield: 0.0,
             },
         }
     }

@@ -36,9 +36,18 @@
 //! `no_echo_reach * max_range_m` gets the free kernel (with `d = max_range_m`)
 //! mixed with the uniform prior by `no_echo_weight`, and none is marked. The
 //! kernels of the end band and behind it are mixed with the prior by
-//! `end_weight`, and every updated histogram by `posterior_floor` (see
-//! [`RangeModel`]); all three weights are the paper's reading (no mixing) by
+//! `end_weight`; both weights are the paper's reading (no mixing) by
 //! default.
+//!
+//! Three more parameters make the update read the map, each 0 (off, the
+//! paper's reading) by default (see [`RangeModel`]): `end_attribution` mixes
+//! an echo's marks toward the prior where the cell holds less coverage
+//! than the most covered cell of the arc, `free_yield` mixes a free-space
+//! kernel toward the prior where the cell is held covered, and
+//! `posterior_floor` mixes the prior into a histogram after a reading that
+//! contradicts it. The kernel table and [`RangeModel::kernel`] give the
+//! kernels before these terms; the expected information gain
+//! ([`crate::gain`]) predicts updates without them.
 //!
 //! # Predicted readings, `p(d | map)`
 //! The forward model, for the expected information gain ([`crate::gain`])

@@ -48,16 +48,43 @@ pub struct RangeModel {
     /// hit; a weight below 1 says so, where 1 marks the whole arc covered.
     #[serde(default = "one")]
     pub end_weight: f64,
-    /// The least probability an update leaves any bin of a cell's
-    /// histogram, in `[0, 1/256]`: after each update the cell's posterior
-    /// is mixed with the uniform prior, `(1 - bins p) h + p`. 0 (the
-    /// default): the paper's Bayes update (bins floored at 1e-30 only).
-    /// Readings of one cell are not independent (a sonar sees the same wall
-    /// face from the same places again and again), so the product of their
-    /// kernels grows far more confident than the evidence is: a floor caps
-    /// what a wrong cell can cost, as clamping does in OctoMap.
+    /// The least probability an update that contradicts a cell leaves any
+    /// bin of its histogram, in `[0, 1/256]`: after an update whose
+    /// kernel's mean coverage lies on the other side of 1/2 from the cell's
+    /// mean before it, the cell's posterior is mixed with the uniform
+    /// prior, `(1 - bins p) h + p`. 0 (the default): the paper's Bayes
+    /// update (bins floored at 1e-30 only). Readings of one cell are not
+    /// independent (a sonar sees the same wall face from the same places
+    /// again and again), so the product of their kernels grows far more
+    /// confident than the evidence is; where readings disagree, that
+    /// confidence is likely wrong, and the floor caps what it can cost.
+    /// Updates that agree with a cell (and the first of a cell at the
+    /// prior) mix nothing in, so the floor fades as agreeing readings
+    /// accumulate, and a cell every reading finds free keeps a mean
+    /// coverage near 0.
     #[serde(default)]
     pub posterior_floor: f64,
+    /// How far an echo's marks follow what the map already holds, in
+    /// `[0, 1]`. A sonar's echo comes from somewhere on the arc of its
+    /// cone, most likely where the map holds the most coverage: the kernels
+    /// of the end band and the band behind it are mixed with the uniform
+    /// prior by the weight `1 - a + a min(1, m / m_arc)`, `a` this value,
+    /// `m` the cell's mean coverage before the reading and `m_arc` the
+    /// largest mean coverage among the end band's cells (at least 1/2). An
+    /// arc across cells the map holds free and a wall the map holds covered
+    /// so marks the wall. 0 (the default): every cell of the arc alike, as
+    /// the paper reads it.
+    #[serde(default)]
+    pub end_attribution: f64,
+    /// How much a free-space update spares a cell the map holds covered,
+    /// in `[0, 1]`. A surface met at a grazing angle sends no echo back, so
+    /// a beam that passes a covered cell without an echo from it says
+    /// little about the cell: the free kernel (of echoes and no-echo
+    /// readings alike) of a cell of mean coverage `m` is mixed with the
+    /// uniform prior by the weight `1 - y min(1, max(0, 2 m - 1))`, `y` this
+    /// value. 0 (the default): the paper's reading.
+    #[serde(default)]
+    pub free_yield: f64,
 }
 
 /// The default of the no-echo parameters: the paper's reading.
@@ -149,6 +176,18 @@ impl RangeModel {
             self.posterior_floor,
             (0.0..=MAX_POSTERIOR_FLOOR).contains(&self.posterior_floor),
             "a probability in [0, 1/256]",
+        )?;
+        check(
+            "end_attribution",
+            self.end_attribution,
+            (0.0..=1.0).contains(&self.end_attribution),
+            "a weight in [0, 1]",
+        )?;
+        check(
+            "free_yield",
+            self.free_yield,
+            (0.0..=1.0).contains(&self.free_yield),
+            "a weight in [0, 1]",
         )?;
         check(
             "end_weight",
