@@ -42,7 +42,7 @@ fn evaluation(c: &mut Criterion) {
         m.range.end_attribution = 0.05;
         m.range.free_yield = 0.09;
     }
-    group.bench_function("corridor_300_scans_24_sonars_map_terms", |b| {
+    group.bench_function("corridor_300_scans_24_sonars_map_reading", |b| {
         b.iter(|| {
             let mut map = CoverageMap::new(drive.grid);
             map.integrate_log(&drive.log, &reading).expect("valid log");

@@ -213,6 +213,28 @@ pub fn mean(h: &[f32]) -> f32 {
         .sum()
 }
 
+/// [`mean`] in eight lanes, so that the sum vectorises: the same value up to
+/// rounding, for the update's per-cell loop (`mean` keeps its sum order, so
+/// the mean map keeps its bits).
+#[inline]
+pub(crate) fn mean_in_lanes(h: &[f32]) -> f32 {
+    let mut lanes = [0f32; 8];
+    let chunks = h.chunks_exact(8);
+    let rest = chunks.remainder();
+    for (c, chunk) in chunks.enumerate() {
+        for (j, (lane, &p)) in lanes.iter_mut().zip(chunk).enumerate() {
+            *lane += p * (8 * c + j) as f32;
+        }
+    }
+    let base = h.len() - rest.len();
+    let tail: f32 = rest
+        .iter()
+        .enumerate()
+        .map(|(j, &p)| p * (base + j) as f32)
+        .sum();
+    (lanes.iter().sum::<f32>() + tail) / (h.len() - 1) as f32
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

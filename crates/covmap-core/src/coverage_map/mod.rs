@@ -2,7 +2,7 @@
 
 mod contact;
 mod history;
-mod map_terms;
+mod map_reading;
 mod occlusion;
 mod storage;
 mod update;

@@ -5,7 +5,7 @@ use std::borrow::Cow;
 
 use super::CoverageMap;
 use super::history::{History, Touches};
-use super::map_terms::MapTerms;
+use super::map_reading::MapReading;
 use super::storage::cached_or_new;
 use crate::error::Result;
 use crate::footprint::{CellVisitor, visit};
@@ -144,7 +144,7 @@ fn apply<const N: usize, M: SensorModel + ?Sized>(
     debug_assert_eq!(data.len(), grid.len() * bins);
     let range = model.range_model();
     let footprint = model.footprint();
-    let mut terms = MapTerms::of(range, grid, bins);
+    let mut terms = MapReading::of(range, grid, bins);
     let mut updates = 0;
     for (k, (&r, &bearing)) in ranges.iter().zip(bearings).enumerate() {
         let (reach, echo) = beam_reach(range, r, k, no_echo_reach_m);
@@ -174,12 +174,8 @@ fn apply<const N: usize, M: SensorModel + ?Sized>(
         updates += beam.updates;
         if let Some(terms) = terms.as_mut() {
             // The marks of an attributed echo, now that its arc is known.
-            let marked = terms.take_marked();
-            for &(i, d_l) in &marked {
-                let h = &mut data[i * bins..(i + 1) * bins];
-                terms.update::<N>(h, table.at(lookup.offset(d_l)), d_l, histogram::BIN_FLOOR);
-            }
-            terms.give_back(marked);
+            let kernel = |d_l| table.at(lookup.offset(d_l));
+            terms.update_marked::<N>(data, bins, kernel, histogram::BIN_FLOOR);
         }
     }
     updates
@@ -194,7 +190,7 @@ struct BeamUpdate<'a, 't, const N: usize> {
     floor: f32,
     /// The model's terms that read the map, begun for this beam (`None`:
     /// the paper's update, which multiplies the kernel in unread).
-    terms: Option<&'a mut MapTerms>,
+    terms: Option<&'a mut MapReading>,
     lookup: ReadingLookup,
     updates: usize,
     touches: Option<&'a mut Touches<'t>>,

@@ -18,7 +18,7 @@ use crate::parallel;
 use crate::pose::{Pose, check_bearings, check_pose};
 use crate::sensor::{
     Footprint, KernelTable, RangeModel, ReadingDistribution, SensorModel, StopCoverage,
-    check_range_step, trace_readings, trace_readings_with,
+    check_range_step, trace_readings_with,
 };
 
 /// Evaluates the expected information gain of candidate viewpoints on one map
@@ -259,14 +259,7 @@ impl<'a> GainEvaluator<'a> {
 
     /// The predicted readings of the beam from `origin` along `angle`.
     pub(super) fn distribution(&self, origin: [f64; 2], angle: f64) -> ReadingDistribution {
-        trace_readings(
-            self.map.grid(),
-            &self.stop,
-            origin,
-            angle,
-            &self.range,
-            self.step_m,
-        )
+        self.distribution_with(origin, angle, |_| {})
     }
 
     /// [`Self::distribution`], calling `read` with every cell whose stop

@@ -16,7 +16,7 @@ use crate::sensor::RangeModel;
 
 /// The model's map-reading weights, and one beam's state.
 #[derive(Clone, Debug)]
-pub(super) struct MapTerms {
+pub(super) struct MapReading {
     attribution: f32,
     free_yield: f32,
     /// The weight of the uniform prior mixed into a contradicted histogram:
@@ -33,9 +33,11 @@ pub(super) struct MapTerms {
     most_covered: f32,
     /// The marked cells set aside (index, distance) while the pass goes on.
     marked: Vec<(usize, f64)>,
+    /// A kernel mixed with the prior, one bin count long.
+    mixed: Vec<f32>,
 }
 
-impl MapTerms {
+impl MapReading {
     /// The terms of `range` on `grid`'s histograms of `bins` bins, or `None`
     /// if every weight is 0 (the update need not read the map).
     pub(super) fn of(range: &RangeModel, grid: &Grid, bins: usize) -> Option<Self> {
@@ -48,6 +50,7 @@ impl MapTerms {
             marks_from_m: f64::INFINITY,
             most_covered: 0.5,
             marked: Vec::new(),
+            mixed: vec![0.0; bins],
         };
         (terms.attribution > 0.0 || terms.free_yield > 0.0 || terms.mix > 0.0).then_some(terms)
     }
@@ -74,20 +77,26 @@ impl MapTerms {
             return false;
         }
         if d_l <= self.range_m + self.half_m {
-            self.most_covered = self.most_covered.max(mean(h));
+            self.most_covered = self.most_covered.max(histogram::mean_in_lanes(h));
         }
         self.marked.push((index, d_l));
         true
     }
 
-    /// The cells set aside, once the pass is over.
-    pub(super) fn take_marked(&mut self) -> Vec<(usize, f64)> {
-        std::mem::take(&mut self.marked)
-    }
-
-    /// Give back the (emptied) list of [`Self::take_marked`], to reuse.
-    pub(super) fn give_back(&mut self, mut marked: Vec<(usize, f64)>) {
-        marked.clear();
+    /// Update the cells set aside, once the pass is over: each cell of
+    /// `data` (`bins` bins a cell) with its kernel `kernel(d_l)`, as
+    /// [`Self::update`].
+    pub(super) fn update_marked<'k, const N: usize>(
+        &mut self,
+        data: &mut [f32],
+        bins: usize,
+        kernel: impl Fn(f64) -> &'k [f32],
+        floor: f32,
+    ) {
+        let marked = std::mem::take(&mut self.marked);
+        for &(i, d_l) in &marked {
+            self.update::<N>(&mut data[i * bins..(i + 1) * bins], kernel(d_l), d_l, floor);
+        }
         self.marked = marked;
     }
 
@@ -101,8 +110,14 @@ impl MapTerms {
     /// band) and the cell's mean lie on opposite sides of 1/2; the kernel's
     /// own mean lies on `mu`'s side, as the density falls away from `mu`.
     #[inline]
-    pub(super) fn update<const N: usize>(&self, h: &mut [f32], k: &[f32], d_l: f64, floor: f32) {
-        let m = mean(h);
+    pub(super) fn update<const N: usize>(
+        &mut self,
+        h: &mut [f32],
+        k: &[f32],
+        d_l: f64,
+        floor: f32,
+    ) {
+        let m = histogram::mean_in_lanes(h);
         let marked = d_l >= self.marks_from_m;
         let w = if marked {
             1.0 - self.attribution + self.attribution * (m / self.most_covered).min(1.0)
@@ -110,50 +125,26 @@ impl MapTerms {
             1.0 - self.free_yield * (2.0 * m - 1.0).clamp(0.0, 1.0)
         };
         if w < 1.0 {
-            let mut mixed = [0f32; histogram::MAX_BINS];
-            let mixed = &mut mixed[..k.len()];
             let share = (1.0 - w) / k.len() as f32;
-            for (v, &kv) in mixed.iter_mut().zip(k) {
+            for (v, &kv) in self.mixed.iter_mut().zip(k) {
                 *v = w * kv + share;
             }
-            histogram::update_bins::<N>(h, mixed, floor);
+            histogram::update_bins::<N>(h, &self.mixed, floor);
         } else {
             histogram::update_bins::<N>(h, k, floor);
         }
         if self.mix > 0.0 {
-            // The sign of mu - 1/2.
+            // The sign of mu - 1/2 (0 at the end point itself: no side).
             let side = if !marked {
                 -1.0
             } else {
                 (d_l - self.range_m).signum() as f32
             };
-            if d_l != self.range_m && side * (m - 0.5) < 0.0 {
+            if side * (m - 0.5) < 0.0 {
                 histogram::mix_uniform(h, self.mix);
             }
         }
     }
-}
-
-/// The mean coverage of histogram `h` (bin `b` of `n` stands for
-/// `b / (n - 1)`), one multiply-add a bin.
-#[inline]
-fn mean(h: &[f32]) -> f32 {
-    // Eight lanes, so that the sum vectorises.
-    let mut lanes = [0f32; 8];
-    let chunks = h.chunks_exact(8);
-    let rest = chunks.remainder();
-    for (c, chunk) in chunks.enumerate() {
-        for (j, (lane, &p)) in lanes.iter_mut().zip(chunk).enumerate() {
-            *lane += p * (8 * c + j) as f32;
-        }
-    }
-    let base = h.len() - rest.len();
-    let tail: f32 = rest
-        .iter()
-        .enumerate()
-        .map(|(j, &p)| p * (base + j) as f32)
-        .sum();
-    (lanes.iter().sum::<f32>() + tail) / (h.len() - 1) as f32
 }
 
 #[cfg(test)]
@@ -197,11 +188,11 @@ mod tests {
 
     #[test]
     fn the_papers_update_reads_nothing() {
-        assert!(MapTerms::of(&SonarModel::default().range, &grid(), BINS).is_none());
-        assert!(MapTerms::of(&LaserModel::default().range, &grid(), BINS).is_none());
+        assert!(MapReading::of(&SonarModel::default().range, &grid(), BINS).is_none());
+        assert!(MapReading::of(&LaserModel::default().range, &grid(), BINS).is_none());
         let mut m = SonarModel::default();
         m.range.free_yield = 0.5;
-        assert!(MapTerms::of(&m.range, &grid(), BINS).is_some());
+        assert!(MapReading::of(&m.range, &grid(), BINS).is_some());
     }
 
     #[test]
