@@ -4,7 +4,8 @@
 //! parameter set). The default scan integration is measured beside the
 //! occluded one (no-echo readings stopped by the map) and beside a model
 //! whose update reads the map (attribution, yield and the contradiction
-//! floor on, as fits choose them).
+//! floor on, as fits choose them), and the model `covmap learn` fits
+//! (`SonarModel::learned()`) in the occluded maps it was fitted to.
 //!
 //! Run: `cargo bench --bench learn`. A whole fit is timed by
 //! `cargo run --release -p covmap-sim --example learn` (see BENCHMARKS.md).
@@ -15,40 +16,46 @@ use covmap::learn::log_likelihood;
 use covmap::sim::experiments::Drive;
 use criterion::{Criterion, criterion_group, criterion_main};
 
+/// One evaluation: `drive`'s map built with `model` (no-echo readings
+/// occluded by the map if `occlude`) and the truth scored under it.
+fn evaluate(drive: &Drive, model: &AnySensorModel, occlude: bool) -> f64 {
+    let mut map = CoverageMap::new(drive.grid);
+    if occlude {
+        map.integrate_log_occluding(&drive.log, model)
+    } else {
+        map.integrate_log(&drive.log, model)
+    }
+    .expect("valid log");
+    log_likelihood(&map, &drive.truth, None).expect("valid truth")
+}
+
 fn evaluation(c: &mut Criterion) {
     let model = AnySensorModel::default();
     let drive = Drive::simulate("corridor", &model, (300, 0.15, 0.05), 0, false)
         .expect("the corridor drive");
-    let mut group = c.benchmark_group("fit_evaluation");
-    group.sample_size(20);
-    group.bench_function("corridor_300_scans_24_sonars", |b| {
-        b.iter(|| {
-            let mut map = CoverageMap::new(drive.grid);
-            map.integrate_log(&drive.log, &model).expect("valid log");
-            log_likelihood(&map, &drive.truth, None).expect("valid truth")
-        })
-    });
-    group.bench_function("corridor_300_scans_24_sonars_occluded", |b| {
-        b.iter(|| {
-            let mut map = CoverageMap::new(drive.grid);
-            map.integrate_log_occluding(&drive.log, &model)
-                .expect("valid log");
-            log_likelihood(&map, &drive.truth, None).expect("valid truth")
-        })
-    });
     let mut reading = model;
     if let AnySensorModel::Sonar(m) = &mut reading {
         m.range.posterior_floor = 0.001;
         m.range.end_attribution = 0.05;
         m.range.free_yield = 0.09;
     }
-    group.bench_function("corridor_300_scans_24_sonars_map_reading", |b| {
-        b.iter(|| {
-            let mut map = CoverageMap::new(drive.grid);
-            map.integrate_log(&drive.log, &reading).expect("valid log");
-            log_likelihood(&map, &drive.truth, None).expect("valid truth")
-        })
-    });
+    // The model covmap learn fits (its wider cone and the map-reading
+    // terms), in the maps it was fitted to.
+    let learned = AnySensorModel::Sonar(covmap::SonarModel::learned());
+    let mut group = c.benchmark_group("fit_evaluation");
+    group.sample_size(20);
+    for (name, model, occlude) in [
+        ("corridor_300_scans_24_sonars", &model, false),
+        ("corridor_300_scans_24_sonars_occluded", &model, true),
+        ("corridor_300_scans_24_sonars_map_reading", &reading, false),
+        (
+            "corridor_300_scans_24_sonars_learned_occluded",
+            &learned,
+            true,
+        ),
+    ] {
+        group.bench_function(name, |b| b.iter(|| evaluate(&drive, model, occlude)));
+    }
     group.finish();
 }
 

@@ -233,6 +233,15 @@ class SonarModel(_RangeModel):
     @property
     def opening_angle_rad(self) -> float:
         """Full opening angle of the cone, radians."""
+    @staticmethod
+    def learned() -> SonarModel:
+        """The model ``covmap learn`` fits with its defaults (trained on the
+        corridor drive, seed 0, with no-echo readings occluded by the
+        map). Use it for maps built that way: by the exploration loop, or
+        by ``CoverageMap.integrate_log(..., occlude_no_echo=True)``.
+        ``SonarModel()`` stays the paper's model; BENCHMARKS.md compares
+        the two on unseen drives.
+        """
 
 @final
 class LaserModel(_RangeModel):
@@ -324,12 +333,18 @@ class CoverageMap:
         is exactly as it was. The update runs with the GIL released; touching
         the same map from another thread meanwhile raises ``RuntimeError``.
         """
-    def integrate_log(self, log: Log, model: _Model, *, progress: _Progress = False) -> int:
+    def integrate_log(
+        self, log: Log, model: _Model, *, occlude_no_echo: bool = False, progress: _Progress = False
+    ) -> int:
         """Integrate every scan of ``log`` (a ``Log``) with ``model``, in order;
         returns the number of cell updates. Each scan is taken from its sensor pose (the robot's
         pose with the log's sensor offset); dropped beams (NaN) are skipped; a
         reading without echo clears up to the lesser of the log's and the
-        model's maximum range. Every scan is checked first: a scan whose
+        model's maximum range. With ``occlude_no_echo`` a no-echo reading
+        clears only up to the nearest cell of its footprint the map holds
+        covered when its scan comes, as the exploration loop integrates its
+        scans: a no-echo reading through a wall earlier echoes found is taken
+        for a specular miss. Every scan is checked first: a scan whose
         sensor pose lies outside the map raises (``PoseOutsideMapError``, the
         message naming the scan) and leaves the map exactly as it was.
         ``progress``: ``True`` shows a bar (tqdm's if installed), a callable
@@ -1174,6 +1189,7 @@ def fit_sensor_model(
     seed: int = 0,
     bins: int = 16,
     cells: npt.NDArray[np.bool_] | None = None,
+    occlude_no_echo: bool = False,
     progress: bool | Callable[[int, int], object] = False,
 ) -> SensorFit:
     """Fit ``model``'s parameters to a recorded drive by maximum likelihood: the
@@ -1189,7 +1205,10 @@ def fit_sensor_model(
     parameters fitted (default: all the model has but ``max_range_m``);
     ``bounds`` maps names to ``(low, high)`` replacing the defaults.
     ``max_evaluations`` bounds the maps built, the starting model's
-    included. ``progress``: ``True`` for a bar over evaluations, or a
+    included. With ``occlude_no_echo`` the maps are built as
+    ``CoverageMap.integrate_log(..., occlude_no_echo=True)`` builds them (as
+    the exploration loop does); by default every no-echo reading clears its
+    whole footprint. ``progress``: ``True`` for a bar over evaluations, or a
     callable ``(done, total)``.
 
     Unknown parameter names, bounds that exclude the starting model, a truth
@@ -1211,6 +1230,7 @@ def run_learn(
     seed: int = 0,
     parameters: Sequence[str] | None = None,
     judged_only: bool = False,
+    occlude_no_echo: bool = True,
     progress: bool | Callable[[int, int], object] = False,
 ) -> dict[str, Any]:
     """Learn the sensor model in simulation (``covmap learn``): simulate a
@@ -1220,7 +1240,13 @@ def run_learn(
     shortest paths to seeded waypoints), fit ``model`` on the training drive
     (as ``fit_sensor_model``), and score the starting and the learned model
     on both drives. With ``judged_only`` the fit scores the training drive's
-    judged cells only, not every cell of its grid. Runs with the GIL released.
+    judged cells only, not every cell of its grid. With ``occlude_no_echo``
+    (the default) every map, the fit's and the scores', is built as the
+    exploration loop builds its maps: each no-echo reading clears only up to
+    the nearest cell the map holds covered (``CoverageMap.integrate_log``'s
+    ``occlude_no_echo``), and the drives' occupancy grids take the same
+    beams; ``False`` lets no-echo readings clear their whole footprint.
+    Runs with the GIL released.
 
     Returns a dict: ``fit`` (``SensorFit``); ``drives``, one dict per drive
     (training first) of ``world``, ``log`` (``Log``), ``grid`` (``Grid``) and

@@ -291,3 +291,31 @@ def test_from_histograms_validates(grid: covmap.Grid) -> None:
         covmap.CoverageMap.from_histograms(grid, good * 2)
     with pytest.raises(covmap.InvalidParameterError):
         covmap.CoverageMap.from_histograms(grid, np.ones((40, 60, 1), dtype=np.float32))
+
+
+def test_integrate_log_can_occlude_no_echo_readings_by_the_map() -> None:
+    """With ``occlude_no_echo`` a no-echo reading stops at the wall the map
+    holds covered and leaves what lies behind it as it was."""
+    grid = covmap.Grid(origin=(0.0, 0.0), resolution=0.1, shape=(10, 60))
+    laser = covmap.LaserModel(max_range_m=5.0)
+    poses = np.array([[0.05, 0.55, 0.0]] * 6)
+    ranges = np.array([[2.0]] * 5 + [[5.0]])  # five echoes from a wall at 2 m, then a miss
+    log = covmap.Log(poses, ranges, np.zeros(1), max_range_m=5.0)
+    maps = {}
+    for occlude in (False, True):
+        m = covmap.CoverageMap(grid)
+        m.integrate_log(log[:5], laser)
+        m.integrate_log(log[5:], laser, occlude_no_echo=occlude)
+        maps[occlude] = m.mean()
+    walls = covmap.CoverageMap(grid)
+    walls.integrate_log(log[:5], laser)
+    behind = (5, slice(30, 50))  # the cells 3 to 5 m out: behind the wall's band
+    assert np.array_equal(maps[True][behind], walls.mean()[behind])
+    assert (maps[False][behind] < walls.mean()[behind]).all()
+    assert maps[True][5, 20] > 0.5 > maps[False][5, 20]
+    # Occlusion changes nothing where no echo has marked the map yet.
+    first = covmap.CoverageMap(grid)
+    first.integrate_log(log[5:], laser, occlude_no_echo=True)
+    plain = covmap.CoverageMap(grid)
+    plain.integrate_log(log[5:], laser)
+    assert np.array_equal(first.histograms, plain.histograms)

@@ -114,6 +114,19 @@ def test_fit_is_deterministic_never_lowers_its_likelihood_and_traces_every_evalu
     assert set(a.bounds) == {"no_echo_weight", "xi_min"}
 
 
+def test_a_fit_with_no_echo_readings_occluded_scores_the_occluded_map() -> None:
+    log, world, grid = corridor_drive(40)
+    kwargs: dict[str, Any] = {"grid": grid, "parameters": ["no_echo_weight"], "max_evaluations": 8}
+    occluded = covmap.fit_sensor_model(log, world, covmap.SonarModel(), occlude_no_echo=True, **kwargs)
+    clearing = covmap.fit_sensor_model(log, world, covmap.SonarModel(), **kwargs)
+    truth = world.coverage(grid)
+    for fit, occlude in ((occluded, True), (clearing, False)):
+        m = covmap.CoverageMap(grid)
+        m.integrate_log(log, fit.model, occlude_no_echo=occlude)
+        assert covmap.log_likelihood(m, truth) == pytest.approx(fit.log_likelihood, rel=1e-12)
+    assert occluded.initial_log_likelihood != clearing.initial_log_likelihood
+
+
 @pytest.fixture(scope="module")
 def learned() -> dict[str, Any]:
     """The fit of ``covmap learn`` (smaller): trained in the corridor, tested in the office."""
@@ -142,12 +155,12 @@ def test_the_learned_mean_map_error_on_the_unseen_drive_is_below_8_percent_and_t
     assert new["mean_error"] < 0.08 and new["mean_error"] < new["occupancy_error"]
 
 
-def wall_mean(drive: dict[str, Any], model: Any) -> float:
+def wall_mean(drive: dict[str, Any], model: Any, *, occlude_no_echo: bool = False) -> float:
     """The mean coverage of the drive's faced walls (the fully covered cells
     behind a face that 20 or more of its scans' sound reached) in the map
     ``model`` builds of the drive."""
     m = covmap.CoverageMap(drive["grid"])
-    m.integrate_log(drive["log"], model)
+    m.integrate_log(drive["log"], model, occlude_no_echo=occlude_no_echo)
     wall = drive["faced_walls"]
     assert wall.sum() > 100
     return float(m.mean()[wall].mean())
@@ -163,7 +176,35 @@ def test_walls_survive_no_echo_readings_under_the_learned_model(learned_as_the_c
     """On the unseen drive, the walls behind faces the ring met repeatedly
     keep a mean coverage above 0.5 in the learned model's map."""
     r = learned_as_the_command
-    assert wall_mean(r["drives"][1], r["fit"].model) > 0.5
+    walls = wall_mean(r["drives"][1], r["fit"].model, occlude_no_echo=True)
+    assert walls > 0.5
+    # The command's figure is this map's (built as the exploration loop builds its maps).
+    assert walls == pytest.approx(r["learned"][1]["wall_coverage"], rel=1e-6)  # f32 means summed two ways
+
+
+def test_the_shipped_learned_sonar_model_is_what_the_command_fits(learned_as_the_command: dict[str, Any]) -> None:
+    """``SonarModel.learned()`` is reproduced by ``covmap learn`` with its defaults."""
+    fit, shipped = learned_as_the_command["fit"].model.to_dict(), covmap.SonarModel.learned().to_dict()
+    assert shipped.keys() == fit.keys()
+    for name, value in fit.items():
+        assert shipped[name] == pytest.approx(value, rel=1e-9, abs=1e-12), name
+    assert covmap.SonarModel.learned() != covmap.SonarModel()
+
+
+def test_the_command_fits_for_maps_with_no_echo_readings_occluded() -> None:
+    """``run_learn`` builds every map as the exploration loop does (no-echo
+    readings occluded by the map); ``occlude_no_echo=False`` lets them clear
+    their whole footprint, which takes the faced walls of the default
+    model's corridor map below 0.5."""
+    occluded = covmap.run_learn(covmap.SonarModel(), scans=200, max_evaluations=1)
+    clearing = covmap.run_learn(covmap.SonarModel(), scans=200, max_evaluations=1, occlude_no_echo=False)
+    corridor = occluded["drives"][0]
+    for r, occlude in ((occluded, True), (clearing, False)):
+        m = covmap.CoverageMap(corridor["grid"])
+        m.integrate_log(corridor["log"], covmap.SonarModel(), occlude_no_echo=occlude)
+        ll = covmap.log_likelihood(m, corridor["truth"])
+        assert ll == pytest.approx(r["fit"].initial_log_likelihood, rel=1e-12)
+    assert occluded["default"][0]["wall_coverage"] > 0.5 > clearing["default"][0]["wall_coverage"]
 
 
 def test_the_readme_example_of_learning_runs() -> None:
@@ -193,8 +234,15 @@ def test_learn_and_fig2_commands(tmp_path: Any) -> None:
     assert "test drive (office" in r.stdout and "log-likelihood" in r.stdout
     saved = json.loads((out / "model.json").read_text())
     assert saved["sensor"] == "sonar" and set(saved["model"]) >= {"xi_min", "no_echo_weight"}
+    assert saved["occlude_no_echo"] is True
     trace = (out / "trace.csv").read_text().splitlines()
     assert trace[0] == "evaluation,xi_min,no_echo_weight,log_likelihood" and 2 <= len(trace) <= 7
+    cleared = tmp_path / "cleared"
+    r = run_cli("learn", "--evaluations", "1", "--scans", "30", "--clear-no-echo", "--out", str(cleared))
+    assert r.returncode == 0, r.stderr
+    assert json.loads((cleared / "model.json").read_text())["occlude_no_echo"] is False
+    first = (cleared / "trace.csv").read_text().splitlines()[1].split(",")[-1]
+    assert float(first) != float(trace[1].split(",")[-1])  # the maps take no-echo readings otherwise
     r = run_cli("fig2", "--model", str(out / "model.json"), "--out", str(tmp_path / "fig2"))
     assert r.returncode == 0, r.stderr
     assert (tmp_path / "fig2" / "fig2.png").read_bytes().startswith(PNG_SIGNATURE)

@@ -157,7 +157,11 @@ impl PyCoverageMap {
     /// returns the number of cell updates. Each scan is taken from its sensor pose (the robot's
     /// pose with the log's sensor offset); dropped beams (NaN) are skipped; a
     /// reading without echo clears up to the lesser of the log's and the
-    /// model's maximum range. Every scan is checked first: a scan whose
+    /// model's maximum range. With ``occlude_no_echo`` a no-echo reading
+    /// clears only up to the nearest cell of its footprint the map holds
+    /// covered when its scan comes, as the exploration loop integrates its
+    /// scans: a no-echo reading through a wall earlier echoes found is taken
+    /// for a specular miss. Every scan is checked first: a scan whose
     /// sensor pose lies outside the map raises (``PoseOutsideMapError``, the
     /// message naming the scan) and leaves the map exactly as it was.
     /// ``progress``: ``True`` shows a bar (tqdm's if installed), a callable
@@ -166,12 +170,13 @@ impl PyCoverageMap {
     /// the map is left as it was (with a progress display the scans go into
     /// a copy, which takes as much memory again). Runs with the GIL
     /// released.
-    #[pyo3(signature = (log, model, *, progress=crate::log::ProgressArg::Flag(false)), text_signature = "($self, log, model, *, progress=False)")]
+    #[pyo3(signature = (log, model, *, occlude_no_echo=false, progress=crate::log::ProgressArg::Flag(false)), text_signature = "($self, log, model, *, occlude_no_echo=False, progress=False)")]
     fn integrate_log(
         &mut self,
         py: Python<'_>,
         #[pyo3(from_py_with = crate::convert::arg)] log: Bound<'_, crate::log::PyLog>,
         model: &Bound<'_, PyAny>,
+        #[pyo3(from_py_with = crate::convert::arg)] occlude_no_echo: bool,
         progress: crate::log::ProgressArg,
     ) -> PyResult<usize> {
         let model = crate::sensor::any_model(model)?;
@@ -181,7 +186,13 @@ impl PyCoverageMap {
             &mut self.0,
             covmap::CoverageMap::try_clone,
             (progress, log.len()),
-            |map, show| map.integrate_log_with_progress(log, &model, show),
+            |map, show| {
+                if occlude_no_echo {
+                    map.integrate_log_occluding_with_progress(log, &model, show)
+                } else {
+                    map.integrate_log_with_progress(log, &model, show)
+                }
+            },
         )
     }
 

@@ -60,7 +60,13 @@ pub(crate) fn run_fig3(py: Python<'_>, seed: Seed) -> PyResult<Bound<'_, PyAny>>
 /// shortest paths to seeded waypoints), fit ``model`` on the training drive
 /// (as ``fit_sensor_model``), and score the starting and the learned model
 /// on both drives. With ``judged_only`` the fit scores the training drive's
-/// judged cells only, not every cell of its grid. Runs with the GIL released.
+/// judged cells only, not every cell of its grid. With ``occlude_no_echo``
+/// (the default) every map, the fit's and the scores', is built as the
+/// exploration loop builds its maps: each no-echo reading clears only up to
+/// the nearest cell the map holds covered (``CoverageMap.integrate_log``'s
+/// ``occlude_no_echo``), and the drives' occupancy grids take the same
+/// beams; ``False`` lets no-echo readings clear their whole footprint.
+/// Runs with the GIL released.
 ///
 /// Returns a dict: ``fit`` (``SensorFit``); ``drives``, one dict per drive
 /// (training first) of ``world``, ``log`` (``Log``), ``grid`` (``Grid``) and
@@ -80,9 +86,9 @@ pub(crate) fn run_fig3(py: Python<'_>, seed: Seed) -> PyResult<Bound<'_, PyAny>>
 #[pyo3(signature = (
     model, *, train_world="corridor", test_world="office", scans=300, step=0.15,
     resolution=0.05, train_seed=Seed(0), test_seed=Seed(1), max_evaluations=300,
-    restarts=2, seed=Seed(0), parameters=None, judged_only=false,
+    restarts=2, seed=Seed(0), parameters=None, judged_only=false, occlude_no_echo=true,
     progress=crate::log::ProgressArg::Flag(false)
-), text_signature = "(model, *, train_world='corridor', test_world='office', scans=300, step=0.15, resolution=0.05, train_seed=0, test_seed=1, max_evaluations=300, restarts=2, seed=0, parameters=None, judged_only=False, progress=False)")]
+), text_signature = "(model, *, train_world='corridor', test_world='office', scans=300, step=0.15, resolution=0.05, train_seed=0, test_seed=1, max_evaluations=300, restarts=2, seed=0, parameters=None, judged_only=False, occlude_no_echo=True, progress=False)")]
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn run_learn<'py>(
     py: Python<'py>,
@@ -99,6 +105,7 @@ pub(crate) fn run_learn<'py>(
     seed: Seed,
     parameters: Option<Bound<'py, PyAny>>,
     #[pyo3(from_py_with = crate::convert::arg)] judged_only: bool,
+    #[pyo3(from_py_with = crate::convert::arg)] occlude_no_echo: bool,
     progress: crate::log::ProgressArg,
 ) -> PyResult<Bound<'py, PyDict>> {
     let config = experiments::LearnConfig {
@@ -115,6 +122,7 @@ pub(crate) fn run_learn<'py>(
             max_evaluations,
             restarts,
             seed: seed.0,
+            occlude_no_echo,
             ..covmap::learn::FitOptions::default()
         },
         judged_only,

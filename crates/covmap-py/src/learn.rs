@@ -130,7 +130,10 @@ pub(crate) fn log_likelihood(
 /// parameters fitted (default: all the model has but ``max_range_m``);
 /// ``bounds`` maps names to ``(low, high)`` replacing the defaults.
 /// ``max_evaluations`` bounds the maps built, the starting model's
-/// included. ``progress``: ``True`` for a bar over evaluations, or a
+/// included. With ``occlude_no_echo`` the maps are built as
+/// ``CoverageMap.integrate_log(..., occlude_no_echo=True)`` builds them (as
+/// the exploration loop does); by default every no-echo reading clears its
+/// whole footprint. ``progress``: ``True`` for a bar over evaluations, or a
 /// callable ``(done, total)``.
 ///
 /// Unknown parameter names, bounds that exclude the starting model, a truth
@@ -139,8 +142,9 @@ pub(crate) fn log_likelihood(
 #[pyfunction]
 #[pyo3(signature = (
     log, truth, model, *, grid=None, parameters=None, bounds=None, max_evaluations=300,
-    restarts=2, seed=Seed(0), bins=16, cells=None, progress=ProgressArg::Flag(false)
-), text_signature = "(log, truth, model, *, grid=None, parameters=None, bounds=None, max_evaluations=300, restarts=2, seed=0, bins=16, cells=None, progress=False)")]
+    restarts=2, seed=Seed(0), bins=16, cells=None, occlude_no_echo=false,
+    progress=ProgressArg::Flag(false)
+), text_signature = "(log, truth, model, *, grid=None, parameters=None, bounds=None, max_evaluations=300, restarts=2, seed=0, bins=16, cells=None, occlude_no_echo=False, progress=False)")]
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn fit_sensor_model(
     py: Python<'_>,
@@ -155,6 +159,7 @@ pub(crate) fn fit_sensor_model(
     seed: Seed,
     #[pyo3(from_py_with = crate::convert::arg)] bins: i64,
     cells: Option<&Bound<'_, PyAny>>,
+    #[pyo3(from_py_with = crate::convert::arg)] occlude_no_echo: bool,
     progress: ProgressArg,
 ) -> PyResult<PySensorFit> {
     let start = any_model(model)?;
@@ -183,6 +188,7 @@ pub(crate) fn fit_sensor_model(
         restarts: count("restarts", restarts)?,
         seed: seed.0,
         bins: convert::bins(py, bins)?,
+        occlude_no_echo,
         ..FitOptions::default()
     };
     let truth = truth_values(py, truth, &grid)?;

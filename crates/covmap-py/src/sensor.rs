@@ -40,9 +40,10 @@ macro_rules! sensor_model_class {
         impl $class:ident as $name:literal for $model:ident {
             keywords $keywords:ident;
             extra { $( $(#[doc = $doc:literal])* $extra:ident )* }
+            $( more { $($more:tt)* } )?
         }
     ) => {
-        sensor_model_class!(@range $class, $name, $model, $keywords,
+        sensor_model_class!(@range $class, $name, $model, $keywords, { $( $($more)* )? },
             [
                 /// Readings at or beyond this distance mean "no echo", metres.
                 max_range_m
@@ -75,7 +76,7 @@ macro_rules! sensor_model_class {
         );
     };
     (
-        @range $class:ident, $name:literal, $model:ident, $keywords:ident,
+        @range $class:ident, $name:literal, $model:ident, $keywords:ident, { $($more:tt)* },
         [ $( $(#[doc = $range_doc:literal])* $range:ident )* ],
         [ $( $(#[doc = $extra_doc:literal])* $extra:ident )* ]
     ) => {
@@ -157,6 +158,7 @@ macro_rules! sensor_model_class {
                     ) -> PyResult<(Bound<'py, PyTuple>, Bound<'py, PyDict>)> {
                         Ok((PyTuple::empty(py), self.to_dict(py)?))
                     }
+                    $($more)*
                 }
             }
         }
@@ -181,6 +183,18 @@ sensor_model_class! {
         extra {
             /// Full opening angle of the cone, radians.
             opening_angle_rad
+        }
+        more {
+            /// The model ``covmap learn`` fits with its defaults (trained on the
+            /// corridor drive, seed 0, with no-echo readings occluded by the
+            /// map). Use it for maps built that way: by the exploration loop, or
+            /// by ``CoverageMap.integrate_log(..., occlude_no_echo=True)``.
+            /// ``SonarModel()`` stays the paper's model; BENCHMARKS.md compares
+            /// the two on unseen drives.
+            #[staticmethod]
+            fn learned() -> Self {
+                Self(SonarModel::learned())
+            }
         }
     }
 }

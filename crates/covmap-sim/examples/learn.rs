@@ -4,7 +4,12 @@
 //! `cargo run --release -p covmap-sim --example learn -- [--train corridor]
 //! [--test office] [--laser] [--evaluations 300] [--scans 300]
 //! [--parameters a,b,...] [--set name=value ...] [--seed 0] [--test-seed 1]
-//! [--breakdown]`
+//! [--clear-no-echo] [--breakdown]`
+//!
+//! The maps are built as the exploration loop builds them, each no-echo
+//! reading occluded by the map (it clears only up to the nearest cell the
+//! map holds covered); `--clear-no-echo` lets every no-echo reading clear
+//! its whole footprint instead, as the sensor model alone has it.
 //!
 //! `--set` changes a parameter of the starting model (after `--laser`); the
 //! drives are simulated with the starting model's cone and range, so a
@@ -47,7 +52,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             "--evaluations" => config.fit.max_evaluations = value()?.parse()?,
             "--judged" => config.judged_only = true,
             "--breakdown" => breakdown = true,
-            "--occlude" => config.fit.occlude_no_echo = true,
+            "--clear-no-echo" => config.fit.occlude_no_echo = false,
             "--seed" => config.fit.seed = value()?.parse()?,
             "--test-seed" => config.test_seed = value()?.parse()?,
             "--restarts" => config.fit.restarts = value()?.parse()?,
@@ -101,7 +106,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         );
     }
     if breakdown {
-        print_breakdown(&report.drives[0], &config.model)?;
+        print_breakdown(&report.drives[0], &config.model, config.fit.occlude_no_echo)?;
     }
     Ok(())
 }
@@ -110,11 +115,12 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
 fn print_breakdown(
     drive: &covmap_sim::experiments::Drive,
     model: &AnySensorModel,
+    occlude_no_echo: bool,
 ) -> Result<(), Box<dyn std::error::Error>> {
     use covmap_core::CoverageMap;
     use covmap_core::histogram::DEFAULT_BINS;
     use covmap_core::learn::{cell_log_likelihoods, log_likelihood, map_of_log};
-    let map = map_of_log(&drive.fit_data(None), DEFAULT_BINS, model, false)?;
+    let map = map_of_log(&drive.fit_data(None), DEFAULT_BINS, model, occlude_no_echo)?;
     let scores = cell_log_likelihoods(&map, &drive.truth)?;
     let total: f64 = scores.iter().sum();
     let low: Vec<usize> = (0..scores.len()).filter(|&i| scores[i] < -20.0).collect();

@@ -23,7 +23,9 @@ DESCRIPTION = (
     "maximum likelihood of the exact ground truth (Nelder-Mead with restarts), print the "
     "log-likelihood of the truth before and after on both drives and the mean-map errors "
     "with the occupancy grid's beside them, and save the learned model as model.json "
-    "(for covmap fig2 --model) and the fit's trace as trace.csv."
+    "(for covmap fig2 --model) and the fit's trace as trace.csv. Maps are built as the "
+    "exploration loop builds them, each no-echo reading occluded by the map (it clears only "
+    "up to the nearest cell the map holds covered), unless --clear-no-echo."
 )
 """What ``covmap learn --help`` says the command does."""
 
@@ -40,6 +42,12 @@ def add_arguments(command: argparse.ArgumentParser) -> None:
     command.add_argument("--scans", type=_options.positive_int, default=300, help="scans a drive (default 300)")
     command.add_argument(
         "--parameters", help="comma-separated parameters to fit (default: all but max_range_m)"
+    )
+    command.add_argument(
+        "--clear-no-echo",
+        action="store_true",
+        help="let every no-echo reading clear its whole footprint, through walls the map holds "
+        "(default: occluded by the map, as the exploration loop builds its maps)",
     )
     _options.add_seed(command)
 
@@ -84,12 +92,18 @@ def run(args: argparse.Namespace) -> int:
         max_evaluations=args.evaluations,
         seed=args.seed,
         parameters=parameters,
+        occlude_no_echo=not args.clear_no_echo,
         progress=True,
     )
     print(table(result, args.sensor))
     fit = result["fit"]
     args.out.mkdir(parents=True, exist_ok=True)
-    saved = {"sensor": args.sensor, "model": fit.model.to_dict(), "log_likelihood": fit.log_likelihood}
+    saved = {
+        "sensor": args.sensor,
+        "model": fit.model.to_dict(),
+        "log_likelihood": fit.log_likelihood,
+        "occlude_no_echo": not args.clear_no_echo,
+    }
     model_path = args.out / "model.json"
     write_atomic(model_path, (json.dumps(saved, indent=2) + "\n").encode())
     names = fit.parameters

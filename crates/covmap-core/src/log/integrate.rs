@@ -144,6 +144,20 @@ impl CoverageMap {
         self.integrate_log_as(log, model, &mut |_| {}, true)
     }
 
+    /// [`CoverageMap::integrate_log_occluding`], calling `progress` with the
+    /// number of scans integrated so far after each scan.
+    ///
+    /// # Errors
+    /// As [`CoverageMap::integrate_log`].
+    pub fn integrate_log_occluding_with_progress<M: SensorModel + ?Sized>(
+        &mut self,
+        log: &Log,
+        model: &M,
+        progress: &mut dyn FnMut(usize),
+    ) -> Result<usize> {
+        self.integrate_log_as(log, model, progress, true)
+    }
+
     /// The log's scans integrated in turn, each no-echo reading reaching no
     /// further than the log's maximum range and, if `occlude`, than the
     /// nearest cell its footprint holds as covered.

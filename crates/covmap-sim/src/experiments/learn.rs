@@ -110,7 +110,12 @@ pub struct LearnConfig {
     pub train_seed: u64,
     /// Seed of the test drive.
     pub test_seed: u64,
-    /// How the fit searches.
+    /// How the fit searches, and how its maps take no-echo readings: by
+    /// default occluded by the map ([`FitOptions::occlude_no_echo`] on), as
+    /// the exploration loop builds its maps
+    /// ([`covmap_core::exploration::ExplorationConfig::occlude_no_echo`]),
+    /// so the model is fitted to the maps it serves. The drives' scores
+    /// (and their occupancy grids) take the readings the same way.
     pub fit: FitOptions,
     /// Whether the fit scores the training drive's judged cells only
     /// ([`Drive::judged`]) rather than every cell of its grid.
@@ -157,7 +162,10 @@ impl Default for LearnConfig {
             resolution_m: 0.05,
             train_seed: 0,
             test_seed: 1,
-            fit: FitOptions::default(),
+            fit: FitOptions {
+                occlude_no_echo: true,
+                ..FitOptions::default()
+            },
             judged_only: false,
         }
     }
