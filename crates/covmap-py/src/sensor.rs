@@ -34,7 +34,8 @@ fn kernel_array<'py, M: SensorModel + Sync>(
 /// The methods of a sensor model's class `$class` (wrapping the core's
 /// `$model`): one keyword argument and attribute per parameter of the range
 /// model and per `$extra` field of the model (all `f64`), validated on
-/// construction; `kernel`, `to_dict`/`from_dict`, `repr`, hash and pickling.
+/// construction; `kernel`, `to_dict`/`from_dict`, `repr`, hash and pickling;
+/// and the methods of an optional `more { ... }` block, the class's own.
 macro_rules! sensor_model_class {
     (
         impl $class:ident as $name:literal for $model:ident {
