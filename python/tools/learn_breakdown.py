@@ -19,11 +19,17 @@ true world and the drive alone:
 - ``other``: every other cell (wall insides no face leads to, and the rest).
 
 The classes partition the grid, so each row's classes sum to its total.
-Also printed: the mean map's coverage over the faced walls and its mean
-absolute error over the judged cells. Prints Markdown tables; asserts
-nothing.
+Also printed: the mean map's coverage over the faced walls, its mean
+absolute error over the judged cells, and how many judged free cells no
+reading updated (still exactly at the prior's mean 1/2).
+
+The maps are built as the fit built them: no-echo readings occluded by the
+map (``covmap learn``'s default) or, with ``--clear-no-echo``, clearing
+their whole footprint. The starting and the learned model are also scored
+in the other kind of map. Prints Markdown tables; asserts nothing.
 
     python python/tools/learn_breakdown.py [--evaluations 300] [--parameters a,b,...]
+        [--test-seed 1] [--clear-no-echo]
 """
 
 from __future__ import annotations
@@ -52,15 +58,18 @@ def classes(drive: dict[str, Any]) -> dict[str, np.ndarray]:
     }
 
 
-def score(drive: dict[str, Any], model: Any, cells: dict[str, np.ndarray]) -> dict[str, float]:
-    """Log-likelihood of the truth by class, faced walls' mean, judged error."""
+def score(drive: dict[str, Any], model: Any, cells: dict[str, np.ndarray], occlude: bool) -> dict[str, float]:
+    """Log-likelihood of the truth by class, faced walls' mean, judged
+    error and judged free cells at the prior, in the map ``model`` builds
+    (no-echo readings occluded by it if ``occlude``)."""
     cmap = covmap.CoverageMap(drive["grid"])
-    cmap.integrate_log(drive["log"], model)
+    cmap.integrate_log(drive["log"], model, occlude_no_echo=occlude)
     mean, truth = cmap.mean(), drive["truth"]
     row = {name: covmap.log_likelihood(cmap, truth, cells=mask) for name, mask in cells.items()}
     row["total"] = sum(row.values())
     row["walls' mean"] = float(mean[drive["faced_walls"]].mean())
     row["error"] = float(np.abs(mean - truth)[drive["judged"]].mean())
+    row["free at prior"] = float((cells["free, reached"] & (np.abs(mean - 0.5) < 1e-6)).sum())
     return row
 
 
@@ -68,29 +77,42 @@ def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--evaluations", type=int, default=300, help="the fit's evaluations (default 300)")
     parser.add_argument("--parameters", default=None, help="comma-separated parameters to fit (default: all)")
+    parser.add_argument("--test-seed", type=int, default=1, help="seed of the test drive (default 1)")
+    parser.add_argument(
+        "--clear-no-echo", action="store_true", help="fit to maps whose no-echo readings clear their whole footprint"
+    )
     args = parser.parse_args()
     start = covmap.SonarModel()
     parameters = args.parameters.split(",") if args.parameters else None
-    report = covmap.run_learn(start, max_evaluations=args.evaluations, parameters=parameters)
+    occlude = not args.clear_no_echo
+    report = covmap.run_learn(
+        start,
+        max_evaluations=args.evaluations,
+        parameters=parameters,
+        test_seed=args.test_seed,
+        occlude_no_echo=occlude,
+    )
     learned = report["fit"].model.to_dict()
     initial = start.to_dict()
     fitted = [name for name in learned if learned[name] != initial[name]]
-    models = [("starting model", start), ("learned model", report["fit"].model)]
+    models = [("starting model", start, occlude), ("learned model", report["fit"].model, occlude)]
+    other = "clearing" if occlude else "occluded"
+    models += [(f"{name}, {other} maps", model, not occlude) for name, model, _ in models]
     for name in fitted:
         reset = dict(learned)
         reset[name] = initial[name]
-        models.append((f"learned, `{name}` back to {initial[name]:.3g}", covmap.SonarModel.from_dict(reset)))
+        models.append((f"learned, `{name}` back to {initial[name]:.3g}", covmap.SonarModel.from_dict(reset), occlude))
     print("learned: " + ", ".join(f"`{n}` {initial[n]:.3g} -> {learned[n]:.3g}" for n in fitted))
     for drive, label in zip(report["drives"], ["training", "test"]):
         cells = classes(drive)
         print(f"\n{label} drive ({drive['world']}): cells " + ", ".join(f"{n} {int(m.sum())}" for n, m in cells.items()))
-        columns = [*cells, "total", "walls' mean", "error"]
+        columns = [*cells, "total", "walls' mean", "error", "free at prior"]
         print("| model | " + " | ".join(columns) + " |")
         print("| --- " * (len(columns) + 1) + "|")
-        for name, model in models:
-            row = score(drive, model, cells)
+        for name, model, occluded in models:
+            row = score(drive, model, cells, occluded)
             values = [f"{row[c]:.0f}" for c in [*cells, "total"]] + [f"{row[c]:.3f}" for c in ["walls' mean"]]
-            values.append(f"{row['error']:.4f}")
+            values += [f"{row['error']:.4f}", f"{row['free at prior']:.0f}"]
             print(f"| {name} | " + " | ".join(values) + " |")
 
 

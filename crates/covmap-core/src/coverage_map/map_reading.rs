@@ -31,8 +31,9 @@ pub(super) struct MapReading {
     /// The largest mean coverage among the end band's cells before the
     /// reading, at least 1/2.
     most_covered: f32,
-    /// The marked cells set aside (index, distance) while the pass goes on.
-    marked: Vec<(usize, f64)>,
+    /// The marked cells set aside while the pass goes on: index, distance
+    /// and mean coverage before the reading.
+    marked: Vec<(usize, f64, f32)>,
     /// A kernel mixed with the prior, one bin count long.
     mixed: Vec<f32>,
 }
@@ -68,18 +69,19 @@ impl MapReading {
         self.marked.clear();
     }
 
-    /// Whether the cell `d_l` metres along the beam waits for the end of
-    /// the pass; if so it is set aside (and its mean coverage `h` noted for
-    /// the arc's).
+    /// Whether the cell `d_l` metres along the beam, of histogram `h`,
+    /// waits for the end of the pass; if so it is set aside with its mean
+    /// coverage (noted for the arc's if the cell is in the end band).
     #[inline]
     pub(super) fn defer(&mut self, index: usize, d_l: f64, h: &[f32]) -> bool {
         if self.attribution <= 0.0 || d_l < self.marks_from_m {
             return false;
         }
+        let m = histogram::mean_in_lanes(h);
         if d_l <= self.range_m + self.half_m {
-            self.most_covered = self.most_covered.max(histogram::mean_in_lanes(h));
+            self.most_covered = self.most_covered.max(m);
         }
-        self.marked.push((index, d_l));
+        self.marked.push((index, d_l, m));
         true
     }
 
@@ -94,8 +96,9 @@ impl MapReading {
         floor: f32,
     ) {
         let marked = std::mem::take(&mut self.marked);
-        for &(i, d_l) in &marked {
-            self.update::<N>(&mut data[i * bins..(i + 1) * bins], kernel(d_l), d_l, floor);
+        for &(i, d_l, m) in &marked {
+            let h = &mut data[i * bins..(i + 1) * bins];
+            self.update_with_mean::<N>(h, kernel(d_l), d_l, m, floor);
         }
         self.marked = marked;
     }
@@ -118,6 +121,19 @@ impl MapReading {
         floor: f32,
     ) {
         let m = histogram::mean_in_lanes(h);
+        self.update_with_mean::<N>(h, k, d_l, m, floor);
+    }
+
+    /// [`Self::update`] of a cell whose mean coverage `m` is known.
+    #[inline]
+    fn update_with_mean<const N: usize>(
+        &mut self,
+        h: &mut [f32],
+        k: &[f32],
+        d_l: f64,
+        m: f32,
+        floor: f32,
+    ) {
         let marked = d_l >= self.marks_from_m;
         let w = if marked {
             1.0 - self.attribution + self.attribution * (m / self.most_covered).min(1.0)

@@ -141,7 +141,7 @@ impl CoverageMap {
         log: &Log,
         model: &M,
     ) -> Result<usize> {
-        self.integrate_log_as(log, model, &mut |_| {}, true)
+        self.integrate_log_occluding_with_progress(log, model, &mut |_| {})
     }
 
     /// [`CoverageMap::integrate_log_occluding`], calling `progress` with the
