@@ -21,6 +21,7 @@
 //!
 //! Run: `cargo bench --bench gain`
 
+use covmap::ScanMap;
 use covmap::gain::{GainEvaluator, GainMethod, GainOptions};
 use covmap::planner::{Planner, PlannerConfig};
 use covmap::sim::{Robot, SonarRing, World, simulate};

@@ -6,6 +6,7 @@
 //!
 //! Run: `cargo bench --bench integrate`
 
+use covmap::ScanMap;
 use covmap::{CoverageMap, Grid, LaserModel, OccupancyGrid, Pose, SensorModel, SonarModel};
 use criterion::{Criterion, Throughput, criterion_group, criterion_main};
 use rand::{RngExt, SeedableRng};

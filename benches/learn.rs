@@ -11,6 +11,7 @@
 //! `cargo run --release -p covmap-sim --example learn` (see BENCHMARKS.md).
 
 use covmap::CoverageMap;
+use covmap::ScanMap;
 use covmap::exploration::AnySensorModel;
 use covmap::learn::log_likelihood;
 use covmap::sim::experiments::Drive;
@@ -21,7 +22,7 @@ use criterion::{Criterion, criterion_group, criterion_main};
 fn evaluate(drive: &Drive, model: &AnySensorModel, occlude: bool) -> f64 {
     let mut map = CoverageMap::new(drive.grid);
     if occlude {
-        map.integrate_log_occluding(&drive.log, model)
+        map.integrate_log_occluding(&drive.log, model, &mut |_| {})
     } else {
         map.integrate_log(&drive.log, model)
     }

@@ -37,6 +37,7 @@
 //! office's coverage run drives 2.5 km, and replaying its 10 000 scans
 //! with a plan after each takes many minutes.
 
+use covmap::ScanMap;
 use std::sync::Arc;
 use std::time::{Duration, Instant};
 

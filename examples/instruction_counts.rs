@@ -9,6 +9,7 @@
 //! Run: `cargo run --release --example instruction_counts -- gain` (phases:
 //! `setup`, `gain`, `integrate`, `laser`).
 
+use covmap::ScanMap;
 use covmap::gain::{GainEvaluator, GainMethod, GainOptions};
 use covmap::{CoverageMap, Grid, LaserModel, Pose, SonarModel};
 use rand::{RngExt, SeedableRng};

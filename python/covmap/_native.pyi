@@ -7,7 +7,7 @@ from ``covmap`` instead.
 
 from collections.abc import Callable, Sequence
 from os import PathLike
-from typing import Any, Literal, final, overload, type_check_only
+from typing import Any, ClassVar, Literal, final, overload, type_check_only
 
 import numpy as np
 import numpy.typing as npt
@@ -136,6 +136,10 @@ class _RangeModel:
     """What both sensor models have: the range model's parameters and the
     methods over them."""
 
+    PARAMETERS: ClassVar[tuple[str, ...]]
+    """The names of the model's parameters, in the order of its keyword
+    arguments (the core's declaration of them)."""
+    # generated: properties(LaserModel)
     @property
     def max_range_m(self) -> float:
         """Readings at or beyond this distance mean "no echo", metres."""
@@ -147,34 +151,77 @@ class _RangeModel:
         """Standard deviation of the coverage mean at zero distance, outside the end band."""
     @property
     def sigma_per_m(self) -> float:
-        """Growth of that standard deviation per metre of distance min(d_l, d)."""
+        """Growth of that standard deviation per metre of distance `s = min(d_l, d)`."""
     @property
     def sigma_end(self) -> float:
         """The constant standard deviation inside the end band (the largest of all)."""
     @property
     def xi_min(self) -> float:
-        """Weight of the uniform component at zero distance."""
+        """Weight of the uniform component at zero distance (must be positive)."""
     @property
     def xi_per_m(self) -> float:
-        """Growth of the uniform weight per metre of distance min(d_l, d)."""
+        """Growth of the uniform weight per metre of distance `s = min(d_l, d)`."""
     @property
     def no_echo_reach(self) -> float:
-        """How far a no-echo reading clears, as a fraction of the maximum range, in (0, 1]."""
+        """How far a no-echo reading clears its footprint, as a fraction of
+        `max_range_m`, in `(0, 1]`. 1 (the default): out to the maximum
+        range, as the paper reads it.
+        """
     @property
     def no_echo_weight(self) -> float:
-        """How strongly a no-echo reading clears, in [0, 1]: 1 the free-space kernel, 0 nothing."""
+        """How strongly a no-echo reading clears, in `[0, 1]`: its kernel is
+        `no_echo_weight * k_free + (1 - no_echo_weight) / bins`, a mixture
+        of the free-space kernel and the uniform prior. 1 (the default):
+        the free-space kernel, as the paper reads it; 0: a no-echo reading
+        leaves the map as it was. A specular miss (a sonar pulse that
+        glanced off a wall and never came back) is a no-echo reading
+        through a wall, so a weight below 1 keeps such misses from erasing
+        walls that echoes from other angles found.
+        """
     @property
     def end_weight(self) -> float:
-        """How strongly an echo marks the cells at and behind its end, in [0, 1]: 1 the paper's kernels."""
+        """How strongly an echo marks the cells at and behind its end point
+        (the end band and the band behind it), in `[0, 1]`: their kernels
+        are mixed with the uniform prior as no-echo kernels are. 1 (the
+        default): the paper's kernels. A sonar's echo comes from somewhere
+        on the arc of its cone, so most cells of the arc are not what it
+        hit; a weight below 1 says so, where 1 marks the whole arc covered.
+        """
     @property
     def posterior_floor(self) -> float:
-        """The least probability an update that contradicts a cell leaves any of its bins, in [0, 1/256]: 0 the paper's Bayes update."""
+        """The least probability an update that contradicts a cell leaves any
+        bin of its histogram, in `[0, 1/256]`: after an update whose
+        kernel's mean coverage lies on the other side of 1/2 from the
+        cell's mean before it, the cell's posterior is mixed with the
+        uniform prior, `(1 - bins p) h + p`. 0 (the default): the paper's
+        Bayes update (bins floored at 1e-30 only). Readings of one cell are
+        not independent (a sonar sees the same wall face from the same
+        places again and again), so the product of their kernels grows far
+        more confident than the evidence is; where readings disagree, that
+        confidence is likely wrong, and the floor caps what it can cost.
+        """
     @property
     def end_attribution(self) -> float:
-        """How far an echo's marks follow the coverage the map holds on its arc, in [0, 1]: 0 the paper's arc."""
+        """How far an echo's marks follow what the map already holds, in
+        `[0, 1]`. A sonar's echo comes from somewhere on the arc of its
+        cone, most likely where the map holds the most coverage: the
+        kernels of the end band and the band behind it are mixed with the
+        uniform prior by the weight `1 - a + a min(1, m / m_arc)`, `a` this
+        value, `m` the cell's mean coverage before the reading and `m_arc`
+        the largest mean coverage among the end band's cells (at least
+        1/2). 0 (the default): every cell of the arc alike, as the paper
+        reads it.
+        """
     @property
     def free_yield(self) -> float:
-        """How much a free-space update spares a cell the map holds covered, in [0, 1]: 0 the paper's update."""
+        """How much a free-space update spares a cell the map holds covered,
+        in `[0, 1]`: the free kernel (of echoes and no-echo readings alike)
+        of a cell of mean coverage `m` is mixed with the uniform prior by
+        the weight `1 - y min(1, max(0, 2 m - 1))`, `y` this value (a
+        surface met at a grazing angle sends no echo back). 0 (the
+        default): the paper's reading.
+        """
+    # end generated
     def kernel(
         self,
         cell_distance: float,
@@ -215,6 +262,7 @@ class SonarModel(_RangeModel):
     def __new__(
         cls,
         *,
+        # generated: keywords(SonarModel)
         max_range_m: float | None = None,
         band_m: float | None = None,
         sigma_min: float | None = None,
@@ -229,10 +277,13 @@ class SonarModel(_RangeModel):
         end_attribution: float | None = None,
         free_yield: float | None = None,
         opening_angle_rad: float | None = None,
+        # end generated
     ) -> SonarModel: ...
+    # generated: properties(SonarModel - LaserModel)
     @property
     def opening_angle_rad(self) -> float:
-        """Full opening angle of the cone, radians."""
+        """Full opening angle of the cone, radians, in `(0, pi)`."""
+    # end generated
     @staticmethod
     def learned() -> SonarModel:
         """The model ``covmap learn`` fits with its defaults (trained on the
@@ -257,6 +308,7 @@ class LaserModel(_RangeModel):
     def __new__(
         cls,
         *,
+        # generated: keywords(LaserModel)
         max_range_m: float | None = None,
         band_m: float | None = None,
         sigma_min: float | None = None,
@@ -270,6 +322,7 @@ class LaserModel(_RangeModel):
         posterior_floor: float | None = None,
         end_attribution: float | None = None,
         free_yield: float | None = None,
+        # end generated
     ) -> LaserModel: ...
 
 @final
@@ -715,7 +768,9 @@ class Planner:
         """Weight of information against travel, in ``[0, 1]``."""
     @property
     def robot_radius_m(self) -> float:
-        """Radius of the disc robot, metres."""
+        """Radius of the disc robot, metres; paths keep a cell more (at least 5 cm)
+        from blocked cells.
+        """
     @property
     def candidate_stride_m(self) -> float:
         """Spacing of the candidate lattice, metres."""
@@ -723,8 +778,11 @@ class Planner:
     def min_travel_m(self) -> float:
         """Candidates closer than this along the path are not goals, metres."""
     @property
-    def min_gain_nats(self) -> float:
-        """Candidates whose expected gain is at most this are not goals, nats."""
+    def min_gain_nats(self) -> float | None:
+        """Candidates whose expected gain is at most this are not goals, nats;
+        ``None`` (the default): what making one cell at the prior certain is
+        worth, ``ln(bins) - epsilon``, at least 1 nat (the exploration loop's rule).
+        """
     @property
     def blocked_coverage(self) -> float:
         """Coverage on the ML map above which a cell blocks the robot."""
@@ -743,6 +801,12 @@ class Planner:
     @property
     def stop_coverage(self) -> Literal["ml", "mean"]:
         """Which coverage stops a predicted beam: ``"ml"`` or ``"mean"``."""
+    def least_gain_nats(self, bins: int = 16) -> float:
+        """The least expected gain a candidate must promise to be a goal on a
+        map of ``bins`` bins, nats: ``min_gain_nats``, or by default what
+        making one cell at the prior certain is worth, ``ln(bins) - epsilon``,
+        at least 1 nat.
+        """
     def next_viewpoint(
         self, map: CoverageMap, pose: _Pose, bearings: _Readings, model: _Model
     ) -> Plan:

@@ -279,6 +279,29 @@ def test_stepping_reaches_the_result_of_explore(corridor: covmap.World, short_ru
     assert "limit" in repr(run) and repr(run.strategy) in repr(run)
 
 
+@pytest.mark.parametrize("alpha", [0.2, 0.5])
+def test_a_planner_with_its_defaults_makes_the_loops_choice(corridor: covmap.World, alpha: float) -> None:
+    """The planner's defaults are the loop's settings: on the map the loop has
+    built, from where the robot stands, covmap.Planner chooses the goal the
+    decision-theoretic strategy drives to next (in the first steps, before
+    the loop has ruled out any goal it failed to reach or that taught it
+    nothing)."""
+    run = covmap.Exploration(corridor, covmap.Strategy.coverage(alpha), seed=1, max_steps=12)
+    ring = covmap.SonarRing()
+    planner = covmap.Planner(alpha=alpha)
+    agreed = 0
+    assert run.step() is not None  # the first scans are taken by the first step
+    while True:
+        plan = planner.next_viewpoint(run.map, run.pose, ring.bearings, covmap.SonarModel())
+        step = run.step()
+        if step is None:
+            break
+        assert plan.pose is not None
+        agreed += int(np.array_equal(plan.pose, step.goal))
+        np.testing.assert_array_equal(plan.path[0], step.path[0])
+    assert agreed == run.steps - 1 == 11, f"{agreed} of {run.steps - 1} goals"
+
+
 def test_run_finishes_what_steps_began() -> None:
     whole = covmap.explore(room(), covmap.Strategy.counting(1), seed=2, resolution=0.1)
     run = covmap.Exploration(room(), covmap.Strategy.counting(1), seed=2, resolution=0.1)

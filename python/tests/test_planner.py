@@ -32,8 +32,12 @@ def cell_of(cmap: covmap.CoverageMap, x: float, y: float) -> tuple[int, int]:
 
 def test_defaults_are_readable() -> None:
     p = covmap.Planner()
-    assert (p.alpha, p.robot_radius_m, p.candidate_stride_m, p.min_travel_m) == (0.5, 0.25, 0.5, 0.0)
-    assert (p.min_gain_nats, p.blocked_coverage, p.unknown_entropy_fraction) == (1.0, 0.5, 0.95)
+    assert (p.alpha, p.robot_radius_m, p.candidate_stride_m, p.min_travel_m) == (0.5, 0.25, 0.5, 0.25)
+    assert (p.min_gain_nats, p.blocked_coverage, p.unknown_entropy_fraction) == (None, 0.5, 0.95)
+    # By default the loop's rule: what making one cell at the prior certain is worth.
+    assert p.least_gain_nats(16) == pytest.approx(math.log(16) - 0.65)
+    assert p.least_gain_nats(2) == 1.0
+    assert covmap.Planner(min_gain_nats=0.5).least_gain_nats(16) == 0.5
     assert (p.unknown_is_free, p.epsilon, p.range_step_m, p.stop_coverage) == (False, 0.65, None, "ml")
     q = covmap.Planner(alpha=0.2, unknown_is_free=True, range_step_m=0.02, stop_coverage="mean")
     assert (q.alpha, q.unknown_is_free, q.range_step_m, q.stop_coverage) == (0.2, True, 0.02, "mean")

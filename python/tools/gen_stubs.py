@@ -1,6 +1,12 @@
-"""Write the docstrings of ``covmap/_native.pyi`` from the built module.
+"""Write the docstrings of ``covmap/_native.pyi``, and its lists of the
+sensor models' parameters, from the built module.
 
-The stub's signatures are written by hand (the module knows no types); its
+The stub's signatures are written by hand (the module knows no types), but
+for the sensor models' parameters: the blocks between ``# generated: ...``
+and ``# end generated`` are written from the classes' ``PARAMETERS`` (the
+core's one declaration of them), a ``@property`` each
+(``properties(Class)``, or ``properties(Class - Other)`` for those another
+class lacks) or a keyword-only argument each (``keywords(Class)``). Its
 docstrings are the native module's own, written once in Rust. This script
 puts each runtime ``__doc__`` into the stub, so that no docstring is kept by
 hand twice::
@@ -26,6 +32,7 @@ from __future__ import annotations
 import argparse
 import ast
 import inspect
+import re
 import sys
 import types
 from pathlib import Path
@@ -111,8 +118,42 @@ def render(doc: str, indent: str) -> list[str]:
     ]
 
 
+GENERATED = re.compile(
+    r"^(?P<indent> *)# generated: (?P<kind>properties|keywords)\((?P<cls>\w+)(?: - (?P<minus>\w+))?\)\n"
+    r"(?:.*\n)*?(?P=indent)# end generated$",
+    re.MULTILINE,
+)
+"""A generated block of the stub: its indent, what it lists, of which class."""
+
+
+def parameters(module: Any, cls: str, minus: str | None) -> list[str]:
+    """The names of ``cls``'s parameters (``PARAMETERS``), less ``minus``'s."""
+    names: list[str] = list(getattr(module, cls).PARAMETERS)
+    if minus is not None:
+        names = [n for n in names if n not in getattr(module, minus).PARAMETERS]
+    return names
+
+
+def rewrite_parameters(text: str, module: Any) -> str:
+    """``text`` (the stub) with every generated block listing the parameters
+    the module's classes have now (docstrings left for :func:`rewrite`)."""
+
+    def block(m: re.Match[str]) -> str:
+        indent = m["indent"]
+        names = parameters(module, m["cls"], m["minus"])
+        if m["kind"] == "properties":
+            lines = [f"{indent}@property\n{indent}def {n}(self) -> float: ..." for n in names]
+        else:
+            lines = [f"{indent}{n}: float | None = None," for n in names]
+        head = f"{indent}# generated: {m['kind']}({m['cls']}{' - ' + m['minus'] if m['minus'] else ''})"
+        return "\n".join([head, *lines, f"{indent}# end generated"])
+
+    return GENERATED.sub(block, text)
+
+
 def rewrite(text: str, module: Any) -> str:
     """``text`` (the stub) with every docstring the module's."""
+    text = rewrite_parameters(text, module)
     tree = ast.parse(text)
     lines = text.split("\n")
     edits: list[tuple[int, int, list[str]]] = []  # lines [first, end) become the new ones

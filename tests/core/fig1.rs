@@ -1,6 +1,7 @@
 //! The paper's Fig. 1: a cell partly covered by an obstacle. The occupancy grid
 //! calls it occupied; the coverage map recovers how much of it is covered.
 
+use covmap::ScanMap;
 use covmap::{Cell, CoverageMap, Grid, LaserModel, OccupancyGrid, Pose, SonarModel};
 use rand::{RngExt, SeedableRng};
 use rand_chacha::ChaCha8Rng;

@@ -1,6 +1,7 @@
 //! Expected information gain: the fast evaluator against the reference, and
 //! what the gain must say about known and unknown space.
 
+use covmap::ScanMap;
 use covmap::gain::{GainEvaluator, GainMethod, GainOptions, StopCoverage};
 use covmap::{CoverageMap, Grid, LaserModel, Pose, SensorModel, SonarModel};
 use proptest::prelude::*;

@@ -2,6 +2,7 @@
 //! logs, the 8-sonar ring), each checked against a parse of its own here: a
 //! plain split of every line.
 
+use covmap::ScanMap;
 use std::io::Read;
 use std::path::PathBuf;
 

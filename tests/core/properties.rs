@@ -1,5 +1,6 @@
 //! Invariants of the coverage map under arbitrary scans.
 
+use covmap::ScanMap;
 use covmap::{CoverageMap, Grid, LaserModel, Pose, SensorModel, SonarModel};
 use proptest::prelude::*;
 

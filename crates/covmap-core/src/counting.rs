@@ -5,7 +5,7 @@ use serde::{Deserialize, Serialize};
 use crate::error::{CovmapError, Result, check_parameter};
 use crate::footprint::visit;
 use crate::grid::Grid;
-use crate::pose::{Pose, validate_scan};
+use crate::scan_map::{ScanBeams, ScanMap};
 use crate::sensor::{RangeModel, SensorModel};
 
 /// Per-cell scan counts, the exploration baseline of the paper's Table I.
@@ -125,60 +125,24 @@ impl ScanCounts {
             _ => 1.0,
         }
     }
+}
 
-    /// Count one scan; validated like [`crate::CoverageMap::integrate`].
-    pub fn integrate<M: SensorModel + ?Sized>(
-        &mut self,
-        pose: &Pose,
-        ranges: &[f64],
-        bearings: &[f64],
-        model: &M,
-    ) -> Result<()> {
-        validate_scan(&self.grid, pose, ranges, bearings, model)?;
-        self.count(pose, ranges, bearings, model, None);
-        Ok(())
+impl ScanMap for ScanCounts {
+    fn grid(&self) -> &Grid {
+        &self.grid
     }
 
-    /// [`ScanCounts::integrate`] with no-echo reading `k` counted only up to
-    /// `no_echo_reach_m[k]` metres, as
-    /// [`crate::CoverageMap::integrate_clipped`].
-    ///
-    /// # Errors
-    /// As [`crate::CoverageMap::integrate_clipped`]; the counts are unchanged
-    /// then.
-    pub fn integrate_clipped<M: SensorModel + ?Sized>(
+    /// Add each beam's weight to the cells it intercepts.
+    fn integrate_checked<M: SensorModel + ?Sized>(
         &mut self,
-        pose: &Pose,
-        ranges: &[f64],
-        bearings: &[f64],
+        scan: ScanBeams<'_>,
         model: &M,
-        no_echo_reach_m: &[f64],
-    ) -> Result<()> {
-        crate::pose::validate_clipped_scan(
-            &self.grid,
-            pose,
-            (ranges, bearings),
-            model,
-            no_echo_reach_m,
-        )?;
-        self.count(pose, ranges, bearings, model, Some(no_echo_reach_m));
-        Ok(())
-    }
-
-    /// Count a scan already validated, no-echo reading `k` up to
-    /// `no_echo_reach_m[k]` if given (see
-    /// [`crate::CoverageMap::integrate_clipped`]).
-    pub(crate) fn count<M: SensorModel + ?Sized>(
-        &mut self,
-        pose: &Pose,
-        ranges: &[f64],
-        bearings: &[f64],
-        model: &M,
-        no_echo_reach_m: Option<&[f64]>,
-    ) {
+    ) -> Result<usize> {
         let range = model.range_model();
-        for (k, (&r, &bearing)) in ranges.iter().zip(bearings).enumerate() {
-            let (reach, w) = self.beam(range, r, k, no_echo_reach_m);
+        let pose = scan.pose;
+        let mut updates = 0;
+        for (k, (&r, &bearing)) in scan.ranges.iter().zip(scan.bearings).enumerate() {
+            let (reach, w) = self.beam(range, r, k, scan.no_echo_reach_m);
             let counts = &mut self.counts;
             visit(
                 &self.grid,
@@ -186,9 +150,13 @@ impl ScanCounts {
                 pose.theta_rad + bearing,
                 reach,
                 model.footprint(),
-                &mut |i, _| counts[i] += w,
+                &mut |i, _| {
+                    counts[i] += w;
+                    updates += 1;
+                },
             );
         }
+        Ok(updates)
     }
 }
 
@@ -222,6 +190,7 @@ impl ScanCounts {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::pose::Pose;
     use crate::sensor::LaserModel;
 
     /// A deserialised count array is checked as the constructors check it,

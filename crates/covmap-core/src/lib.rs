@@ -6,7 +6,7 @@
 //! beams; the occupancy-grid and scan-counting baselines fed by the same beams.
 //!
 //! ```
-//! use covmap_core::{CoverageMap, Grid, Pose, SonarModel};
+//! use covmap_core::{CoverageMap, Grid, Pose, ScanMap, SonarModel};
 //! let grid = Grid::new([0.0, 0.0], 0.05, 200, 200).unwrap();
 //! let mut map = CoverageMap::new(grid);
 //! // A ring of 24 sonars in the middle of a round room of radius 2.5 m.
@@ -46,6 +46,7 @@ pub mod parallel;
 pub mod planner;
 mod pose;
 mod ros_occupancy;
+mod scan_map;
 pub mod sensor;
 mod stamp;
 #[cfg(test)]
@@ -53,7 +54,8 @@ mod test_rng;
 
 pub use counting::ScanCounts;
 pub use coverage_map::{
-    CONTACT_COVERAGE, CoverageMap, HistoryState, STAGNATION_MEASUREMENTS, STAGNATION_NATS,
+    CONTACT_COVERAGE, ChangeCursor, Changes, CoverageMap, HistoryState, STAGNATION_MEASUREMENTS,
+    STAGNATION_NATS,
 };
 pub use error::{CovmapError, Result};
 pub use grid::{Cell, Grid, MAX_CELLS, MAX_CELLS_FROM_ZERO, MIN_RESOLUTION_M};
@@ -62,4 +64,5 @@ pub use map_file::{MAP_FILE_VERSION, MAX_MAP_FILE_BYTES};
 pub use occupancy::{OccupancyGrid, OccupancyModel};
 pub use pose::Pose;
 pub use ros_occupancy::{CoverageValue, ROS_UNKNOWN};
+pub use scan_map::{ScanBeams, ScanMap};
 pub use sensor::{Footprint, KernelTable, LaserModel, RangeModel, SensorModel, SonarModel};

@@ -7,7 +7,7 @@ use crate::error::{CovmapError, Result, check_parameter};
 use crate::footprint::visit;
 use crate::grid::Grid;
 use crate::memory;
-use crate::pose::{Pose, validate_scan};
+use crate::scan_map::{ScanBeams, ScanMap};
 use crate::sensor::SensorModel;
 
 /// The inverse model of the occupancy baseline.
@@ -223,64 +223,35 @@ impl OccupancyGrid {
         self.log_odds[i] = self.model.log_odds_limit as f32;
         Ok(())
     }
+}
 
-    /// Integrate one scan; validated like [`crate::CoverageMap::integrate`], and
-    /// the same beams are counted.
-    pub fn integrate<M: SensorModel + ?Sized>(
-        &mut self,
-        pose: &Pose,
-        ranges: &[f64],
-        bearings: &[f64],
-        model: &M,
-    ) -> Result<()> {
-        validate_scan(self.grid(), pose, ranges, bearings, model)?;
-        self.apply(pose, ranges, bearings, model, None);
-        Ok(())
+/// The probability of occupancy of log-odds `l`.
+fn probability(l: &f32) -> f32 {
+    1.0 / (1.0 + (-l).exp())
+}
+
+impl ScanMap for OccupancyGrid {
+    fn grid(&self) -> &Grid {
+        self.counts.grid()
     }
 
-    /// [`OccupancyGrid::integrate`] with no-echo reading `i` clearing only up
-    /// to `no_echo_reach_m[i]` metres, as
-    /// [`crate::CoverageMap::integrate_clipped`] (the counts too).
-    ///
-    /// # Errors
-    /// As [`crate::CoverageMap::integrate_clipped`]; the grid is unchanged then.
-    pub fn integrate_clipped<M: SensorModel + ?Sized>(
+    /// Integrate and count the beams, both in one visit of each beam's
+    /// cells (the grid's beam reaches as far as the count's).
+    fn integrate_checked<M: SensorModel + ?Sized>(
         &mut self,
-        pose: &Pose,
-        ranges: &[f64],
-        bearings: &[f64],
+        scan: ScanBeams<'_>,
         model: &M,
-        no_echo_reach_m: &[f64],
-    ) -> Result<()> {
-        crate::pose::validate_clipped_scan(
-            self.grid(),
-            pose,
-            (ranges, bearings),
-            model,
-            no_echo_reach_m,
-        )?;
-        self.apply(pose, ranges, bearings, model, Some(no_echo_reach_m));
-        Ok(())
-    }
-
-    /// Integrate and count a validated scan, both in one visit of each
-    /// beam's cells (the grid's beam reaches as far as the count's).
-    fn apply<M: SensorModel + ?Sized>(
-        &mut self,
-        pose: &Pose,
-        ranges: &[f64],
-        bearings: &[f64],
-        model: &M,
-        no_echo_reach_m: Option<&[f64]>,
-    ) {
+    ) -> Result<usize> {
         let (l_occ, l_free) = (logit(self.model.p_occupied), logit(self.model.p_free));
         let limit = self.model.log_odds_limit as f32;
         let range = model.range_model();
-        let grid = *self.grid();
+        let grid = *self.counts.grid();
         let half = 0.5 * grid.resolution_m();
-        for (k, (&r, &bearing)) in ranges.iter().zip(bearings).enumerate() {
+        let pose = scan.pose;
+        let mut updates = 0;
+        for (k, (&r, &bearing)) in scan.ranges.iter().zip(scan.bearings).enumerate() {
             let echo = r < range.max_range_m;
-            let (reach, weight) = self.counts.beam(range, r, k, no_echo_reach_m);
+            let (reach, weight) = self.counts.beam(range, r, k, scan.no_echo_reach_m);
             let (log_odds, counts) = (&mut self.log_odds, self.counts.counts_mut());
             visit(
                 &grid,
@@ -296,20 +267,18 @@ impl OccupancyGrid {
                     };
                     log_odds[i] = (log_odds[i] + l).clamp(-limit, limit);
                     counts[i] += weight;
+                    updates += 1;
                 },
             );
         }
+        Ok(updates)
     }
-}
-
-/// The probability of occupancy of log-odds `l`.
-fn probability(l: &f32) -> f32 {
-    1.0 / (1.0 + (-l).exp())
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::pose::Pose;
 
     /// The grid counts the cells it visits for its log-odds, and they are
     /// what counting alone gives, bit for bit: echoes, no echoes to the
@@ -343,12 +312,14 @@ mod tests {
                     .unwrap();
                 alone.integrate(&pose, &ranges, &bearings, &sonar).unwrap();
             } else {
-                occupancy
-                    .integrate_clipped(&pose, &ranges, &bearings, &sonar, &reaches)
-                    .unwrap();
-                alone
-                    .integrate_clipped(&pose, &ranges, &bearings, &sonar, &reaches)
-                    .unwrap();
+                let scan = ScanBeams {
+                    pose: &pose,
+                    ranges: &ranges,
+                    bearings: &bearings,
+                    no_echo_reach_m: Some(&reaches),
+                };
+                occupancy.integrate_scan(scan, &sonar).unwrap();
+                alone.integrate_scan(scan, &sonar).unwrap();
             }
         }
         let bits = |c: &[f32]| c.iter().map(|v| v.to_bits()).collect::<Vec<_>>();

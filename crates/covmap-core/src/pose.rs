@@ -92,20 +92,6 @@ pub(crate) fn validate_scan<M: SensorModel + ?Sized>(
     check_bearings(pose.theta_rad, bearings)
 }
 
-/// [`validate_scan`] for a scan whose no-echo readings reach
-/// `no_echo_reach_m` (see `CoverageMap::integrate_clipped`): one reach a
-/// reading, none NaN or negative, checked first.
-pub(crate) fn validate_clipped_scan<M: SensorModel + ?Sized>(
-    grid: &Grid,
-    pose: &Pose,
-    (ranges, bearings): (&[f64], &[f64]),
-    model: &M,
-    no_echo_reach_m: &[f64],
-) -> Result<()> {
-    crate::coverage_map::check_reaches(ranges, no_echo_reach_m)?;
-    validate_scan(grid, pose, ranges, bearings, model)
-}
-
 /// The cell of `pose` on `grid`: an error if a component is not finite
 /// ([`CovmapError::InvalidPose`]) or the position lies in no cell
 /// ([`CovmapError::PoseOutsideMap`]).

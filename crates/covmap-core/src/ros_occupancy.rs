@@ -37,7 +37,7 @@ impl CoverageMap {
     ///
     /// # Example
     /// ```
-    /// use covmap_core::{CoverageMap, CoverageValue, Grid, LaserModel, Pose, ROS_UNKNOWN};
+    /// use covmap_core::{CoverageMap, CoverageValue, Grid, LaserModel, Pose, ROS_UNKNOWN, ScanMap};
     /// let grid = Grid::new([0.0, 0.0], 0.1, 10, 30).unwrap();
     /// let mut map = CoverageMap::new(grid);
     /// for _ in 0..3 {
@@ -94,6 +94,7 @@ mod tests {
     use super::*;
     use crate::grid::Grid;
     use crate::pose::Pose;
+    use crate::scan_map::ScanMap;
     use crate::sensor::SonarModel;
 
     #[test]

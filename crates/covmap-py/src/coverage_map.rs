@@ -1,5 +1,6 @@
 //! `covmap.CoverageMap`: one histogram over coverage values per cell.
 
+use covmap::ScanMap;
 use covmap::histogram::DEFAULT_BINS;
 use covmap::{CoverageMap, HistoryState, STAGNATION_MEASUREMENTS};
 use numpy::{PyArray1, PyArray2, PyArray3};
@@ -188,7 +189,7 @@ impl PyCoverageMap {
             (progress, log.len()),
             |map, show| {
                 if occlude_no_echo {
-                    map.integrate_log_occluding_with_progress(log, &model, show)
+                    map.integrate_log_occluding(log, &model, show)
                 } else {
                     map.integrate_log_with_progress(log, &model, show)
                 }

@@ -1,6 +1,7 @@
 //! `covmap.OccupancyGrid`: the log-odds occupancy baseline.
 
 use covmap::OccupancyGrid;
+use covmap::ScanMap;
 use numpy::PyArray2;
 use pyo3::prelude::*;
 use pyo3::types::PyBytes;
@@ -49,6 +50,7 @@ impl PyOccupancyGrid {
         let scan = Scan::extract(pose, ranges, bearings, model)?;
         let grid = &mut self.0;
         py.detach(|| grid.integrate(&scan.pose, &scan.ranges, &scan.bearings, &scan.model))
+            .map(drop)
             .or_raise(py)
     }
 
@@ -80,7 +82,10 @@ impl PyOccupancyGrid {
             &mut self.0,
             covmap::OccupancyGrid::try_clone,
             (progress, log.len()),
-            |map, show| map.integrate_log_with_progress(log, &model, show),
+            |map, show| {
+                map.integrate_log_with_progress(log, &model, show)
+                    .map(|_| log.len())
+            },
         )
     }
 

@@ -58,7 +58,7 @@ impl PyPlanner {
             robot_radius_m: keywords.robot_radius_m.unwrap_or(d.robot_radius_m),
             candidate_stride_m: keywords.candidate_stride_m.unwrap_or(d.candidate_stride_m),
             min_travel_m: keywords.min_travel_m.unwrap_or(d.min_travel_m),
-            min_gain_nats: keywords.min_gain_nats.unwrap_or(d.min_gain_nats),
+            min_gain_nats: keywords.min_gain_nats.or(d.min_gain_nats),
             blocked_coverage: keywords.blocked_coverage.unwrap_or(d.blocked_coverage),
             unknown_entropy_fraction: keywords
                 .unknown_entropy_fraction
@@ -79,14 +79,17 @@ keyword_class! {
         settings(&self) {
             /// Weight of information against travel, in ``[0, 1]``.
             alpha(f64) -> f64 { self.config().alpha }
-            /// Radius of the disc robot, metres.
+            /// Radius of the disc robot, metres; paths keep a cell more (at least 5 cm)
+            /// from blocked cells.
             robot_radius_m(f64) -> f64 { self.config().robot_radius_m }
             /// Spacing of the candidate lattice, metres.
             candidate_stride_m(f64) -> f64 { self.config().candidate_stride_m }
             /// Candidates closer than this along the path are not goals, metres.
             min_travel_m(f64) -> f64 { self.config().min_travel_m }
-            /// Candidates whose expected gain is at most this are not goals, nats.
-            min_gain_nats(f64) -> f64 { self.config().min_gain_nats }
+            /// Candidates whose expected gain is at most this are not goals, nats;
+            /// ``None`` (the default): what making one cell at the prior certain is
+            /// worth, ``ln(bins) - epsilon``, at least 1 nat (the exploration loop's rule).
+            min_gain_nats(f64) -> Option<f64> { self.config().min_gain_nats }
             /// Coverage on the ML map above which a cell blocks the robot.
             blocked_coverage(f64) -> f64 { self.config().blocked_coverage }
             /// A cell is unknown while its entropy is at least this fraction of the prior's.
@@ -121,6 +124,18 @@ keyword_class! {
                 kwargs.set_item("range_step_m", self.range_step_m())?;
                 kwargs.set_item("stop_coverage", self.stop_coverage())?;
                 Ok((pyo3::types::PyTuple::empty(py), kwargs))
+            }
+            /// The least expected gain a candidate must promise to be a goal on a
+            /// map of ``bins`` bins, nats: ``min_gain_nats``, or by default what
+            /// making one cell at the prior certain is worth, ``ln(bins) - epsilon``,
+            /// at least 1 nat.
+            #[pyo3(signature = (bins=16))]
+            fn least_gain_nats(
+                &self,
+                py: Python<'_>,
+                #[pyo3(from_py_with = crate::convert::arg)] bins: i64,
+            ) -> PyResult<f64> {
+                Ok(self.0.min_gain_nats(convert::bins(py, bins)?))
             }
             /// Choose the next viewpoint for a robot at ``pose = (x, y, theta)`` on
             /// ``map``, scanning with beams at ``bearings`` through ``model``. Runs

@@ -1,8 +1,9 @@
 //! `covmap.SonarModel` and `covmap.LaserModel`: the inverse sensor models.
 //!
-//! Both are a range model (thirteen parameters) and, for the sonar, the opening
-//! angle of its cone; [`sensor_model_class!`] writes their Python methods
-//! once for both.
+//! Both are a range model and, for the sonar, the opening angle of its
+//! cone; [`sensor_model_class!`] writes their Python methods once for both,
+//! one keyword and attribute for each parameter the core declares
+//! (`covmap::range_parameters!`, `covmap::sonar_parameters!`).
 
 use covmap::exploration::AnySensorModel;
 use covmap::{LaserModel, RangeModel, SensorModel, SonarModel};
@@ -33,53 +34,20 @@ fn kernel_array<'py, M: SensorModel + Sync>(
 
 /// The methods of a sensor model's class `$class` (wrapping the core's
 /// `$model`): one keyword argument and attribute per parameter of the range
-/// model and per `$extra` field of the model (all `f64`), validated on
+/// model and per parameter of the model's own (`[$own]`: entries of the
+/// core's declaration, `covmap::sonar_parameters!`), validated on
 /// construction; `kernel`, `to_dict`/`from_dict`, `repr`, hash and pickling;
-/// and the methods of an optional `more { ... }` block, the class's own.
+/// and the methods of the `more { ... }` block, the class's own. Invoked
+/// through `covmap::range_parameters!`, which appends the range model's
+/// entries: the parameters are listed only in the core's declaration.
 macro_rules! sensor_model_class {
     (
         impl $class:ident as $name:literal for $model:ident {
             keywords $keywords:ident;
-            extra { $( $(#[doc = $doc:literal])* $extra:ident )* }
-            $( more { $($more:tt)* } )?
+            more { $($more:tt)* }
         }
-    ) => {
-        sensor_model_class!(@range $class, $name, $model, $keywords, { $( $($more)* )? },
-            [
-                /// Readings at or beyond this distance mean "no echo", metres.
-                max_range_m
-                /// How far behind the end point cells are updated (as covered), metres.
-                band_m
-                /// Standard deviation of the coverage mean at zero distance, outside the end band.
-                sigma_min
-                /// Growth of that standard deviation per metre of distance min(d_l, d).
-                sigma_per_m
-                /// The constant standard deviation inside the end band (the largest of all).
-                sigma_end
-                /// Weight of the uniform component at zero distance.
-                xi_min
-                /// Growth of the uniform weight per metre of distance min(d_l, d).
-                xi_per_m
-                /// How far a no-echo reading clears, as a fraction of the maximum range, in (0, 1].
-                no_echo_reach
-                /// How strongly a no-echo reading clears, in [0, 1]: 1 the free-space kernel, 0 nothing.
-                no_echo_weight
-                /// How strongly an echo marks the cells at and behind its end, in [0, 1]: 1 the paper's kernels.
-                end_weight
-                /// The least probability an update that contradicts a cell leaves any of its bins, in [0, 1/256]: 0 the paper's Bayes update.
-                posterior_floor
-                /// How far an echo's marks follow the coverage the map holds on its arc, in [0, 1]: 0 the paper's arc.
-                end_attribution
-                /// How much a free-space update spares a cell the map holds covered, in [0, 1]: 0 the paper's update.
-                free_yield
-            ],
-            [ $( $(#[doc = $doc])* $extra )* ]
-        );
-    };
-    (
-        @range $class:ident, $name:literal, $model:ident, $keywords:ident, { $($more:tt)* },
-        [ $( $(#[doc = $range_doc:literal])* $range:ident )* ],
-        [ $( $(#[doc = $extra_doc:literal])* $extra:ident )* ]
+        [ $( $(#[doc = $extra_doc:literal])* $extra:ident { $($extra_spec:tt)* } )* ]
+        [ $( $(#[doc = $range_doc:literal])* $range:ident { $($range_spec:tt)* } )* ]
     ) => {
         impl $class {
             /// The model the keywords describe, a parameter left out the
@@ -149,6 +117,13 @@ macro_rules! sensor_model_class {
                         cls.call((), Some(&d))
                             .map_err(|e| crate::convert::as_covmap_error(d.as_any(), e, "a dict"))
                     }
+                    /// The names of the model's parameters, in the order of its
+                    /// keyword arguments (the core's declaration of them).
+                    #[classattr]
+                    #[allow(non_snake_case, reason = "a class constant")]
+                    fn PARAMETERS(py: Python<'_>) -> PyResult<Bound<'_, PyTuple>> {
+                        PyTuple::new(py, [$(stringify!($range),)* $(stringify!($extra),)*])
+                    }
                     fn __hash__(&self) -> u64 {
                         hash_f64s(self.fields().into_iter().map(|(_, v)| v), &[])
                     }
@@ -166,6 +141,14 @@ macro_rules! sensor_model_class {
     };
 }
 
+/// [`sensor_model_class!`] with the sonar's own parameters and then the
+/// range model's appended, from the core's declarations.
+macro_rules! sonar_model_class {
+    ($($args:tt)*) => {
+        covmap::range_parameters!(sensor_model_class! { $($args)* });
+    };
+}
+
 /// The sonar inverse model: a range model spread over a cone.
 ///
 /// Every cell whose centre lies within half the opening angle of the beam axis
@@ -178,13 +161,9 @@ macro_rules! sensor_model_class {
 #[derive(Clone, PartialEq)]
 pub(crate) struct PySonarModel(pub(crate) SonarModel);
 
-sensor_model_class! {
+covmap::sonar_parameters!(sonar_model_class! {
     impl PySonarModel as "SonarModel" for SonarModel {
         keywords SonarKeywords;
-        extra {
-            /// Full opening angle of the cone, radians.
-            opening_angle_rad
-        }
         more {
             /// The model ``covmap learn`` fits with its defaults (trained on the
             /// corridor drive, seed 0, with no-echo readings occluded by the
@@ -198,7 +177,7 @@ sensor_model_class! {
             }
         }
     }
-}
+});
 
 /// The laser inverse model: a range model along a thin beam.
 ///
@@ -211,12 +190,13 @@ sensor_model_class! {
 #[derive(Clone, PartialEq)]
 pub(crate) struct PyLaserModel(pub(crate) LaserModel);
 
-sensor_model_class! {
+covmap::range_parameters!(sensor_model_class! {
     impl PyLaserModel as "LaserModel" for LaserModel {
         keywords LaserKeywords;
-        extra {}
+        more {}
     }
-}
+    []
+});
 
 /// A `model` argument: a `SonarModel` or a `LaserModel`, copied out of
 /// Python as the core's either-model type.

@@ -108,7 +108,7 @@ pub const MAX_BEAMS: usize = 1 << 16;
 
 /// Errors unless a sensor has from 1 to [`MAX_BEAMS`] bearings and every
 /// bearing is finite;
-/// `what` names one bearing in the error ("sonar bearing").
+/// `what` names one bearing in the error ("bearing").
 pub(crate) fn check_bearings(bearings_rad: &[f64], what: &'static str) -> Result<()> {
     if bearings_rad.is_empty() || bearings_rad.len() > MAX_BEAMS {
         return Err(SimError::InvalidParameter {

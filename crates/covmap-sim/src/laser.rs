@@ -6,8 +6,8 @@ use covmap_core::LaserModel;
 use rand::{Rng, RngExt};
 use rand_distr::StandardNormal;
 
-use crate::error::{Result, check_bearings, check_param};
-use crate::simulate::RangeSensor;
+use crate::error::{Result, check_param};
+use crate::simulate::{Beam, RangeSensor};
 use crate::world::World;
 
 /// A laser scanner: thin beams, small Gaussian noise.
@@ -89,22 +89,11 @@ impl Laser {
 }
 
 impl RangeSensor for Laser {
-    fn bearings_rad(&self) -> &[f64] {
-        &self.bearings_rad
+    fn layout(&self) -> (&[f64], f64) {
+        (&self.bearings_rad, self.max_range_m)
     }
 
-    fn max_range_m(&self) -> f64 {
-        self.max_range_m
-    }
-
-    fn validate(&self) -> Result<()> {
-        check_bearings(&self.bearings_rad, "laser bearing")?;
-        check_param(
-            "max_range_m",
-            self.max_range_m,
-            self.max_range_m > 0.0,
-            "a positive distance",
-        )?;
+    fn check_own(&self) -> Result<()> {
         check_param(
             "noise_std_m",
             self.noise_std_m,
@@ -113,16 +102,10 @@ impl RangeSensor for Laser {
         )
     }
 
-    fn read_beam<R: Rng + ?Sized>(
-        &self,
-        world: &World,
-        origin_m: [f64; 2],
-        direction_rad: f64,
-        rng: &mut R,
-    ) -> f64 {
+    fn read_beam<R: Rng + ?Sized>(&self, world: &World, beam: Beam, rng: &mut R) -> f64 {
         let z: f64 = rng.sample(StandardNormal);
         let max = self.max_range_m;
-        let hit = world.cast(origin_m, direction_rad, max);
+        let hit = world.cast(beam.origin_m, beam.direction_rad, max);
         if !hit.is_hit() {
             return max;
         }

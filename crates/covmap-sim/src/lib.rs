@@ -6,7 +6,7 @@
 //! directly, a disc robot's collision checks, and the paper's experiments.
 //!
 //! ```
-//! use covmap_core::{CoverageMap, Grid, Pose, SonarModel};
+//! use covmap_core::{CoverageMap, Grid, Pose, ScanMap, SonarModel};
 //! use covmap_sim::{sim_rng, RangeSensor, SonarRing, World};
 //!
 //! let world = World::builtin("corridor").unwrap();
@@ -61,6 +61,6 @@ pub use raycast::RayHit;
 pub use rng::{SimRng, sim_rng, sim_rng_stream};
 pub use robot::Robot;
 pub use scan::Scan;
-pub use simulate::{RangeSensor, record, simulate};
+pub use simulate::{Beam, RangeSensor, record, simulate};
 pub use sonar::SonarRing;
 pub use world::World;

@@ -3,31 +3,58 @@
 use covmap_core::{Bearings, Log, Pose};
 use rand::Rng;
 
-use crate::error::Result;
+use crate::error::{Result, check_bearings, check_param};
 use crate::rng::sim_rng_stream;
 use crate::scan::Scan;
 use crate::world::World;
 
+/// A beam to read: where it starts (world metres) and its absolute
+/// direction (radians).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Beam {
+    /// Where the beam starts, world metres.
+    pub origin_m: [f64; 2],
+    /// Its direction in the world, radians.
+    pub direction_rad: f64,
+}
+
 /// A simulated range sensor ([`crate::SonarRing`], [`crate::Laser`]).
 pub trait RangeSensor {
+    /// The bearing of each reading relative to the heading, radians, and
+    /// the range at or beyond which a reading is "no echo", metres.
+    fn layout(&self) -> (&[f64], f64);
+    /// Errors unless every parameter of the sensor's own (besides its
+    /// bearings and maximum range) lies in its valid range.
+    fn check_own(&self) -> Result<()>;
+    /// One reading along `beam`, every random draw from `rng`. A sensor
+    /// takes the same draws for every reading, whatever the reading turns
+    /// out to be, so that a change of one reading never shifts the samples
+    /// of the next. The parameters are taken as valid:
+    /// [`RangeSensor::scan`] checks them first.
+    fn read_beam<R: Rng + ?Sized>(&self, world: &World, beam: Beam, rng: &mut R) -> f64;
+
     /// The bearing of each reading relative to the heading, radians.
-    fn bearings_rad(&self) -> &[f64];
+    fn bearings_rad(&self) -> &[f64] {
+        self.layout().0
+    }
     /// Readings at or beyond this are "no echo", metres.
-    fn max_range_m(&self) -> f64;
-    /// Errors unless every parameter lies in its valid range.
-    fn validate(&self) -> Result<()>;
-    /// One reading along the absolute direction `direction_rad` from
-    /// `origin_m`, every random draw from `rng`. A sensor takes the same draws
-    /// for every reading, whatever the reading turns out to be, so that a
-    /// change of one reading never shifts the samples of the next. The
-    /// parameters are taken as valid: [`RangeSensor::scan`] checks them first.
-    fn read_beam<R: Rng + ?Sized>(
-        &self,
-        world: &World,
-        origin_m: [f64; 2],
-        direction_rad: f64,
-        rng: &mut R,
-    ) -> f64;
+    fn max_range_m(&self) -> f64 {
+        self.layout().1
+    }
+    /// Errors unless every parameter lies in its valid range: from 1 to
+    /// 65 536 finite bearings, a positive maximum range, and the sensor's
+    /// own ([`RangeSensor::check_own`]).
+    fn validate(&self) -> Result<()> {
+        let (bearings_rad, max_range_m) = self.layout();
+        check_bearings(bearings_rad, "bearing")?;
+        check_param(
+            "max_range_m",
+            max_range_m,
+            max_range_m > 0.0,
+            "a positive distance",
+        )?;
+        self.check_own()
+    }
 
     /// One scan taken from `pose`, a reading per bearing in bearing order,
     /// every random draw from `rng`. Errors on invalid parameters or a
@@ -39,7 +66,17 @@ pub trait RangeSensor {
         let ranges_m = self
             .bearings_rad()
             .iter()
-            .map(|&bearing| self.read_beam(world, origin_m, pose.theta_rad + bearing, rng))
+            .map(|&bearing| {
+                let direction_rad = pose.theta_rad + bearing;
+                self.read_beam(
+                    world,
+                    Beam {
+                        origin_m,
+                        direction_rad,
+                    },
+                    rng,
+                )
+            })
             .collect();
         Ok(Scan {
             pose: *pose,
@@ -143,6 +180,7 @@ mod tests {
             "{err}"
         );
         assert!(simulate(&laser, &world, &[pose], 1).is_err());
+        use covmap_core::ScanMap;
         let mut map =
             covmap_core::CoverageMap::new(covmap_core::Grid::new([0.0, 0.0], 0.1, 30, 30).unwrap());
         let model = covmap_core::LaserModel::default();

@@ -6,10 +6,10 @@ use covmap_core::SonarModel;
 use rand::{Rng, RngExt};
 use rand_distr::StandardNormal;
 
-use crate::error::{Result, check_bearings, check_param};
+use crate::error::{Result, check_param};
 use crate::material::Material;
 use crate::raycast::RayHit;
-use crate::simulate::RangeSensor;
+use crate::simulate::{Beam, RangeSensor};
 use crate::world::World;
 
 /// A ring of sonars and how they err.
@@ -48,7 +48,7 @@ use crate::world::World;
 ///
 /// # Example
 /// ```
-/// use covmap_core::{CoverageMap, Grid, Pose, SonarModel};
+/// use covmap_core::{CoverageMap, Grid, Pose, ScanMap, SonarModel};
 /// use covmap_sim::{sim_rng, RangeSensor, SonarRing, World};
 /// let world = World::builtin("corridor").unwrap();
 /// let sonar = SonarRing::default();
@@ -216,16 +216,11 @@ impl SonarRing {
 }
 
 impl RangeSensor for SonarRing {
-    fn bearings_rad(&self) -> &[f64] {
-        &self.bearings_rad
+    fn layout(&self) -> (&[f64], f64) {
+        (&self.bearings_rad, self.max_range_m)
     }
 
-    fn max_range_m(&self) -> f64 {
-        self.max_range_m
-    }
-
-    fn validate(&self) -> Result<()> {
-        check_bearings(&self.bearings_rad, "sonar bearing")?;
+    fn check_own(&self) -> Result<()> {
         let a = self.opening_angle_rad;
         check_param(
             "opening_angle_rad",
@@ -234,7 +229,6 @@ impl RangeSensor for SonarRing {
             "an angle in (0, pi) radians",
         )?;
         let max = self.max_range_m;
-        check_param("max_range_m", max, max > 0.0, "a positive distance")?;
         let min = self.min_range_m;
         check_param(
             "min_range_m",
@@ -280,20 +274,14 @@ impl RangeSensor for SonarRing {
         Ok(())
     }
 
-    fn read_beam<R: Rng + ?Sized>(
-        &self,
-        world: &World,
-        origin_m: [f64; 2],
-        direction_rad: f64,
-        rng: &mut R,
-    ) -> f64 {
+    fn read_beam<R: Rng + ?Sized>(&self, world: &World, beam: Beam, rng: &mut R) -> f64 {
         let draws = [
             rng.random(),
             rng.random(),
             rng.random(),
             rng.sample(StandardNormal),
         ];
-        self.reading(world, origin_m, direction_rad, draws)
+        self.reading(world, beam.origin_m, beam.direction_rad, draws)
     }
 }
 

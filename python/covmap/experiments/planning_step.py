@@ -112,11 +112,12 @@ def report(step: Step) -> str:
     """The chosen viewpoint and the candidates, as text."""
     plan = step.plan
     gains = plan.candidates.gains
-    worth = int(np.count_nonzero(gains > step.planner.min_gain_nats))
+    least = step.planner.least_gain_nats(step.coverage_map.bins)
+    worth = int(np.count_nonzero(gains > least))
     x, y, theta = step.start
     lines = [
         f"start pose: ({x:.3f}, {y:.3f}, {theta:.3f}); {step.scans} sonar scans, seed {step.seed}",
-        f"candidates: {len(gains)} ({worth} worth visiting, gain > {step.planner.min_gain_nats:g} nats); "
+        f"candidates: {len(gains)} ({worth} worth visiting, gain > {least:g} nats); "
         f"alpha {step.planner.alpha:g}",
     ]
     if plan.pose is None or plan.gain is None or plan.cost is None:

@@ -2,7 +2,6 @@
 //! any evidence has reached.
 
 use super::CoverageMap;
-use super::storage::ml_value;
 use crate::error::Result;
 use crate::grid::Cell;
 use crate::histogram;
@@ -57,82 +56,55 @@ impl CoverageMap {
             &likelihood,
             histogram::BIN_FLOOR,
         );
+        self.changes.begin().mark(i);
         self.record_cell_history(i);
         Ok(())
     }
 
-    /// A copy of the map, without its entropy history, in which each of
-    /// `cells` is certainly covered (all its mass in the top bin): what a
-    /// robot plans on when it remembers where it ran into something.
-    /// Readings may clear such a cell again (a specular surface no echo
-    /// shows), the contact stands; and a planner predicting readings on the
-    /// copy neither expects to learn anything about the cell nor to see
-    /// through it, whatever the readings did to it since.
+    /// Hold each of `cells` certainly covered: its histogram all but the
+    /// floor in the top bin, what a robot holds of a cell it ran into (its
+    /// bumper is far more reliable than a sonar, and a specular surface no
+    /// echo shows stays in the way). A cell not so already changes (one
+    /// measurement of it for the entropy history); the others are left as
+    /// they are. The exploration loop pins the cells the robot ran into
+    /// after every scan, so that the map it plans on, reports and is judged
+    /// by is one map.
     ///
     /// # Errors
     /// [`CovmapError::CellOutOfBounds`](crate::CovmapError::CellOutOfBounds)
-    /// if a cell is not on the grid.
-    pub fn with_contacts(&self, cells: &[Cell]) -> Result<CoverageMap> {
+    /// if a cell is not on the grid; the map is unchanged then.
+    ///
+    /// # Example
+    /// ```
+    /// use covmap_core::{Cell, CoverageMap, Grid};
+    /// let mut map = CoverageMap::new(Grid::new([0.0, 0.0], 0.05, 10, 10).unwrap());
+    /// let cell = Cell { row: 4, col: 7 };
+    /// map.pin_covered(&[cell]).unwrap();
+    /// let i = map.grid().index(cell).unwrap();
+    /// assert_eq!(map.ml()[i], 1.0);
+    /// assert!(map.entropy()[i] < 1e-6);
+    /// ```
+    pub fn pin_covered(&mut self, cells: &[Cell]) -> Result<()> {
         let indices = cells
             .iter()
             .map(|&cell| self.grid.index(cell))
             .collect::<Result<Vec<_>>>()?;
         let bins = self.bins;
         let pinned = pinned_histogram(bins);
-        let mut copy = CoverageMap {
-            grid: self.grid,
-            bins,
-            data: self.data.clone(),
-            table: None,
-            history: None,
-        };
-        for i in indices {
-            copy.data[i * bins..(i + 1) * bins].copy_from_slice(&pinned);
+        let unpinned: Vec<usize> = indices
+            .into_iter()
+            .filter(|&i| self.data[i * bins..(i + 1) * bins] != pinned[..])
+            .collect();
+        if unpinned.is_empty() {
+            return Ok(());
         }
-        Ok(copy)
-    }
-
-    /// The ML coverage of a cell [`CoverageMap::with_contacts`] pins, as
-    /// [`CoverageMap::ml`] reads it, on a map of `bins` bins.
-    pub(crate) fn pinned_ml(bins: usize) -> f32 {
-        ml_value(bins)(&pinned_histogram(bins))
-    }
-
-    /// Bring `self`, made by `map.with_contacts(..)` earlier, up to date:
-    /// the histograms of the cells `changed` (every cell whose histogram in
-    /// `map` may have changed since) copied from `map`, and every cell of
-    /// `cells` pinned. The same histograms as `map.with_contacts(cells)`,
-    /// without copying the whole map: a loop planning after every step
-    /// copies the few cells its scans changed.
-    ///
-    /// # Errors
-    /// As [`CoverageMap::with_contacts`]; `self` is unchanged then.
-    ///
-    /// # Panics
-    /// If `map` has another grid or bin count, or a changed cell is not on
-    /// its grid.
-    pub(crate) fn update_with_contacts(
-        &mut self,
-        map: &CoverageMap,
-        changed: impl Iterator<Item = usize>,
-        cells: &[Cell],
-    ) -> Result<()> {
-        assert!(
-            self.grid == map.grid && self.bins == map.bins,
-            "a copy of the map"
-        );
-        let indices = cells
-            .iter()
-            .map(|&cell| self.grid.index(cell))
-            .collect::<Result<Vec<_>>>()?;
-        let bins = self.bins;
-        for i in changed {
-            let at = i * bins..(i + 1) * bins;
-            self.data[at.clone()].copy_from_slice(&map.data[at]);
-        }
-        let pinned = pinned_histogram(bins);
-        for i in indices {
+        let mut stamper = self.changes.begin();
+        for &i in &unpinned {
             self.data[i * bins..(i + 1) * bins].copy_from_slice(&pinned);
+            stamper.mark(i);
+        }
+        for i in unpinned {
+            self.record_cell_history(i);
         }
         Ok(())
     }
@@ -172,6 +144,7 @@ mod tests {
     use super::*;
     use crate::grid::Grid;
     use crate::pose::Pose;
+    use crate::scan_map::ScanMap;
     use crate::sensor::SonarModel;
 
     /// A wall cell that no-echo readings cleared blocks again after a
@@ -204,21 +177,34 @@ mod tests {
         let h = map.histogram(cell).unwrap();
         assert!((h.iter().sum::<f32>() - 1.0).abs() < 1e-5);
         assert!(map.integrate_contact(Cell { row: 40, col: 0 }).is_err());
-        // Cleared again by many no-echo readings, the cell still blocks on
-        // the copy that remembers the contact.
+        // Cleared again by many no-echo readings; pinned, it stays covered
+        // until pinned again, and pinning touches no other cell.
         for _ in 0..60 {
             map.integrate(&pose, &no_echo(), &[0.0], &sonar).unwrap();
         }
         assert_eq!(map.ml()[i], 0.0, "cleared again");
-        let pinned = map.with_contacts(&[cell]).unwrap();
-        assert_eq!(pinned.ml()[i], 1.0);
-        assert!(pinned.entropy()[i] < 1e-6);
-        assert!(!pinned.tracks_history());
+        let (before, cursor) = (map.histograms().to_vec(), map.change_cursor());
+        map.pin_covered(&[cell]).unwrap();
+        assert_eq!(map.ml()[i], 1.0);
+        assert!(map.entropy()[i] < 1e-6);
+        assert_eq!(
+            map.changes_since(&cursor),
+            crate::coverage_map::Changes::Cells(vec![i])
+        );
         let other = grid.index(grid.world_to_cell(1.0, 1.0).unwrap()).unwrap();
         assert_eq!(
-            pinned.histograms()[other * 16..][..16],
+            before[other * 16..][..16],
             map.histograms()[other * 16..][..16]
         );
-        assert!(map.with_contacts(&[Cell { row: 0, col: 80 }]).is_err());
+        // Pinned already: no change at all.
+        let cursor = map.change_cursor();
+        map.pin_covered(&[cell]).unwrap();
+        assert_eq!(
+            map.changes_since(&cursor),
+            crate::coverage_map::Changes::Cells(vec![])
+        );
+        let held = map.histograms().to_vec();
+        assert!(map.pin_covered(&[cell, Cell { row: 0, col: 80 }]).is_err());
+        assert_eq!(map.histograms(), &held[..]);
     }
 }

@@ -20,16 +20,9 @@ pub(super) struct History {
     entropies: Vec<[f32; STAGNATION_MEASUREMENTS + 1]>,
     /// Measurements of each cell so far.
     count: Vec<u32>,
-    /// The scan that last touched each cell.
-    stamp: Vec<u32>,
-    scan: u32,
     /// The cells the scan being integrated touches, each once, in the order
     /// it first does (kept between scans for its memory).
     touched: Vec<usize>,
-    /// Every measurement since the journal was last drained, in order: the
-    /// cell and its entropy then (`None`: not kept). See
-    /// [`CoverageMap::keep_entropy_journal`].
-    journal: Option<Vec<(usize, f32)>>,
 }
 
 /// The persistent part of a map's entropy history, to save a map with it and
@@ -45,7 +38,7 @@ pub(super) struct History {
 ///
 /// # Example
 /// ```
-/// use covmap_core::{CoverageMap, Grid, LaserModel, Pose};
+/// use covmap_core::{CoverageMap, Grid, LaserModel, Pose, ScanMap};
 /// let grid = Grid::new([0.0, 0.0], 0.05, 4, 40).unwrap();
 /// let mut map = CoverageMap::new(grid);
 /// map.track_history(true);
@@ -82,10 +75,7 @@ impl CoverageMap {
             Box::new(History {
                 entropies: vec![[0.0; STAGNATION_MEASUREMENTS + 1]; self.grid.len()],
                 count: vec![0; self.grid.len()],
-                stamp: vec![0; self.grid.len()],
-                scan: 0,
                 touched: Vec::new(),
-                journal: None,
             })
         });
     }
@@ -103,10 +93,7 @@ impl CoverageMap {
                     "the entropy history",
                 )?,
                 count: memory::try_filled(0, cells, "the measurement counts")?,
-                stamp: memory::try_filled(0, cells, "the history's scan stamps")?,
-                scan: 0,
                 touched: Vec::new(),
-                journal: None,
             })),
         };
         Ok(())
@@ -185,14 +172,10 @@ impl CoverageMap {
             .chunks_exact(LEN)
             .map(|ring| std::array::from_fn(|k| ring[k]))
             .collect();
-        // No scan of this map has stamped a cell yet: the per-scan bookkeeping starts afresh.
         self.history = Some(Box::new(History {
             entropies,
             count: state.count,
-            stamp: vec![0; cells],
-            scan: 0,
             touched: Vec::new(),
-            journal: None,
         }));
         Ok(())
     }
@@ -227,41 +210,6 @@ impl CoverageMap {
         }
     }
 
-    /// Keep (or stop keeping) a journal of the history's measurements: each
-    /// measured cell and the entropy of its histogram then
-    /// ([`CoverageMap::entropy_journal`]), until
-    /// [`CoverageMap::clear_entropy_journal`]. Where every change of the map
-    /// is a measurement (scans and contacts, with the history kept), the
-    /// journal holds every cell changed since it was cleared, and its last
-    /// entry for a cell the cell's entropy now: a loop that keeps read-outs
-    /// of the map up to date (its entropy, a copy to plan on) reads the
-    /// changed cells from it, instead of comparing every histogram with a
-    /// copy and computing the entropy of each changed one again. No effect
-    /// while the history is off; turning the history on again starts
-    /// without a journal.
-    pub(crate) fn keep_entropy_journal(&mut self, on: bool) {
-        if let Some(history) = self.history.as_deref_mut() {
-            history.journal = on.then(Vec::new);
-        }
-    }
-
-    /// Every measurement since the journal was last cleared, in the order
-    /// they were made: the cell's row-major index and its entropy then
-    /// (nats). Empty while no journal is kept.
-    pub(crate) fn entropy_journal(&self) -> &[(usize, f32)] {
-        self.history
-            .as_deref()
-            .and_then(|h| h.journal.as_deref())
-            .unwrap_or(&[])
-    }
-
-    /// Empty the journal (its memory kept for the next measurements).
-    pub(crate) fn clear_entropy_journal(&mut self) {
-        if let Some(journal) = self.history.as_deref_mut().and_then(|h| h.journal.as_mut()) {
-            journal.clear();
-        }
-    }
-
     /// [`CoverageMap::stagnated`] by row-major index (below `grid.len()`).
     pub(crate) fn stagnated_at(&self, index: usize) -> bool {
         let Some(history) = &self.history else {
@@ -289,8 +237,8 @@ impl CoverageMap {
         }
     }
 
-    /// Count the scan just integrated (its cells marked through the
-    /// [`Touches`] of [`History::begin_scan`]) as one measurement of every
+    /// Count the scan just integrated (its cells put on the list of
+    /// [`History::begin_scan`]) as one measurement of every
     /// cell it updated, and keep their entropies, if the history is kept.
     pub(super) fn record_history(&mut self) {
         let Self {
@@ -310,37 +258,13 @@ impl CoverageMap {
     }
 }
 
-/// The cells a scan touches, marked as its update visits them: each cell
-/// once, in the order the update first reaches it (one traversal of the
-/// beams' footprints for the update and the history).
-pub(super) struct Touches<'h> {
-    stamp: &'h mut [u32],
-    scan: u32,
-    touched: &'h mut Vec<usize>,
-}
-
-impl Touches<'_> {
-    /// Mark the cell at row-major `index` as touched by the scan.
-    #[inline(always)]
-    pub fn mark(&mut self, index: usize) {
-        if self.stamp[index] != self.scan {
-            self.stamp[index] = self.scan;
-            self.touched.push(index);
-        }
-    }
-}
-
 impl History {
-    /// Start a scan: its cells are marked through the touches returned, and
-    /// measured by [`CoverageMap::record_history`].
-    pub(super) fn begin_scan(&mut self) -> Touches<'_> {
-        self.scan = self.scan.wrapping_add(1).max(1);
+    /// Start a scan: the list its cells are put on (each once, as the
+    /// update first reaches it), to be measured by
+    /// [`CoverageMap::record_history`].
+    pub(super) fn begin_scan(&mut self) -> &mut Vec<usize> {
         self.touched.clear();
-        Touches {
-            stamp: &mut self.stamp,
-            scan: self.scan,
-            touched: &mut self.touched,
-        }
+        &mut self.touched
     }
 
     /// Count one measurement of cell `i`, whose histogram is now `h`.
@@ -349,9 +273,6 @@ impl History {
         let entropy = histogram::entropy(h);
         self.entropies[i][measured % (STAGNATION_MEASUREMENTS + 1)] = entropy;
         self.count[i] = self.count[i].saturating_add(1);
-        if let Some(journal) = &mut self.journal {
-            journal.push((i, entropy));
-        }
     }
 }
 
@@ -360,6 +281,7 @@ mod tests {
     use super::*;
     use crate::grid::Grid;
     use crate::pose::Pose;
+    use crate::scan_map::ScanMap;
     use crate::sensor::{LaserModel, SonarModel};
 
     #[test]
@@ -417,43 +339,55 @@ mod tests {
         }
     }
 
-    /// The journal's last entry for a cell is its entropy now, after scans
-    /// and contacts, and every changed cell has one; clearing empties it; no
-    /// journal, no entries.
+    /// The change feed names exactly the cells scans and contacts
+    /// measured (the history's counts grow there and nowhere else), each
+    /// once, whether or not the history is kept; a cursor of another map
+    /// reads every cell.
     #[test]
-    fn the_journal_holds_each_changed_cells_entropy_now() {
+    fn the_change_feed_names_each_changed_cell() {
+        use crate::coverage_map::Changes;
         let g = Grid::new([0.0, 0.0], 0.05, 4, 40).unwrap();
-        let mut map = CoverageMap::new(g);
-        map.track_history(true);
-        map.keep_entropy_journal(true);
-        let mut kept = map.entropy();
+        let mut tracked = CoverageMap::new(g);
+        tracked.track_history(true);
+        let mut untracked = CoverageMap::new(g);
         for round in 0..3 {
-            let before = map.histograms().to_vec();
-            settling_scans(&mut map, 4 * round..4 * round + 4);
-            map.integrate_contact(Cell {
+            let cursors = (tracked.change_cursor(), untracked.change_cursor());
+            let (counts, before) = (tracked.measurement_counts(), tracked.histograms().to_vec());
+            let contact = Cell {
                 row: 2,
                 col: 10 + round,
-            })
-            .unwrap();
-            let journal = map.entropy_journal();
-            assert!(!journal.is_empty());
-            for &(i, e) in journal {
-                kept[i] = e;
+            };
+            for map in [&mut tracked, &mut untracked] {
+                settling_scans(map, 4 * round..4 * round + 4);
+                map.integrate_contact(contact).unwrap();
             }
-            let now = map.entropy();
-            assert!((0..now.len()).all(|i| kept[i].to_bits() == now[i].to_bits()));
+            let Changes::Cells(named) = tracked.changes_since(&cursors.0) else {
+                panic!("the map's own cursor");
+            };
+            assert_eq!(
+                untracked.changes_since(&cursors.1),
+                Changes::Cells(named.clone())
+            );
+            let measured: Vec<usize> = (0..g.len())
+                .filter(|&i| tracked.measurement_counts()[i] > counts[i])
+                .collect();
+            assert_eq!(named, measured);
             let changed = (0..g.len()).filter(|&i| {
-                map.histograms()[16 * i..16 * (i + 1)] != before[16 * i..16 * (i + 1)]
+                tracked.histograms()[16 * i..16 * (i + 1)] != before[16 * i..16 * (i + 1)]
             });
             for i in changed {
-                assert!(journal.iter().any(|&(j, _)| j == i), "cell {i}");
+                assert!(named.contains(&i), "cell {i}");
             }
-            map.clear_entropy_journal();
-            assert!(map.entropy_journal().is_empty());
+            assert!(named.len() < g.len());
+            assert_eq!(
+                tracked.changes_since(&tracked.change_cursor()),
+                Changes::Cells(vec![])
+            );
         }
-        map.keep_entropy_journal(false);
-        settling_scans(&mut map, 0..2);
-        assert!(map.entropy_journal().is_empty());
+        assert_eq!(
+            tracked.clone().changes_since(&tracked.change_cursor()),
+            Changes::All
+        );
     }
 
     #[test]

@@ -167,6 +167,7 @@ impl MapReading {
 mod tests {
     use super::*;
     use crate::coverage_map::CoverageMap;
+    use crate::scan_map::ScanMap;
     use crate::sensor::{LaserModel, SonarModel};
 
     const BINS: usize = 16;

@@ -1,5 +1,6 @@
 //! The coverage map: one histogram over coverage values per cell.
 
+mod changes;
 mod contact;
 mod history;
 mod map_reading;
@@ -7,6 +8,7 @@ mod occlusion;
 mod storage;
 mod update;
 
+pub use changes::{ChangeCursor, Changes};
 pub use contact::CONTACT_COVERAGE;
 pub use history::{HistoryState, STAGNATION_MEASUREMENTS, STAGNATION_NATS};
 pub use storage::CoverageMap;

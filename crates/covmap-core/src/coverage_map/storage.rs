@@ -3,6 +3,7 @@
 
 use std::borrow::Cow;
 
+use super::changes::ChangeStamps;
 use super::history::History;
 use crate::aligned::Aligned;
 use crate::error::{CovmapError, Result};
@@ -22,7 +23,7 @@ use crate::sensor::{KernelTable, RangeModel};
 ///
 /// # Example
 /// ```
-/// use covmap_core::{CoverageMap, Grid, LaserModel, Pose};
+/// use covmap_core::{CoverageMap, Grid, LaserModel, Pose, ScanMap};
 /// let grid = Grid::new([0.0, 0.0], 0.05, 100, 100).unwrap();
 /// let mut map = CoverageMap::new(grid);
 /// let laser = LaserModel::default();
@@ -46,6 +47,8 @@ pub struct CoverageMap {
     pub(super) table: Option<Box<KernelTable>>,
     /// Per-cell entropy history, when tracked.
     pub(super) history: Option<Box<History>>,
+    /// Which cells changed when: the map's change feed.
+    pub(super) changes: ChangeStamps,
 }
 
 impl CoverageMap {
@@ -58,7 +61,8 @@ impl CoverageMap {
     /// [`CovmapError::OutOfMemory`](crate::CovmapError::OutOfMemory) naming
     /// the copy.
     pub fn try_clone(&self) -> Result<Self> {
-        let floats = self.data.len() * if self.history.is_some() { 2 } else { 1 };
+        // The history takes less than the histograms, the stamps a bin's worth a cell.
+        let floats = self.data.len() * if self.history.is_some() { 2 } else { 1 } + self.grid.len();
         drop(crate::memory::try_with_capacity::<f32>(
             floats,
             "a copy of the coverage map",
@@ -103,6 +107,7 @@ impl CoverageMap {
             data,
             table: None,
             history: None,
+            changes: ChangeStamps::new(grid.len())?,
         })
     }
 
@@ -142,6 +147,7 @@ impl CoverageMap {
             data: Aligned::from_slice(&data),
             table: None,
             history: None,
+            changes: ChangeStamps::new(grid.len())?,
         })
     }
 
@@ -175,6 +181,15 @@ impl CoverageMap {
         Ok(&self.data[i * self.bins..(i + 1) * self.bins])
     }
 
+    /// The entropy of the cell at row-major `index`, nats, as
+    /// [`CoverageMap::entropy`] computes it.
+    ///
+    /// # Panics
+    /// If `index` is not a cell of the grid.
+    pub(crate) fn entropy_at(&self, index: usize) -> f32 {
+        histogram::entropy(&self.data[index * self.bins..(index + 1) * self.bins])
+    }
+
     /// The ML coverage of the cell at row-major `index`, as
     /// [`CoverageMap::ml`] computes it.
     ///
@@ -182,16 +197,6 @@ impl CoverageMap {
     /// If `index` is not a cell of the grid.
     pub(crate) fn ml_at(&self, index: usize) -> f32 {
         ml_value(self.bins)(&self.data[index * self.bins..(index + 1) * self.bins])
-    }
-
-    /// Keep `map`'s kernel table (if it has one) as this map's, so that a
-    /// copy planned on (a [`CoverageMap::with_contacts`]) finds the kernels
-    /// of the model the map is integrated with instead of computing them at
-    /// every plan: a table is a function of the range model, the
-    /// resolution and the bins alone, and is checked against them before
-    /// use.
-    pub(crate) fn share_kernel_table(&mut self, map: &CoverageMap) {
-        self.table.clone_from(&map.table);
     }
 
     /// The maximum-likelihood map: each cell's most probable coverage value.

@@ -4,85 +4,48 @@
 use std::borrow::Cow;
 
 use super::CoverageMap;
-use super::history::{History, Touches};
+use super::changes::Stamper;
+use super::history::History;
 use super::map_reading::MapReading;
 use super::storage::cached_or_new;
 use crate::error::Result;
 use crate::footprint::{CellVisitor, visit};
 use crate::grid::Grid;
 use crate::histogram::{self, with_bins};
-use crate::pose::{Pose, validate_scan};
+use crate::scan_map::{ScanBeams, ScanMap};
 use crate::sensor::{KernelTable, ReadingLookup, SensorModel};
 
-impl CoverageMap {
-    /// Integrate one scan taken from `pose`: reading `ranges[i]` (metres) along
-    /// `pose.theta_rad + bearings[i]`. Returns the number of cell updates.
-    ///
-    /// Everything is validated before anything changes: a non-finite pose, a
-    /// pose outside the map, a NaN, infinite or negative range, a non-finite
-    /// bearing, mismatched lengths or an invalid model is an error and leaves
-    /// the map exactly as it was. Beams leaving the map update the part inside.
-    pub fn integrate<M: SensorModel + ?Sized>(
-        &mut self,
-        pose: &Pose,
-        ranges: &[f64],
-        bearings: &[f64],
-        model: &M,
-    ) -> Result<usize> {
-        self.integrate_reaching(pose, ranges, bearings, model, None)
+impl ScanMap for CoverageMap {
+    fn grid(&self) -> &Grid {
+        &self.grid
     }
 
-    /// [`CoverageMap::integrate`], with no-echo reading `i` clearing its
-    /// footprint only up to `no_echo_reach_m[i]` metres (at most the maximum
-    /// range; echo readings ignore it): a no-echo reading that the caller
-    /// takes to have missed an obstacle specularly says nothing of what lies
-    /// behind it. (The exploration loop stops each before the nearest
-    /// obstacle its map holds in the reading's footprint.)
-    ///
-    /// # Errors
-    /// As [`CoverageMap::integrate`];
-    /// [`CovmapError::LengthMismatch`](crate::CovmapError::LengthMismatch)
-    /// unless there is one reach a reading,
-    /// [`CovmapError::InvalidParameter`](crate::CovmapError::InvalidParameter)
-    /// for a reach that is NaN or negative. The map is unchanged then.
-    pub fn integrate_clipped<M: SensorModel + ?Sized>(
+    /// Multiply each beam's kernels into the cells of its footprint.
+    fn integrate_checked<M: SensorModel + ?Sized>(
         &mut self,
-        pose: &Pose,
-        ranges: &[f64],
-        bearings: &[f64],
+        scan: ScanBeams<'_>,
         model: &M,
-        no_echo_reach_m: &[f64],
     ) -> Result<usize> {
-        check_reaches(ranges, no_echo_reach_m)?;
-        self.integrate_reaching(pose, ranges, bearings, model, Some(no_echo_reach_m))
-    }
-
-    fn integrate_reaching<M: SensorModel + ?Sized>(
-        &mut self,
-        pose: &Pose,
-        ranges: &[f64],
-        bearings: &[f64],
-        model: &M,
-        no_echo_reach_m: Option<&[f64]>,
-    ) -> Result<usize> {
-        validate_scan(&self.grid, pose, ranges, bearings, model)?;
         let table = cached_or_new(
             self.table.as_deref(),
             model.range_model(),
             &self.grid,
             self.bins,
         )?;
-        // The history's cells are marked as the update visits them.
-        let mut touches = self.history.as_deref_mut().map(History::begin_scan);
+        // The changed cells are marked as the update visits them, for the
+        // change feed and the history.
+        let mut touches = Touches {
+            stamper: self.changes.begin(),
+            touched: self.history.as_deref_mut().map(History::begin_scan),
+        };
         // Pick the update once per scan, so the per-cell loop is straight code.
         let updates = with_bins!(self.bins, |N| apply::<N, M>(
             &self.grid,
             &mut self.data,
             &table,
-            pose,
-            (ranges, bearings, no_echo_reach_m),
+            scan,
             model,
-            touches.as_mut(),
+            &mut touches,
         ));
         if let Cow::Owned(table) = table {
             // The table of the model the next scans most likely come from.
@@ -128,18 +91,42 @@ pub(super) fn beam_reach(
     }
 }
 
+/// The cells a scan changes, marked as its update visits them: stamped for
+/// the change feed and, the first time, put on the history's list.
+struct Touches<'a> {
+    stamper: Stamper<'a>,
+    touched: Option<&'a mut Vec<usize>>,
+}
+
+impl Touches<'_> {
+    /// Mark the cell at row-major `index` as changed by the scan.
+    #[inline(always)]
+    fn mark(&mut self, index: usize) {
+        if self.stamper.mark(index)
+            && let Some(touched) = self.touched.as_deref_mut()
+        {
+            touched.push(index);
+        }
+    }
+}
+
 /// Multiply the kernels of a validated scan into `data`, the histograms of
 /// `grid`'s cells, `N` bins each (`N = 0`: any number), as many as `table`
-/// serves; every cell updated marked in `touches`, if given.
+/// serves; every cell updated marked in `touches`.
 fn apply<const N: usize, M: SensorModel + ?Sized>(
     grid: &Grid,
     data: &mut [f32],
     table: &KernelTable,
-    pose: &Pose,
-    (ranges, bearings, no_echo_reach_m): (&[f64], &[f64], Option<&[f64]>),
+    scan: ScanBeams<'_>,
     model: &M,
-    mut touches: Option<&mut Touches<'_>>,
+    touches: &mut Touches<'_>,
 ) -> usize {
+    let ScanBeams {
+        pose,
+        ranges,
+        bearings,
+        no_echo_reach_m,
+    } = scan;
     let bins = table.bins();
     debug_assert_eq!(data.len(), grid.len() * bins);
     let range = model.range_model();
@@ -161,7 +148,7 @@ fn apply<const N: usize, M: SensorModel + ?Sized>(
             terms: terms.as_mut(),
             lookup,
             updates: 0,
-            touches: touches.as_deref_mut(),
+            touches: &mut *touches,
         };
         visit(
             grid,
@@ -193,7 +180,7 @@ struct BeamUpdate<'a, 't, const N: usize> {
     terms: Option<&'a mut MapReading>,
     lookup: ReadingLookup,
     updates: usize,
-    touches: Option<&'a mut Touches<'t>>,
+    touches: &'a mut Touches<'t>,
 }
 
 impl<const N: usize> CellVisitor for BeamUpdate<'_, '_, N> {
@@ -212,9 +199,7 @@ impl<const N: usize> CellVisitor for BeamUpdate<'_, '_, N> {
                 }
             }
         }
-        if let Some(touches) = self.touches.as_deref_mut() {
-            touches.mark(index);
-        }
+        self.touches.mark(index);
         self.updates += 1;
     }
 }
@@ -223,6 +208,7 @@ impl<const N: usize> CellVisitor for BeamUpdate<'_, '_, N> {
 mod tests {
     use super::*;
     use crate::error::CovmapError;
+    use crate::pose::Pose;
     use crate::sensor::{LaserModel, SonarModel};
 
     fn grid() -> Grid {

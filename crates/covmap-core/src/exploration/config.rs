@@ -3,6 +3,7 @@
 use serde::{Deserialize, Serialize};
 
 use crate::error::{Result, check_parameter};
+use crate::planner::PlannerConfig;
 
 /// Settings of an exploration run that do not depend on the strategy.
 ///
@@ -46,13 +47,18 @@ pub struct ExplorationConfig {
 pub const MIN_SCANS_PER_CELL: f64 = 10.0;
 
 impl Default for ExplorationConfig {
+    /// The settings it shares with the planner (`epsilon`, `robot_radius_m`,
+    /// `candidate_stride_m`, `min_travel_m`) are the planner's defaults
+    /// ([`PlannerConfig::default`]), so that a planner with its defaults
+    /// makes the loop's decision-theoretic choice.
     fn default() -> Self {
+        let shared = PlannerConfig::default();
         Self {
-            epsilon: 0.65,
-            robot_radius_m: 0.25,
-            candidate_stride_m: 0.5,
+            epsilon: shared.epsilon,
+            robot_radius_m: shared.robot_radius_m,
+            candidate_stride_m: shared.candidate_stride_m,
             scan_spacing_m: 0.25,
-            min_travel_m: 0.25,
+            min_travel_m: shared.min_travel_m,
             max_path_m: 10_000.0,
             max_steps: 20_000,
             occlude_no_echo: true,

@@ -48,28 +48,55 @@ impl Dilation {
     /// If `mask` does not hold one flag a cell.
     pub fn take_in(&mut self, mask: &[bool]) {
         assert_eq!(mask.len(), self.mask.len(), "one flag a cell");
-        let (rows, cols) = (self.grid.rows() as i64, self.grid.cols() as i64);
         // Compared a block of cells at a time: most blocks did not change.
         const BLOCK: usize = 64;
-        let blocks = mask.chunks(BLOCK).zip(self.mask.chunks_mut(BLOCK));
-        for (k, (now, was)) in blocks.enumerate().filter(|(_, (now, was))| now != was) {
-            for (j, (&now, was)) in now.iter().zip(was.iter_mut()).enumerate() {
-                if now == *was {
-                    continue;
-                }
-                *was = now;
-                let i = (k * BLOCK + j) as i64;
-                let (row, col) = (i / cols, i % cols);
-                for &(dr, dc) in &self.offsets {
-                    let (r, c) = (row + dr, col + dc);
-                    if r >= 0 && c >= 0 && r < rows && c < cols {
-                        let near = &mut self.near[(r * cols + c) as usize];
-                        // A cell counts each mask cell once: the numbers
-                        // stay within the offsets' count, and a cell leaves
-                        // only a mask it joined.
-                        *near = if now { *near + 1 } else { *near - 1 };
-                    }
-                }
+        let changed: Vec<usize> = mask
+            .chunks(BLOCK)
+            .zip(self.mask.chunks(BLOCK))
+            .enumerate()
+            .filter(|(_, (now, was))| now != was)
+            .flat_map(|(k, (now, was))| {
+                (0..now.len())
+                    .filter(move |&j| now[j] != was[j])
+                    .map(move |j| k * BLOCK + j)
+            })
+            .collect();
+        for i in changed {
+            self.set(i, mask[i]);
+        }
+    }
+
+    /// Take in the mask whose flag at each of `cells` (row-major indices,
+    /// each a cell of the grid) is `flag(cell)`, the other cells' flags as
+    /// they were: where only those cells can have changed (the cells a
+    /// map's change feed names), the same as [`Dilation::take_in`] of the
+    /// whole mask, without reading it.
+    ///
+    /// # Panics
+    /// If a cell is not on the grid.
+    pub fn take_in_cells(&mut self, cells: &[usize], flag: impl Fn(usize) -> bool) {
+        for &i in cells {
+            self.set(i, flag(i));
+        }
+    }
+
+    /// Set the mask's flag of cell `i` to `now`, moving the numbers of its
+    /// neighbours if it changed.
+    fn set(&mut self, i: usize, now: bool) {
+        if self.mask[i] == now {
+            return;
+        }
+        self.mask[i] = now;
+        let (rows, cols) = (self.grid.rows() as i64, self.grid.cols() as i64);
+        let (row, col) = (i as i64 / cols, i as i64 % cols);
+        for &(dr, dc) in &self.offsets {
+            let (r, c) = (row + dr, col + dc);
+            if r >= 0 && c >= 0 && r < rows && c < cols {
+                let near = &mut self.near[(r * cols + c) as usize];
+                // A cell counts each mask cell once: the numbers stay
+                // within the offsets' count, and a cell leaves only a mask
+                // it joined.
+                *near = if now { *near + 1 } else { *near - 1 };
             }
         }
     }
@@ -101,6 +128,7 @@ mod tests {
             let mut grown = Dilation::new(&grid, &dilation_offsets(&grid, radius_m));
             let mut cleared = Dilation::new(&grid, &clearance_offsets(&grid, radius_m));
             let (cr, cc) = (grid.rows() as f64 * next(), 41.0 * next());
+            let mut before = vec![false; grid.len()];
             for step in 0..25 {
                 let (blob, density) = (step as f64 * 0.8, 0.02 + 0.1 * next());
                 let mask: Vec<bool> = (0..grid.len())
@@ -111,7 +139,13 @@ mod tests {
                     })
                     .collect();
                 grown.take_in(&mask);
-                cleared.take_in(&mask);
+                // Taken in cell by cell: the cells that changed, and some
+                // that did not, as a change feed names them.
+                let named: Vec<usize> = (0..grid.len())
+                    .filter(|&i| mask[i] != before[i] || i % 7 == step % 7)
+                    .collect();
+                cleared.take_in_cells(&named, |i| mask[i]);
+                before = mask.clone();
                 let dilated = dilate(&grid, &mask, radius_m);
                 let free = clear_of(&grid, &mask, radius_m);
                 for i in 0..grid.len() {

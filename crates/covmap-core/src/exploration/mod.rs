@@ -4,11 +4,15 @@
 //! Table I).
 //!
 //! The loop ([`Exploration`], in `exploration.rs`: one file to read from
-//! scan to decision to motion) knows the robot through two small traits, a
+//! scan to decision to motion; the drive and its contacts in `drive.rs`,
+//! the read-outs it keeps from the map's change feed in `bookkeeping.rs`)
+//! knows the robot through two small traits, a
 //! [`ScanSource`] and a [`Motion`]; `covmap_sim` implements them with a
 //! simulated sensor and a disc robot in a true world, and a log replay or a
 //! real robot can be others. The strategies ([`Strategy`], one file each in
-//! `strategy/`) choose on the maps only.
+//! `strategy/`, each an [`ExplorationStrategy`]; a caller's own strategy
+//! drives the loop through [`Exploration::with_strategy`]) choose on the
+//! maps only.
 //!
 //! # The loop's model (covmap's choices where the paper is silent)
 //! - **A step**: the strategy picks a goal and a path (cell centres) on the
@@ -32,14 +36,15 @@
 //!   on long stretches, and the robot touched it 50 times in one run).
 //! - **Contacts**: where the world stops the robot short of its target (the
 //!   map showed the way free), the robot stops at its last free point,
-//!   scans, integrates the contact into the coverage map (the cell it ran
-//!   into and its neighbours along the surface: at least half covered,
-//!   [`CoverageMap::integrate_contact`](crate::CoverageMap::integrate_contact))
-//!   and the occupancy grid (occupied), backs off a cell and replans. The
-//!   robot remembers its contacts: the strategies plan on the coverage map
-//!   with every contact cell certainly covered
-//!   ([`CoverageMap::with_contacts`](crate::CoverageMap::with_contacts)), so
-//!   a wall the sensor misses cannot lure the robot back. A goal it could
+//!   scans, takes the contact into the coverage map (the cell it ran into
+//!   and its neighbours along the surface) and the occupancy grid
+//!   (occupied), backs off a cell and replans. The robot remembers its
+//!   contacts: every contact cell is held certainly covered in the
+//!   coverage map from then on, whatever the readings say
+//!   ([`CoverageMap::pin_covered`](crate::CoverageMap::pin_covered), after
+//!   every scan), so a wall the sensor misses cannot lure the robot back,
+//!   and the map the strategy plans on is the map its termination rule and
+//!   the run's measures read. A goal it could
 //!   make no headway towards (less than a centimetre) is never chosen again.
 //! - **Planning radius**: paths are planned for a disc a cell (at least 5 cm) wider than
 //!   the robot, since a cell less than half covered reads free and a sonar
@@ -117,8 +122,10 @@
 //! assert!(run.scans() > 1 && run.path_length_m() > 0.0);
 //! ```
 
+mod bookkeeping;
 mod config;
 mod dilation;
+mod drive;
 mod evaluation;
 #[allow(clippy::module_inception)]
 mod exploration;
@@ -133,8 +140,10 @@ mod test_maps;
 pub use config::ExplorationConfig;
 pub use evaluation::{high_entropy_fraction, mean_absolute_error};
 pub use exploration::{Exploration, ExplorationSetup};
-pub use region::{FACE_MARGIN_M, dilate};
+pub use region::dilate;
 pub use result::{ExplorationResult, StepReport, Termination, Timing, Trace, Trajectory};
 pub use sensor::AnySensorModel;
 pub use source::{Motion, ScanSource, Travel};
-pub use strategy::{DEFAULT_DISCOUNT_BEYOND_M, Strategy};
+pub use strategy::{
+    DEFAULT_DISCOUNT_BEYOND_M, DecisionInputs, ExplorationStrategy, GoalOutcome, NextGoal, Strategy,
+};

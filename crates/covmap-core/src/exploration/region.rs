@@ -4,22 +4,15 @@
 //!
 //! # Planning radius
 //! Every strategy plans for a disc one cell wider than the robot, or
-//! [`FACE_MARGIN_M`] (5 cm) wider where cells are finer than that
-//! (`robot_radius_m + max(resolution, 0.05)`): a cell less than half
-//! covered reads free on the maps, so an obstacle may reach up to a cell
-//! past the cells that block. A sonar map also holds the first few
-//! centimetres of a wall's face as free or unknown, so a wider margin keeps
-//! the robot off walls more often; but sonar arcs narrow every doorway on
-//! the map too, and a robot planning 10 cm wider than itself (0.7 m for a
-//! 0.25 m robot) found the 0.9 m doorways of the built-in corridor closed:
-//! frontier exploration ended in the room it started in (seed 1: 10.9 m,
-//! 82 % of the evaluation cells uncertain) and counting to 50 in two of
-//! three seeds. With one cell, every strategy leaves that room on seeds 0
-//! to 2, and the coverage strategy touches a wall a little more often (33,
-//! 21 and 24 contacts against 22, 20 and 18): a contact stops the robot at
-//! its last free point and is integrated as evidence, so it costs a step,
-//! never a collision (`cargo run --release -p covmap-sim --example table1
-//! -- --seeds 3`).
+//! [`FACE_MARGIN_M`] (5 cm) wider where cells are finer than that: the
+//! planner's planning radius ([`Planner::planning_radius_m`], where the
+//! reasons are). With one cell, every strategy leaves the start room of
+//! the built-in corridor on seeds 0 to 2, and the coverage strategy touches
+//! a wall a little more often than with two (33, 21 and 24 contacts
+//! against 22, 20 and 18): a contact stops the robot at its last free
+//! point and is integrated as evidence, so it costs a step, never a
+//! collision (`cargo run --release -p covmap-sim --example table1 --
+//! --seeds 3`).
 //!
 //! # The way back
 //! The strategies that navigate the occupancy grid (counting and frontier)
@@ -50,26 +43,22 @@ use crate::coverage_map::CoverageMap;
 use crate::error::Result;
 use crate::grid::{Cell, Grid};
 use crate::occupancy::OccupancyGrid;
-use crate::planner::{Planner, PlannerConfig, Reachability, shortest_paths};
+use crate::planner::{FACE_MARGIN_M, Planner, PlannerConfig, Reachability, shortest_paths};
 use crate::pose::{Pose, check_pose};
 use crate::stamp::Stamp;
 
-/// The least margin beyond the robot's radius that the strategies plan
-/// with, metres (see the module documentation).
-pub const FACE_MARGIN_M: f64 = 0.05;
-
-/// The radius the strategies plan with: the robot's and one cell, or
-/// [`FACE_MARGIN_M`] if that is more.
+/// The radius the strategies plan with on `grid` for a robot of
+/// `robot_radius_m`: [`Planner::planning_radius_m`].
 pub(super) fn planning_radius_m(robot_radius_m: f64, grid: &Grid) -> f64 {
     robot_radius_m + grid.resolution_m().max(FACE_MARGIN_M)
 }
 
 /// The planner the strategies navigate the coverage map with (its path
 /// costs, its free space), for a robot of `robot_radius_m`.
-pub(super) fn navigator(robot_radius_m: f64, grid: &Grid, alpha: f64) -> Result<Planner> {
+pub(super) fn navigator(robot_radius_m: f64, alpha: f64) -> Result<Planner> {
     Planner::new(PlannerConfig {
         alpha,
-        robot_radius_m: planning_radius_m(robot_radius_m, grid),
+        robot_radius_m,
         ..PlannerConfig::default()
     })
 }
@@ -95,7 +84,7 @@ pub(super) fn region_of(
     band_m: f64,
 ) -> Vec<bool> {
     let reachable: Vec<bool> = reach.costs().iter().map(|c| c.is_finite()).collect();
-    dilate(grid, &reachable, navigator.config().robot_radius_m + band_m)
+    dilate(grid, &reachable, navigator.planning_radius_m(grid) + band_m)
 }
 
 /// `mask` (one flag a cell of `grid`, row-major) grown by `radius_m`: every
@@ -299,7 +288,7 @@ mod tests {
     fn an_open_doorway_is_in_the_region_the_outside_is_not() {
         let (map, _, pose) = scanned_room(true, 12);
         let grid = *map.grid();
-        let navigator = navigator(0.25, &grid, 0.5).unwrap();
+        let navigator = navigator(0.25, 0.5).unwrap();
         let region = reachable_region(&navigator, &map, &pose, 0.2).unwrap();
         let at = |x: f64, y: f64| region[grid.index(grid.world_to_cell(x, y).unwrap()).unwrap()];
         let [x0, y0, x1, y1] = ROOM;

@@ -4,6 +4,7 @@ use crate::coverage_map::CoverageMap;
 use crate::grid::Grid;
 use crate::occupancy::OccupancyGrid;
 use crate::pose::Pose;
+use crate::scan_map::{ScanBeams, ScanMap};
 use crate::sensor::LaserModel;
 
 /// The room's inside: `[1, 5] x [1, 4]` metres, on a 6.5 m x 5.5 m grid.
@@ -43,11 +44,14 @@ pub(super) fn scanned_room(door: bool, scans: usize) -> (CoverageMap, OccupancyG
             }
             bearings.push(angle);
         }
-        map.integrate_clipped(&pose, &ranges, &bearings, &laser, &reaches)
-            .unwrap();
-        occupancy
-            .integrate_clipped(&pose, &ranges, &bearings, &laser, &reaches)
-            .unwrap();
+        let scan = ScanBeams {
+            pose: &pose,
+            ranges: &ranges,
+            bearings: &bearings,
+            no_echo_reach_m: Some(&reaches),
+        };
+        map.integrate_scan(scan, &laser).unwrap();
+        occupancy.integrate_scan(scan, &laser).unwrap();
     }
     (map, occupancy, Pose::new(2.5, 2.5, 0.0))
 }

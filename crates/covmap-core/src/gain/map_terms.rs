@@ -145,6 +145,7 @@ mod tests {
     use super::*;
     use crate::grid::Grid;
     use crate::pose::Pose;
+    use crate::scan_map::ScanMap;
     use crate::sensor::{LaserModel, SonarModel};
     use crate::test_rng::uniform;
 

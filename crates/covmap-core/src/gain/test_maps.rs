@@ -3,6 +3,7 @@
 use crate::coverage_map::CoverageMap;
 use crate::grid::Grid;
 use crate::pose::Pose;
+use crate::scan_map::ScanMap;
 use crate::sensor::SensorModel;
 
 /// The bearings of a ring of eight sonars, 0.785 rad apart.

@@ -13,6 +13,7 @@ use crate::coverage_map::CoverageMap;
 use crate::error::{CovmapError, Result};
 use crate::grid::Grid;
 use crate::log::Log;
+use crate::scan_map::ScanMap;
 use crate::sensor::SensorModel;
 
 /// The most evaluations a fit may be asked for (a day's work here at 70 ms
@@ -201,7 +202,7 @@ pub fn map_of_log<M: SensorModel + ?Sized>(
 ) -> Result<CoverageMap> {
     let mut map = CoverageMap::with_bins(data.grid, bins)?;
     if occlude_no_echo {
-        map.integrate_log_occluding(data.log, model)?;
+        map.integrate_log_occluding(data.log, model, &mut |_| {})?;
     } else {
         map.integrate_log(data.log, model)?;
     }
@@ -289,7 +290,8 @@ impl<'a, M: Fittable> Search<'a, M> {
                 known
                     .iter()
                     .find(|p| p.name == *n)
-                    .map_or([0.0, 1.0], |p| p.bounds)
+                    .and_then(|p| p.fit_bounds)
+                    .unwrap_or([0.0, 1.0])
             })
             .collect();
         for (name, b) in &options.bounds {

@@ -1,26 +1,19 @@
-//! The parameters a fit may change, by name, with their default bounds.
-
-use std::f64::consts::PI;
+//! The parameters a fit may change, by name: the sensor models' own
+//! declaration ([`crate::sensor::parameters`]), those with fit bounds.
 
 use crate::exploration::AnySensorModel;
-use crate::sensor::{LaserModel, RangeModel, SensorModel, SonarModel};
-
-/// One parameter a fit may change: its name (the model's field) and the
-/// bounds a fit searches within unless told otherwise.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Parameter {
-    /// The field's name, as in the model's serde form and Python keywords.
-    pub name: &'static str,
-    /// The default search bounds, `[low, high]`.
-    pub bounds: [f64; 2],
-}
+pub use crate::sensor::Parameter;
+use crate::sensor::{
+    FITTABLE_RANGE_PARAMETERS, FITTABLE_SONAR_PARAMETERS, LaserModel, SensorModel, SonarModel,
+};
 
 /// A sensor model whose parameters [`super::fit_sensor_model`] can fit.
 ///
 /// The maximum range is not among them: it is a property of the sensor
 /// (which readings mean "no echo"), not of the inverse model.
 pub trait Fittable: SensorModel + Clone + Send + Sync {
-    /// Every parameter a fit may change, in the order of the model's fields.
+    /// Every parameter a fit may change, in the order of the model's
+    /// fields (each with its [`Parameter::fit_bounds`]).
     fn parameters(&self) -> &'static [Parameter];
     /// The value of parameter `name`, if the model has it.
     fn get(&self, name: &str) -> Option<f64>;
@@ -29,123 +22,26 @@ pub trait Fittable: SensorModel + Clone + Send + Sync {
     fn set(&mut self, name: &str, value: f64) -> bool;
 }
 
-/// The range model's fittable parameters and their default bounds: wide
-/// enough to hold every sensible sonar and laser (a standard deviation of
-/// coverage up to 1, a uniform weight up to 4 times the peak of a unit
-/// Gaussian, an end band up to 1 m deep).
-const RANGE: [Parameter; 12] = [
-    Parameter {
-        name: "band_m",
-        bounds: [0.0, 1.0],
-    },
-    Parameter {
-        name: "sigma_min",
-        bounds: [0.01, 0.6],
-    },
-    Parameter {
-        name: "sigma_per_m",
-        bounds: [0.0, 0.2],
-    },
-    Parameter {
-        name: "sigma_end",
-        bounds: [0.05, 1.0],
-    },
-    Parameter {
-        name: "xi_min",
-        bounds: [0.001, 4.0],
-    },
-    Parameter {
-        name: "xi_per_m",
-        bounds: [0.0, 1.0],
-    },
-    Parameter {
-        name: "no_echo_reach",
-        bounds: [0.02, 1.0],
-    },
-    Parameter {
-        name: "no_echo_weight",
-        bounds: [0.0, 1.0],
-    },
-    Parameter {
-        name: "end_weight",
-        bounds: [0.0, 1.0],
-    },
-    Parameter {
-        name: "posterior_floor",
-        bounds: [0.0, 1.0 / 256.0],
-    },
-    Parameter {
-        name: "end_attribution",
-        bounds: [0.0, 1.0],
-    },
-    Parameter {
-        name: "free_yield",
-        bounds: [0.0, 1.0],
-    },
-];
-
-/// The sonar's: the range model's and the cone's opening angle (2 to 60
-/// degrees).
-const SONAR: [Parameter; 13] = [
-    RANGE[0],
-    RANGE[1],
-    RANGE[2],
-    RANGE[3],
-    RANGE[4],
-    RANGE[5],
-    RANGE[6],
-    RANGE[7],
-    RANGE[8],
-    RANGE[9],
-    RANGE[10],
-    RANGE[11],
-    Parameter {
-        name: "opening_angle_rad",
-        bounds: [PI / 90.0, PI / 3.0],
-    },
-];
-
-/// The range model's field called `name`.
-fn range_field<'a>(range: &'a mut RangeModel, name: &str) -> Option<&'a mut f64> {
-    Some(match name {
-        "band_m" => &mut range.band_m,
-        "sigma_min" => &mut range.sigma_min,
-        "sigma_per_m" => &mut range.sigma_per_m,
-        "sigma_end" => &mut range.sigma_end,
-        "xi_min" => &mut range.xi_min,
-        "xi_per_m" => &mut range.xi_per_m,
-        "no_echo_reach" => &mut range.no_echo_reach,
-        "no_echo_weight" => &mut range.no_echo_weight,
-        "end_weight" => &mut range.end_weight,
-        "posterior_floor" => &mut range.posterior_floor,
-        "end_attribution" => &mut range.end_attribution,
-        "free_yield" => &mut range.free_yield,
-        _ => return None,
-    })
-}
-
 impl Fittable for LaserModel {
     fn parameters(&self) -> &'static [Parameter] {
-        &RANGE
+        &FITTABLE_RANGE_PARAMETERS
     }
     fn get(&self, name: &str) -> Option<f64> {
-        range_field(&mut self.range.clone(), name).map(|v| *v)
+        self.range.get(name)
     }
     fn set(&mut self, name: &str, value: f64) -> bool {
-        range_field(&mut self.range, name)
-            .map(|v| *v = value)
-            .is_some()
+        self.range.set(name, value)
     }
 }
 
 impl Fittable for SonarModel {
     fn parameters(&self) -> &'static [Parameter] {
-        &SONAR
+        &FITTABLE_SONAR_PARAMETERS
     }
     fn get(&self, name: &str) -> Option<f64> {
         match name {
             "opening_angle_rad" => Some(self.opening_angle_rad),
-            _ => range_field(&mut self.range.clone(), name).map(|v| *v),
+            _ => self.range.get(name),
         }
     }
     fn set(&mut self, name: &str, value: f64) -> bool {
@@ -154,9 +50,7 @@ impl Fittable for SonarModel {
                 self.opening_angle_rad = value;
                 true
             }
-            _ => range_field(&mut self.range, name)
-                .map(|v| *v = value)
-                .is_some(),
+            _ => self.range.set(name, value),
         }
     }
 }
@@ -191,18 +85,18 @@ mod tests {
         for model in [AnySensorModel::default(), AnySensorModel::laser()] {
             for p in model.parameters() {
                 let v = model.get(p.name).unwrap();
+                let [low, high] = p.fit_bounds.unwrap();
                 assert!(
-                    p.bounds[0] <= v && v <= p.bounds[1],
-                    "{} = {v} outside {:?}",
-                    p.name,
-                    p.bounds
+                    low <= v && v <= high,
+                    "{} = {v} outside {low} to {high}",
+                    p.name
                 );
                 let mut m = model;
                 assert!(m.set(p.name, v * 0.5 + 0.013));
                 assert_eq!(m.get(p.name), Some(v * 0.5 + 0.013));
                 assert_ne!(m, model);
             }
-            assert_eq!(model.get("max_range_m"), None);
+            assert!(model.parameters().iter().all(|p| p.name != "max_range_m"));
             let mut m = model;
             assert!(!m.set("nonsense", 1.0));
             assert_eq!(m, model);

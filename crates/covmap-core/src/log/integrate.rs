@@ -1,15 +1,14 @@
 //! A whole log into a map: every scan checked first, then every scan
-//! integrated through the map's own `integrate_clipped`, so that the three
-//! maps share one update each and a log changes nothing unless all of it is
-//! good.
+//! integrated through the map's own [`ScanMap::integrate_checked`], so that
+//! the three maps share one update each and a log changes nothing unless all
+//! of it is good.
 
-use crate::counting::ScanCounts;
 use crate::coverage_map::CoverageMap;
 use crate::error::Result;
 use crate::grid::Grid;
 use crate::log::Log;
-use crate::occupancy::OccupancyGrid;
 use crate::pose::{Pose, validate_scan};
+use crate::scan_map::{ScanBeams, ScanMap};
 use crate::sensor::SensorModel;
 
 /// One scan of a log as the maps take it: the sensor's world pose, the
@@ -24,6 +23,16 @@ struct PreparedScan {
 }
 
 impl PreparedScan {
+    /// The scan as a map takes it.
+    fn beams(&self) -> ScanBeams<'_> {
+        ScanBeams {
+            pose: &self.pose,
+            ranges: &self.ranges,
+            bearings: &self.bearings,
+            no_echo_reach_m: Some(&self.reaches),
+        }
+    }
+
     fn fill<M: SensorModel + ?Sized>(&mut self, log: &Log, i: usize, model: &M) {
         let model_max_m = model.range_model().max_range_m;
         self.pose = log.sensor_pose(i);
@@ -48,14 +57,14 @@ impl PreparedScan {
 }
 
 /// Check every scan of `log` against `grid` and `model`, then hand each to
-/// `apply` (a map's `integrate_clipped`), reporting the scans done to
-/// `progress`. An error names its scan ([`crate::CovmapError::InScan`]).
-fn integrate_scans<M: SensorModel + ?Sized>(
+/// `apply` (a map's [`ScanMap::integrate_checked`]), reporting the scans
+/// done to `progress`. An error names its scan ([`crate::CovmapError::InScan`]).
+pub(crate) fn integrate_scans<M: SensorModel + ?Sized>(
     grid: &Grid,
     log: &Log,
     model: &M,
     progress: &mut dyn FnMut(usize),
-    mut apply: impl FnMut(&PreparedScan) -> Result<usize>,
+    mut apply: impl FnMut(ScanBeams<'_>) -> Result<usize>,
 ) -> Result<usize> {
     model.validate()?;
     let mut scan = PreparedScan::default();
@@ -69,164 +78,55 @@ fn integrate_scans<M: SensorModel + ?Sized>(
         scan.fill(log, i, model);
         // Checked above: only a model whose kernels cannot be computed fails
         // here, and it fails on the first scan, before any change.
-        updates += apply(&scan).map_err(|e| e.in_scan(i))?;
+        updates += apply(scan.beams()).map_err(|e| e.in_scan(i))?;
         progress(i + 1);
     }
     Ok(updates)
 }
 
 impl CoverageMap {
-    /// Integrate every scan of `log`, in order, with `model`; returns the
-    /// number of cell updates.
-    ///
-    /// Each scan is taken from its sensor pose (the robot's pose composed
-    /// with the log's sensor offset); dropped beams are skipped; a reading
-    /// without echo clears its footprint up to the lesser of the log's and
-    /// the model's maximum range.
-    ///
-    /// # Errors
-    /// Every scan is checked before any changes:
-    /// [`CovmapError::InScan`](crate::CovmapError::InScan) names the first
-    /// scan whose sensor pose lies outside the map or whose bearing added
-    /// to the heading overflows; an invalid model is an error of its own.
-    /// The map is unchanged then.
-    ///
-    /// # Example
-    /// ```
-    /// use covmap_core::{Bearings, CoverageMap, Grid, LaserModel, Log, Pose};
-    /// let log = Log::new(vec![Pose::new(1.0, 1.0, 0.0)], vec![0.0], vec![1.5],
-    ///                    Bearings::Fixed(vec![0.0]), 30.0).unwrap();
-    /// let mut map = CoverageMap::new(Grid::new([0.0, 0.0], 0.1, 20, 40).unwrap());
-    /// assert!(map.integrate_log(&log, &LaserModel::default()).unwrap() > 0);
-    /// let far = Log::new(vec![Pose::new(9.0, 1.0, 0.0)], vec![0.0], vec![1.5],
-    ///                    Bearings::Fixed(vec![0.0]), 30.0).unwrap();
-    /// let before = map.histograms().to_vec();
-    /// assert!(map.integrate_log(&far, &LaserModel::default()).is_err());
-    /// assert_eq!(map.histograms(), &before[..]);
-    /// ```
-    pub fn integrate_log<M: SensorModel + ?Sized>(
-        &mut self,
-        log: &Log,
-        model: &M,
-    ) -> Result<usize> {
-        self.integrate_log_with_progress(log, model, &mut |_| {})
-    }
-
-    /// [`CoverageMap::integrate_log`], calling `progress` with the number of
-    /// scans integrated so far after each scan.
-    ///
-    /// # Errors
-    /// As [`CoverageMap::integrate_log`].
-    pub fn integrate_log_with_progress<M: SensorModel + ?Sized>(
-        &mut self,
-        log: &Log,
-        model: &M,
-        progress: &mut dyn FnMut(usize),
-    ) -> Result<usize> {
-        self.integrate_log_as(log, model, progress, false)
-    }
-
-    /// [`CoverageMap::integrate_log`], each no-echo reading occluded by the
-    /// map as it stands when its scan comes: it clears only up to the
-    /// nearest cell of its footprint the map holds as covered
+    /// [`ScanMap::integrate_log_with_progress`], each no-echo reading
+    /// occluded by the map as it stands when its scan comes: it clears only
+    /// up to the nearest cell of its footprint the map holds as covered
     /// ([`CoverageMap::no_echo_reaches`]), as the exploration loop
     /// integrates its scans. A no-echo reading through a wall that earlier
-    /// echoes found is then taken for a specular miss, which says nothing of
-    /// the wall or of what lies behind it.
+    /// echoes found is then taken for a specular miss, which says nothing
+    /// of the wall or of what lies behind it.
     ///
     /// # Errors
-    /// As [`CoverageMap::integrate_log`].
+    /// As [`ScanMap::integrate_log`].
     pub fn integrate_log_occluding<M: SensorModel + ?Sized>(
         &mut self,
         log: &Log,
         model: &M,
-    ) -> Result<usize> {
-        self.integrate_log_occluding_with_progress(log, model, &mut |_| {})
-    }
-
-    /// [`CoverageMap::integrate_log_occluding`], calling `progress` with the
-    /// number of scans integrated so far after each scan.
-    ///
-    /// # Errors
-    /// As [`CoverageMap::integrate_log`].
-    pub fn integrate_log_occluding_with_progress<M: SensorModel + ?Sized>(
-        &mut self,
-        log: &Log,
-        model: &M,
         progress: &mut dyn FnMut(usize),
-    ) -> Result<usize> {
-        self.integrate_log_as(log, model, progress, true)
-    }
-
-    /// The log's scans integrated in turn, each no-echo reading reaching no
-    /// further than the log's maximum range and, if `occlude`, than the
-    /// nearest cell its footprint holds as covered.
-    fn integrate_log_as<M: SensorModel + ?Sized>(
-        &mut self,
-        log: &Log,
-        model: &M,
-        progress: &mut dyn FnMut(usize),
-        occlude: bool,
     ) -> Result<usize> {
         let grid = *self.grid();
-        integrate_scans(&grid, log, model, progress, |s| {
-            if !occlude {
-                return self.integrate_clipped(&s.pose, &s.ranges, &s.bearings, model, &s.reaches);
-            }
-            let mut reaches = self.no_echo_reaches(&[], &s.pose, &s.ranges, &s.bearings, model);
-            for (r, &log_reach) in reaches.iter_mut().zip(&s.reaches) {
+        integrate_scans(&grid, log, model, progress, |scan| {
+            let (pose, ranges, bearings) = (scan.pose, scan.ranges, scan.bearings);
+            let mut reaches = self.no_echo_reaches(pose, ranges, bearings, model);
+            for (r, &log_reach) in reaches.iter_mut().zip(scan.no_echo_reach_m.unwrap_or(&[])) {
                 *r = r.min(log_reach);
             }
-            self.integrate_clipped(&s.pose, &s.ranges, &s.bearings, model, &reaches)
+            let no_echo_reach_m = Some(&reaches[..]);
+            self.integrate_checked(
+                ScanBeams {
+                    no_echo_reach_m,
+                    ..scan
+                },
+                model,
+            )
         })
     }
 }
 
-/// `integrate_log` and `integrate_log_with_progress` of a baseline, whose
-/// `integrate_clipped` returns nothing: they return the number of scans.
-macro_rules! baseline_integrate_log {
-    ($map:ident, $does:literal, $what:literal) => {
-        impl $map {
-            #[doc = concat!($does, " every scan of `log`, as [`CoverageMap::integrate_log`]; returns the number of scans.")]
-            ///
-            /// # Errors
-            #[doc = concat!("As [`CoverageMap::integrate_log`]; the ", $what, " unchanged then.")]
-            pub fn integrate_log<M: SensorModel + ?Sized>(
-                &mut self,
-                log: &Log,
-                model: &M,
-            ) -> Result<usize> {
-                self.integrate_log_with_progress(log, model, &mut |_| {})
-            }
-
-            #[doc = concat!("[`", stringify!($map), "::integrate_log`], calling `progress` with the number of scans done so far after each scan.")]
-            ///
-            /// # Errors
-            /// As [`CoverageMap::integrate_log`].
-            pub fn integrate_log_with_progress<M: SensorModel + ?Sized>(
-                &mut self,
-                log: &Log,
-                model: &M,
-                progress: &mut dyn FnMut(usize),
-            ) -> Result<usize> {
-                let grid = *self.grid();
-                integrate_scans(&grid, log, model, progress, |s| {
-                    self.integrate_clipped(&s.pose, &s.ranges, &s.bearings, model, &s.reaches)
-                        .map(|()| 1)
-                })
-            }
-        }
-    };
-}
-
-baseline_integrate_log!(OccupancyGrid, "Integrate and count the beams of", "grid is");
-baseline_integrate_log!(ScanCounts, "Count the beams of", "counts are");
-
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::counting::ScanCounts;
     use crate::error::CovmapError;
     use crate::log::Bearings;
+    use crate::occupancy::OccupancyGrid;
     use crate::sensor::{LaserModel, SonarModel};
 
     fn grid() -> Grid {
@@ -266,7 +166,7 @@ mod tests {
         assert_eq!(done, (1..=6).collect::<Vec<_>>());
         let mut by_scan = CoverageMap::new(grid());
         let mut occupancy = OccupancyGrid::new(grid());
-        let mut sum = 0;
+        let (mut sum, mut occupancy_sum) = (0, 0);
         for i in 0..log.len() {
             // The log's no-echo readings (2.0 and above) as the model's.
             let ranges: Vec<f64> = log
@@ -276,17 +176,22 @@ mod tests {
                 .collect();
             let pose = log.poses()[i].compose(&Pose::new(0.3, 0.1, 0.2));
             let reach = vec![2.0; 3];
-            sum += by_scan
-                .integrate_clipped(&pose, &ranges, log.scan_bearings(i), &model, &reach)
-                .unwrap();
-            occupancy
-                .integrate_clipped(&pose, &ranges, log.scan_bearings(i), &model, &reach)
-                .unwrap();
+            let scan = ScanBeams {
+                pose: &pose,
+                ranges: &ranges,
+                bearings: log.scan_bearings(i),
+                no_echo_reach_m: Some(&reach),
+            };
+            sum += by_scan.integrate_scan(scan, &model).unwrap();
+            occupancy_sum += occupancy.integrate_scan(scan, &model).unwrap();
         }
         assert_eq!(updates, sum);
         assert_eq!(whole.histograms(), by_scan.histograms());
         let mut occupancy_log = OccupancyGrid::new(grid());
-        assert_eq!(occupancy_log.integrate_log(&log, &model).unwrap(), 6);
+        assert_eq!(
+            occupancy_log.integrate_log(&log, &model).unwrap(),
+            occupancy_sum
+        );
         assert_eq!(occupancy_log, occupancy);
         let mut counts = ScanCounts::new(grid());
         counts.integrate_log(&log, &model).unwrap();

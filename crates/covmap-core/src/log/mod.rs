@@ -13,6 +13,7 @@ pub mod laser_scan;
 pub mod readers;
 mod record;
 
+pub(crate) use integrate::integrate_scans;
 pub use readers::carmen::{CarmenLaser, CarmenOptions};
 pub use readers::sonar_text::SonarTextOptions;
 pub use record::{Bearings, Log};

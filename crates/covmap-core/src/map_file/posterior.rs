@@ -38,7 +38,7 @@ impl CoverageMap {
     ///
     /// # Example
     /// ```
-    /// use covmap_core::{CoverageMap, Grid, LaserModel, Pose};
+    /// use covmap_core::{CoverageMap, Grid, LaserModel, Pose, ScanMap};
     /// let mut map = CoverageMap::new(Grid::new([0.0, 0.0], 0.1, 20, 30).unwrap());
     /// map.integrate(&Pose::new(1.0, 1.0, 0.0), &[1.2], &[0.0], &LaserModel::default()).unwrap();
     /// let bytes = map.to_file_bytes().unwrap();
@@ -200,6 +200,7 @@ fn exactly<T, const N: usize>(values: Vec<T>, name: &str) -> Result<[T; N]> {
 mod tests {
     use super::*;
     use crate::pose::Pose;
+    use crate::scan_map::ScanMap;
     use crate::sensor::SonarModel;
 
     fn scanned(history: bool) -> CoverageMap {

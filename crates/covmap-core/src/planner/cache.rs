@@ -3,12 +3,13 @@
 //!
 //! # What is kept, and when it is recomputed
 //! - **The evaluator's per-map work** (the coverage that stops predicted
-//!   beams, `h ln h`, entropies and prior flags of every cell): kept, with a
-//!   copy of the histograms it was computed from. Each call compares the
-//!   map's histograms with that copy, bit for bit, and recomputes the terms
-//!   of the cells that differ, and only those. The cache does not take the
+//!   beams, `h ln h`, entropies and prior flags of every cell): kept, with
+//!   where the cache last read the map's change feed
+//!   ([`CoverageMap::changes_since`]). Each call recomputes the terms of the
+//!   cells the feed names, and only those. The cache does not take the
 //!   caller's word for what changed: a map changed in any way (scans,
-//!   contacts, a map loaded in its place) is seen.
+//!   contacts, pinned cells) is seen, and another map in its place (a
+//!   clone, a map loaded, even of the same grid) is taken in whole.
 //! - **Every candidate's expected gain**, keyed by the candidate's cell and
 //!   heading (bit for bit), beam by beam: the gain of each of its beams, with
 //!   the tiles of 8 x 8 cells holding every cell that beam's computation
@@ -22,8 +23,9 @@
 //!   candidate's gain is its beams' summed in the order the evaluator sums
 //!   them, so it is too. A scan a few metres off changes what only the
 //!   candidate's beams towards it read.
-//! - **Everything**, when the sensor model (its range model and footprint,
-//!   bit for bit), the bearings, the gain options or the grid change.
+//! - **Everything**, when the sensor model (every parameter of its range
+//!   model, [`RangeModel::bits`], and its footprint, bit for bit), the
+//!   bearings, the gain options or the grid change.
 //! - **Nothing else**: free space, reachability, path costs, the candidate
 //!   lattice and eq. 14's normalisation depend on the whole map and are
 //!   computed anew on every call, as [`Planner::next_viewpoint`] does.
@@ -31,17 +33,16 @@
 //! So [`Planner::next_viewpoint_cached`] returns exactly what
 //! [`Planner::next_viewpoint`] returns for the same inputs, the same plan
 //! (every candidate's gain, bit for bit) or the same error, whatever the
-//! cache held before. Reuse needs the candidates' headings to repeat: with
-//! `candidate_headings = 1` a candidate has the robot's heading, so gains
-//! are kept only while the robot plans with the same heading (the others
-//! are dropped); with `k > 1` the headings are fixed angles and kept across
-//! any motion.
+//! cache held before. Reuse needs the candidates' headings to repeat: the
+//! default headings are fixed angles, kept across any motion; with
+//! `candidate_headings = Some(1)` a candidate has the robot's heading, so
+//! gains are kept only while the robot plans with the same heading (the
+//! others are dropped).
 
 use std::borrow::Cow;
 use std::collections::HashMap;
 
-use crate::aligned::Aligned;
-use crate::coverage_map::CoverageMap;
+use crate::coverage_map::{ChangeCursor, Changes, CoverageMap};
 use crate::error::Result;
 use crate::gain::{
     GainEvaluator, GainOptions, MapTerms, TileSet, Tiles, beam_sum, stop_coverage_of,
@@ -49,11 +50,12 @@ use crate::gain::{
 };
 use crate::grid::Grid;
 use crate::histogram;
-use crate::parallel;
 use crate::planner::path::Reachability;
 use crate::planner::viewpoint::{Plan, Planner};
 use crate::pose::{Pose, check_pose};
-use crate::sensor::{Footprint, KernelTable, RangeModel, SensorModel, StopCoverage};
+use crate::sensor::{
+    Footprint, KernelTable, RANGE_PARAMETERS, RangeModel, SensorModel, StopCoverage,
+};
 
 /// What [`Planner::next_viewpoint_cached`] keeps between calls: the map as it
 /// last saw it, the gain evaluator's per-map work and every candidate's
@@ -63,7 +65,7 @@ use crate::sensor::{Footprint, KernelTable, RangeModel, SensorModel, StopCoverag
 /// # Example
 /// ```
 /// use covmap_core::planner::{Planner, PlannerConfig, PlanningCache};
-/// use covmap_core::{CoverageMap, Grid, Pose, SonarModel};
+/// use covmap_core::{CoverageMap, Grid, Pose, ScanMap, SonarModel};
 /// let sonar = SonarModel::default();
 /// let bearings: Vec<f64> = (0..24).map(|i| i as f64 * std::f64::consts::TAU / 24.0).collect();
 /// let mut map = CoverageMap::new(Grid::new([0.0, 0.0], 0.1, 40, 300).unwrap());
@@ -87,7 +89,7 @@ use crate::sensor::{Footprint, KernelTable, RangeModel, SensorModel, StopCoverag
 #[derive(Clone, Default)]
 pub struct PlanningCache {
     /// The map as the last call saw it.
-    seen: Option<Seen>,
+    readouts: Option<MapReadouts>,
     /// The gains and what they were computed from.
     gains: Option<GainState>,
     /// Cells changed since `gains` was last brought up to date (by calls
@@ -109,8 +111,8 @@ pub struct CacheStats {
     pub beams: usize,
     /// Of those, beams whose gain was computed (the others' were kept).
     pub recomputed_beams: usize,
-    /// Cells whose histogram changed since the call before (every cell of
-    /// the map on the first call, or when the grid changed).
+    /// Cells the map's change feed named since the call before (every cell
+    /// of the map on the first call, or for another map).
     pub changed_cells: usize,
     /// Whether the gain evaluator's per-map work was computed from scratch:
     /// on the first call, and when the sensor model, bearings, gain options
@@ -144,117 +146,69 @@ impl std::fmt::Debug for PlanningCache {
     }
 }
 
-/// Cells compared by one job of [`Seen::sync`].
-const CELLS: usize = 4096;
-
-/// The map as the cache last saw it: its histograms, and what the planner
-/// reads of every cell for its free space (the ML map and the entropies).
+/// The map as the cache last saw it: where it read the map's change feed,
+/// and what the planner reads of every cell for its free space (the ML map
+/// and the entropies).
 #[derive(Clone)]
-struct Seen {
+struct MapReadouts {
     grid: [u64; 5],
     bins: usize,
-    histograms: Aligned<f32>,
+    cursor: ChangeCursor,
     ml: Vec<f32>,
     entropy: Vec<f32>,
 }
 
-impl Seen {
+impl MapReadouts {
     /// `map` as it is.
     fn new(map: &CoverageMap) -> Self {
         Self {
             grid: grid_bits(map.grid()),
             bins: map.bins(),
-            histograms: Aligned::from_slice(map.histograms()),
+            cursor: map.change_cursor(),
             ml: map.ml(),
             entropy: map.entropy(),
         }
     }
 
-    /// Whether `map` has the grid and bins of the map seen.
-    fn fits(&self, map: &CoverageMap) -> bool {
-        self.grid == grid_bits(map.grid()) && self.bins == map.bins()
-    }
-
-    /// Take in `map` (which [fits](Self::fits)): the cells whose histogram
-    /// differs in some bit from the one seen, ascending, with their ML
-    /// coverage and entropy anew (as [`CoverageMap::ml`] and
-    /// [`CoverageMap::entropy`] compute them).
-    fn sync(&mut self, map: &CoverageMap) -> Vec<usize> {
-        let bins = self.bins;
-        let pieces: Vec<SyncPiece<'_>> = self
-            .histograms
-            .chunks_mut(CELLS * bins)
-            .zip(map.histograms().chunks(CELLS * bins))
-            .zip(
-                self.ml
-                    .chunks_mut(CELLS)
-                    .zip(self.entropy.chunks_mut(CELLS)),
-            )
-            .enumerate()
-            .map(|(k, ((seen, now), (ml, entropy)))| SyncPiece {
-                first: k * CELLS,
-                seen,
-                now,
-                ml,
-                entropy,
-            })
-            .collect();
-        let piece = |piece: SyncPiece<'_>| {
-            let mut changed = Vec::new();
-            let cells = piece
-                .now
-                .chunks_exact(bins)
-                .zip(piece.seen.chunks_exact_mut(bins));
-            for (j, (now, seen)) in cells.enumerate() {
-                if differs(now, seen) {
-                    seen.copy_from_slice(now);
-                    piece.ml[j] = stop_coverage_of(now, StopCoverage::MaximumLikelihood);
-                    piece.entropy[j] = histogram::entropy(now);
-                    changed.push(piece.first + j);
-                }
-            }
-            changed
+    /// Take in `map`: the cells its change feed names since the map was
+    /// last seen, ascending, with their ML coverage and entropy anew (as
+    /// [`CoverageMap::ml`] and [`CoverageMap::entropy`] compute them); `None`
+    /// for a map of another grid, or another map (its feed names every
+    /// cell: the cache starts over).
+    fn sync(&mut self, map: &CoverageMap) -> Option<Vec<usize>> {
+        if self.grid != grid_bits(map.grid()) || self.bins != map.bins() {
+            return None;
+        }
+        let Changes::Cells(changed) = map.changes_since(&self.cursor) else {
+            return None;
         };
-        parallel::map(pieces, piece).into_iter().flatten().collect()
+        let bins = self.bins;
+        for &i in &changed {
+            let h = &map.histograms()[i * bins..(i + 1) * bins];
+            self.ml[i] = stop_coverage_of(h, StopCoverage::MaximumLikelihood);
+            self.entropy[i] = histogram::entropy(h);
+        }
+        self.cursor = map.change_cursor();
+        Some(changed)
     }
-}
-
-/// A piece of the map as [`Seen::sync`] compares it: cells `first ..` of the
-/// histograms seen and the map's, and their read-outs.
-struct SyncPiece<'p> {
-    first: usize,
-    seen: &'p mut [f32],
-    now: &'p [f32],
-    ml: &'p mut [f32],
-    entropy: &'p mut [f32],
-}
-
-/// Whether two histograms differ in some bit (no early exit, so that the
-/// comparison of a 16-bin histogram is a few vector instructions).
-#[inline]
-fn differs(a: &[f32], b: &[f32]) -> bool {
-    a.iter()
-        .zip(b)
-        .fold(0u32, |any, (x, y)| any | (x.to_bits() ^ y.to_bits()))
-        != 0
 }
 
 /// The gains kept for one sensor setting on one grid, and the evaluator's
 /// per-map work they were computed with.
 #[derive(Clone)]
 struct GainState {
-    key: Key,
+    inputs: GainInputs,
     terms: MapTerms,
     tiles: Tiles,
     /// The kept gains by candidate cell and heading (its bits).
-    gains: HashMap<(usize, u64), Kept>,
+    gains: HashMap<(usize, u64), CandidateGains>,
 }
 
 /// A candidate's kept gain: the gain of each of its beams (by bearing), the
 /// tiles of the cells each was computed from and whether it is still right,
 /// and their sum.
 #[derive(Clone)]
-struct Kept {
+struct CandidateGains {
     gain: f64,
     beams: Vec<f64>,
     reads: Vec<TileSet>,
@@ -265,18 +219,20 @@ struct Kept {
 /// bit for bit: the grid, the bins, the sensor model, the kernel table's
 /// model, the bearings and the gain options.
 #[derive(Clone, Debug, PartialEq, Eq)]
-struct Key {
+struct GainInputs {
     grid: [u64; 5],
     bins: usize,
-    range: [u64; 7],
-    table: [u64; 8],
+    /// Every parameter of the model the gains were computed with, and of
+    /// the model and the resolution of the kernel table they read.
+    range: [u64; RANGE_PARAMETERS.len()],
+    table: ([u64; RANGE_PARAMETERS.len()], u64),
     footprint: (u8, u64),
     bearings: Vec<u64>,
     range_step: Option<u64>,
     stop_coverage: StopCoverage,
 }
 
-impl Key {
+impl GainInputs {
     fn new(
         map: &CoverageMap,
         range: &RangeModel,
@@ -285,14 +241,11 @@ impl Key {
         options: GainOptions,
         bearings: &[f64],
     ) -> Self {
-        let mut table_key = [0; 8];
-        table_key[..7].copy_from_slice(&range_bits(table.model()));
-        table_key[7] = table.resolution_m().to_bits();
         Self {
             grid: grid_bits(map.grid()),
             bins: map.bins(),
-            range: range_bits(range),
-            table: table_key,
+            range: range.bits(),
+            table: (table.model().bits(), table.resolution_m().to_bits()),
             footprint: match footprint {
                 Footprint::Cone { half_angle_rad } => (1, half_angle_rad.to_bits()),
                 Footprint::Ray => (0, 0),
@@ -314,20 +267,6 @@ fn grid_bits(grid: &Grid) -> [u64; 5] {
         grid.rows() as u64,
         grid.cols() as u64,
     ]
-}
-
-/// The bits of every parameter of a range model.
-fn range_bits(range: &RangeModel) -> [u64; 7] {
-    [
-        range.max_range_m,
-        range.band_m,
-        range.sigma_min,
-        range.sigma_per_m,
-        range.sigma_end,
-        range.xi_min,
-        range.xi_per_m,
-    ]
-    .map(f64::to_bits)
 }
 
 impl Planner {
@@ -373,32 +312,20 @@ impl Planner {
         model: &M,
         (free, reach): (&[bool], &Reachability),
     ) -> Result<Plan> {
-        let (cells, poses) = self.candidates(map.grid(), pose, free, reach);
+        let (cells, poses) = self.candidates(map.grid(), pose, bearings, free, reach);
         let stats = cache.gains(map, model, self.config.gain, &cells, &poses, bearings)?;
         let gains = cache.gathered(&cells, &poses);
         cache.stats = stats;
-        self.choose(reach, &cells, poses, gains)
+        self.choose(reach, &cells, poses, gains, map.bins())
     }
 }
 
 impl Planner {
-    /// [`Self::reachability`] from the map's read-outs `cache` keeps
-    /// (brought up to date with `map` first, as [`Self::next_viewpoint_cached`]
-    /// does): the same paths, without reading the whole map out again.
-    ///
-    /// # Errors
-    /// As [`Self::reachability`].
-    pub fn reachability_cached(
-        &self,
-        cache: &mut PlanningCache,
-        map: &CoverageMap,
-        pose: &Pose,
-    ) -> Result<Reachability> {
-        Ok(self.free_and_reachable_cached(cache, map, pose)?.1)
-    }
-
-    /// [`Self::reachability_cached`], and the free space it runs through
-    /// (what [`Self::next_viewpoint_on`] plans on).
+    /// [`Self::reachability`] and the free space it runs through (what
+    /// [`Self::next_viewpoint_on`] plans on), from the map's read-outs
+    /// `cache` keeps (brought up to date with `map` first, as
+    /// [`Self::next_viewpoint_cached`] does): the same paths, without
+    /// reading the whole map out again.
     ///
     /// # Errors
     /// As [`Self::reachability`].
@@ -424,11 +351,11 @@ impl Planner {
         let start = check_pose(map.grid(), pose)?;
         let changed_cells = cache.see(map);
         #[allow(clippy::expect_used, reason = "`see` has just set it")]
-        let seen = cache.seen.as_ref().expect("the map was seen");
+        let readouts = cache.readouts.as_ref().expect("the map was seen");
         let blocked = self.blocked_of(
             map.bins(),
-            &seen.ml,
-            &seen.entropy,
+            &readouts.ml,
+            &readouts.entropy,
             !self.config.unknown_is_free,
         );
         let (free, reach) = self.free_and_reachable_of(map.grid(), &blocked, start)?;
@@ -437,18 +364,22 @@ impl Planner {
 }
 
 impl PlanningCache {
-    /// Take in `map`: its changed cells (all of them, for a map of another
-    /// grid) become unapplied to the gains. Returns how many changed.
+    /// Take in `map`: its changed cells (all of them, for another map or a
+    /// map of another grid) become unapplied to the gains. Returns how many
+    /// changed.
     fn see(&mut self, map: &CoverageMap) -> usize {
-        match &mut self.seen {
-            Some(seen) if seen.fits(map) => {
-                let changed = seen.sync(map);
+        match self
+            .readouts
+            .as_mut()
+            .and_then(|readouts| readouts.sync(map))
+        {
+            Some(changed) => {
                 let count = changed.len();
                 self.unapplied.extend(changed);
                 count
             }
-            _ => {
-                self.seen = Some(Seen::new(map));
+            None => {
+                self.readouts = Some(MapReadouts::new(map));
                 self.gains = None;
                 self.unapplied.clear();
                 map.grid().len()
@@ -476,14 +407,14 @@ impl PlanningCache {
         let table: Cow<'_, KernelTable> = map.kernel_table(&range)?;
         validate_candidates(map.grid(), poses, bearings)?;
 
-        let key = Key::new(map, &range, model.footprint(), &table, options, bearings);
+        let inputs = GainInputs::new(map, &range, model.footprint(), &table, options, bearings);
         let mut stats = CacheStats {
             candidates: poses.len(),
             ..CacheStats::default()
         };
         let mut unapplied = std::mem::take(&mut self.unapplied);
         let state = match &mut self.gains {
-            Some(state) if state.key == key => {
+            Some(state) if state.inputs == inputs => {
                 unapplied.sort_unstable();
                 unapplied.dedup();
                 state.terms.update(map, &table, &unapplied);
@@ -510,7 +441,7 @@ impl PlanningCache {
                 self.gains.insert(GainState {
                     terms: MapTerms::new(map, &table, options.stop_coverage),
                     tiles: Tiles::new(map.grid()),
-                    key,
+                    inputs,
                     gains: HashMap::new(),
                 })
             }
@@ -522,12 +453,15 @@ impl PlanningCache {
         let mut jobs: Vec<(usize, usize)> = Vec::new();
         let mut touched: Vec<usize> = Vec::new();
         for k in 0..poses.len() {
-            let kept = state.gains.entry(slot(k)).or_insert_with(|| Kept {
-                gain: 0.0,
-                beams: vec![0.0; bearings.len()],
-                reads: vec![TileSet::default(); bearings.len()],
-                fresh: vec![false; bearings.len()],
-            });
+            let kept = state
+                .gains
+                .entry(slot(k))
+                .or_insert_with(|| CandidateGains {
+                    gain: 0.0,
+                    beams: vec![0.0; bearings.len()],
+                    reads: vec![TileSet::default(); bearings.len()],
+                    fresh: vec![false; bearings.len()],
+                });
             let before = jobs.len();
             jobs.extend(
                 (0..bearings.len())

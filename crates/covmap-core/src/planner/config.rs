@@ -13,14 +13,22 @@ pub struct PlannerConfig {
     /// Weight of information against travel, in `[0, 1]`: 0 is greedy
     /// nearest, 1 pure information gain.
     pub alpha: f64,
-    /// Radius of the disc robot, metres.
+    /// Radius of the disc robot, metres (the B21r's is about 0.26 m). Paths
+    /// keep the planning radius, this and a margin, from blocked cells
+    /// ([`Planner::planning_radius_m`](crate::planner::Planner::planning_radius_m)).
     pub robot_radius_m: f64,
     /// Spacing of the candidate lattice, metres.
     pub candidate_stride_m: f64,
-    /// Candidates closer than this along the path are not goals, metres.
+    /// Candidates closer than this along the path are not goals, metres:
+    /// without it the robot's own cell keeps winning (scanning again always
+    /// teaches a little) and the robot never moves.
     pub min_travel_m: f64,
-    /// Candidates whose expected gain is at most this are not goals, nats.
-    pub min_gain_nats: f64,
+    /// Candidates whose expected gain is at most this are not goals, nats;
+    /// `None` (the default): what making one cell at the prior certain is
+    /// worth, `ln bins - epsilon`, at least [`MIN_GAIN_FLOOR_NATS`]
+    /// ([`Planner::min_gain_nats`](crate::planner::Planner::min_gain_nats)).
+    #[serde(default)]
+    pub min_gain_nats: Option<f64>,
     /// Coverage on the ML map above which a cell blocks the robot.
     pub blocked_coverage: f64,
     /// A cell is unknown while its entropy is at least this fraction of the
@@ -36,35 +44,44 @@ pub struct PlannerConfig {
     /// Headings a candidate position is considered with, 1 to
     /// [`MAX_CANDIDATE_HEADINGS`]: 1 keeps the robot's heading (a full ring
     /// of sonars sees much the same from any); `k > 1` tries the `k`
-    /// headings `i * 2 pi / k`, each a candidate of its own (for a sensor
-    /// that does not see all around, such as a 180° laser). Absent from a
-    /// stored configuration: 1.
-    #[serde(default = "one_heading")]
-    pub candidate_headings: usize,
+    /// headings `i * 2 pi / k`, each a candidate of its own. `None` (the
+    /// default): the fixed heading 0 alone for a sensor that sees all
+    /// around (no two neighbouring bearings more than 45 degrees apart, as
+    /// the 24-sonar ring), else [`DEFAULT_HEADINGS`] (a 180° laser); fixed
+    /// headings let a cache keep the candidates' gains whichever way the
+    /// robot faces ([`Planner::headings`](crate::planner::Planner::headings)).
+    #[serde(default)]
+    pub candidate_headings: Option<usize>,
 }
 
 /// The most headings a candidate position may be considered with.
 pub const MAX_CANDIDATE_HEADINGS: usize = 64;
 
-/// The default of [`PlannerConfig::candidate_headings`].
-fn one_heading() -> usize {
-    1
-}
+/// The headings a candidate position is considered with by default when
+/// the sensor does not see all around: every 45 degrees.
+pub const DEFAULT_HEADINGS: usize = 8;
+
+/// The least gain a goal must promise by default, nats, however few the
+/// bins: a negligible gain makes no goal.
+pub const MIN_GAIN_FLOOR_NATS: f64 = 1.0;
 
 impl Default for PlannerConfig {
+    /// The settings the exploration loop's decision-theoretic strategy plans
+    /// with (its [`ExplorationConfig`](crate::exploration::ExplorationConfig)'s
+    /// defaults are these): a planner with these makes the loop's choice.
     fn default() -> Self {
         Self {
             alpha: 0.5,
             robot_radius_m: 0.25,
             candidate_stride_m: 0.5,
-            min_travel_m: 0.0,
-            min_gain_nats: 1.0,
+            min_travel_m: 0.25,
+            min_gain_nats: None,
             blocked_coverage: 0.5,
             unknown_entropy_fraction: 0.95,
             unknown_is_free: false,
             epsilon: 0.65,
             gain: GainOptions::default(),
-            candidate_headings: one_heading(),
+            candidate_headings: None,
         }
     }
 }
@@ -103,12 +120,10 @@ impl PlannerConfig {
                 "a non-negative, finite distance",
             );
         }
-        if !(self.min_gain_nats >= 0.0 && self.min_gain_nats.is_finite()) {
-            return bad(
-                "min_gain_nats",
-                self.min_gain_nats,
-                "a non-negative, finite gain",
-            );
+        if let Some(gain) = self.min_gain_nats
+            && !(gain >= 0.0 && gain.is_finite())
+        {
+            return bad("min_gain_nats", gain, "a non-negative, finite gain");
         }
         if !(0.0..1.0).contains(&self.blocked_coverage) {
             return bad(
@@ -127,10 +142,12 @@ impl PlannerConfig {
         if !(self.epsilon > 0.0 && self.epsilon.is_finite()) {
             return bad("epsilon", self.epsilon, "a positive, finite entropy");
         }
-        if !(1..=MAX_CANDIDATE_HEADINGS).contains(&self.candidate_headings) {
+        if let Some(headings) = self.candidate_headings
+            && !(1..=MAX_CANDIDATE_HEADINGS).contains(&headings)
+        {
             return bad(
                 "candidate_headings",
-                self.candidate_headings as f64,
+                headings as f64,
                 "a count of headings from 1 to 64",
             );
         }
@@ -173,7 +190,7 @@ mod tests {
         );
         for headings in [0, 65, usize::MAX] {
             let err = Planner::new(PlannerConfig {
-                candidate_headings: headings,
+                candidate_headings: Some(headings),
                 ..PlannerConfig::default()
             })
             .unwrap_err();
@@ -189,7 +206,7 @@ mod tests {
         for headings in [1, 2, 64] {
             assert!(
                 Planner::new(PlannerConfig {
-                    candidate_headings: headings,
+                    candidate_headings: Some(headings),
                     ..PlannerConfig::default()
                 })
                 .is_ok()
@@ -197,7 +214,7 @@ mod tests {
         }
         let planner = Planner::new(PlannerConfig::default()).unwrap();
         assert!(matches!(
-            planner.utilities(&[2.0, 3.0], &[1.0]),
+            planner.utilities(&[2.0, 3.0], &[1.0], 16),
             Err(CovmapError::LengthMismatch { .. })
         ));
     }

@@ -3,6 +3,7 @@
 use crate::coverage_map::CoverageMap;
 use crate::grid::Grid;
 use crate::pose::Pose;
+use crate::scan_map::ScanMap;
 use crate::sensor::SonarModel;
 
 /// The bearings of a ring of 24 beams, 15° apart.

@@ -41,13 +41,14 @@ impl Planner {
         free
     }
 
-    /// [`disc_offsets`] for this robot on `grid`. A disc wider than the
+    /// [`disc_offsets`] for this robot's planning radius on `grid`
+    /// ([`Self::planning_radius_m`]). A disc wider than the
     /// grid's diagonal overlaps every cell from anywhere on it, as the disc
     /// of that diagonal does, so the radius is cut to it (the offsets never
     /// outnumber the cells of a grid twice the size).
     fn disc_offsets(&self, grid: &Grid) -> Vec<(i64, i64)> {
         let diagonal = (grid.rows() as f64).hypot(grid.cols() as f64);
-        disc_offsets((self.config.robot_radius_m / grid.resolution_m()).min(diagonal))
+        disc_offsets((self.planning_radius_m(grid) / grid.resolution_m()).min(diagonal))
     }
 
     /// Cells that block: covered above the threshold on the ML map, or, with
@@ -180,11 +181,12 @@ mod tests {
     use crate::grid::Cell;
     use crate::planner::PlannerConfig;
     use crate::planner::test_maps::walled_map;
+    use crate::scan_map::ScanMap;
     use crate::sensor::LaserModel;
 
-    /// A cell is free exactly when the robot's disc at its centre overlaps no
-    /// blocked cell, checked against the geometry for radii that are and are
-    /// not whole numbers of cells.
+    /// A cell is free exactly when the disc of the planning radius at its
+    /// centre overlaps no blocked cell, checked against the geometry for
+    /// radii that are and are not whole numbers of cells.
     #[test]
     fn free_space_is_the_disc_clear_of_blocked_cells() {
         let map = walled_map(|row, col| (row, col) == (30, 30), false);
@@ -199,15 +201,17 @@ mod tests {
             })
             .unwrap();
             let free = planner.free_space(&map);
+            let planning = planner.planning_radius_m(grid);
+            assert_eq!(planning, radius + 0.05);
             for (i, &f) in free.iter().enumerate() {
                 let [x, y] = grid.cell_center(grid.cell(i));
                 // Distance from the centre to the nearest point of the blocked cell.
                 let gap = ((x - wx0).abs() - half)
                     .max(0.0)
                     .hypot(((y - wy0).abs() - half).max(0.0));
-                let clear = grid.cell(i) != wall && gap >= radius;
-                // Away from the rounding of `gap == radius` itself.
-                if (gap - radius).abs() > 1e-9 {
+                let clear = grid.cell(i) != wall && gap >= planning;
+                // Away from the rounding of `gap == planning` itself.
+                if (gap - planning).abs() > 1e-9 {
                     assert_eq!(
                         f,
                         clear,

@@ -8,9 +8,13 @@ use crate::coverage_map::CoverageMap;
 use crate::error::{CovmapError, Result};
 use crate::gain::{GainEvaluator, GainMethod};
 use crate::grid::Grid;
-use crate::planner::config::PlannerConfig;
+use crate::planner::config::{DEFAULT_HEADINGS, MIN_GAIN_FLOOR_NATS, PlannerConfig};
 use crate::planner::path::Reachability;
 use crate::pose::Pose;
+
+/// The least margin beyond the robot's radius that paths keep from blocked
+/// cells, metres ([`Planner::planning_radius_m`]).
+pub const FACE_MARGIN_M: f64 = 0.05;
 use crate::sensor::SensorModel;
 
 /// Every candidate considered, with its figures.
@@ -44,7 +48,7 @@ pub struct Plan {
 /// # Example
 /// ```
 /// use covmap_core::planner::{Planner, PlannerConfig};
-/// use covmap_core::{CoverageMap, Grid, Pose, SonarModel};
+/// use covmap_core::{CoverageMap, Grid, Pose, ScanMap, SonarModel};
 /// let sonar = SonarModel::default();
 /// let bearings: Vec<f64> = (0..24).map(|i| i as f64 * std::f64::consts::TAU / 24.0).collect();
 /// let mut map = CoverageMap::new(Grid::new([0.0, 0.0], 0.05, 200, 200).unwrap());
@@ -94,25 +98,52 @@ impl Planner {
         model: &M,
     ) -> Result<Plan> {
         let (free, reach) = self.free_and_reachable(map, pose)?;
-        let (cells, poses) = self.candidates(map.grid(), pose, &free, &reach);
+        let (cells, poses) = self.candidates(map.grid(), pose, bearings, &free, &reach);
         let evaluator = GainEvaluator::new(map, model, self.config.gain)?;
         let gains = evaluator.evaluate(&poses, bearings, GainMethod::Fast)?;
-        self.choose(&reach, &cells, poses, gains)
+        self.choose(&reach, &cells, poses, gains, map.bins())
     }
 
-    /// The candidate poses for a robot at `pose`, with the cell of each: the
-    /// reachable free cells of the lattice at least `min_travel_m` away,
-    /// each with every heading of [`Self::headings`], in that order.
+    /// The radius paths keep from blocked cells, metres, on `grid`: the
+    /// robot's and a cell, or [`FACE_MARGIN_M`] (5 cm) if that is more
+    /// (`robot_radius_m + max(resolution, 0.05)`). A cell less than half
+    /// covered reads free on the maps, so an obstacle may reach up to a cell
+    /// past the cells that block; a sonar map also holds the first few
+    /// centimetres of a wall's face as free or unknown. A wider margin keeps
+    /// the robot off walls more often, but sonar arcs narrow every doorway
+    /// on the map too: a robot planning 10 cm wider than itself (0.7 m for a
+    /// 0.25 m robot) found the 0.9 m doorways of the built-in corridor
+    /// closed, and frontier exploration ended in the room it started in.
+    pub fn planning_radius_m(&self, grid: &Grid) -> f64 {
+        self.config.robot_radius_m + grid.resolution_m().max(FACE_MARGIN_M)
+    }
+
+    /// The least gain a candidate must promise to be a goal, nats, on a map
+    /// of `bins` bins: `min_gain_nats`, or by default what making one cell
+    /// at the prior (entropy `ln bins`) certain (entropy `epsilon`) is
+    /// worth, at least [`MIN_GAIN_FLOOR_NATS`] (2.12 nats for 16 bins and
+    /// epsilon 0.65).
+    pub fn min_gain_nats(&self, bins: usize) -> f64 {
+        self.config
+            .min_gain_nats
+            .unwrap_or_else(|| ((bins as f64).ln() - self.config.epsilon).max(MIN_GAIN_FLOOR_NATS))
+    }
+
+    /// The candidate poses for a robot at `pose` with a sensor of
+    /// `bearings`, with the cell of each: the reachable free cells of the
+    /// lattice at least `min_travel_m` away, each with every heading of
+    /// [`Self::headings`], in that order.
     pub(super) fn candidates(
         &self,
         grid: &Grid,
         pose: &Pose,
+        bearings: &[f64],
         free: &[bool],
         reach: &Reachability,
     ) -> (Vec<usize>, Vec<Pose>) {
         let stride =
             ((self.config.candidate_stride_m / grid.resolution_m()).round() as usize).max(1);
-        let headings = self.headings(pose);
+        let headings = self.headings(pose, bearings);
         let mut cells = Vec::new();
         let mut poses = Vec::new();
         for row in (stride / 2..grid.rows()).step_by(stride) {
@@ -130,27 +161,34 @@ impl Planner {
         (cells, poses)
     }
 
-    /// The headings every candidate position is considered with: the
-    /// robot's, or `i * 2 pi / k` for `k = candidate_headings > 1`.
-    pub(super) fn headings(&self, pose: &Pose) -> Vec<f64> {
-        let k = self.config.candidate_headings;
-        if k == 1 {
-            return vec![pose.theta_rad];
+    /// The headings every candidate position is considered with, for a
+    /// robot at `pose` with a sensor of `bearings`: the robot's for
+    /// `candidate_headings = 1`, `i * 2 pi / k` for `k > 1`; by default
+    /// (`None`) the fixed heading 0 for a sensor that
+    /// [sees all around](sees_all_around), else [`DEFAULT_HEADINGS`] fixed
+    /// headings.
+    pub fn headings(&self, pose: &Pose, bearings: &[f64]) -> Vec<f64> {
+        match self.config.candidate_headings {
+            Some(1) => vec![pose.theta_rad],
+            Some(k) => fixed_headings(k),
+            None if sees_all_around(bearings) => fixed_headings(1),
+            None => fixed_headings(DEFAULT_HEADINGS),
         }
-        fixed_headings(k)
     }
 
     /// The plan that eq. 14 chooses among the candidates at `poses` (in
-    /// cells `cells`) with expected gains `gains`, for paths `reach`.
+    /// cells `cells`) with expected gains `gains`, for paths `reach`, on a
+    /// map of `bins` bins.
     pub(super) fn choose(
         &self,
         reach: &Reachability,
         cells: &[usize],
         poses: Vec<Pose>,
         gains: Vec<f64>,
+        bins: usize,
     ) -> Result<Plan> {
         let costs: Vec<f64> = cells.iter().map(|&i| reach.cost(i)).collect();
-        let utilities = self.utilities(&gains, &costs)?;
+        let utilities = self.utilities(&gains, &costs, bins)?;
         let chosen = (0..utilities.len())
             .filter(|&k| utilities[k] > f64::NEG_INFINITY)
             .max_by(|&a, &b| {
@@ -171,10 +209,12 @@ impl Planner {
         })
     }
 
-    /// Eq. 14 over the candidates worth visiting; `-inf` for the others.
+    /// Eq. 14 over the candidates worth visiting (a gain above
+    /// [`Self::min_gain_nats`] on a map of `bins` bins); `-inf` for the
+    /// others.
     ///
     /// Errors if `gains` and `costs` differ in length.
-    pub fn utilities(&self, gains: &[f64], costs: &[f64]) -> Result<Vec<f64>> {
+    pub fn utilities(&self, gains: &[f64], costs: &[f64], bins: usize) -> Result<Vec<f64>> {
         if gains.len() != costs.len() {
             return Err(CovmapError::LengthMismatch {
                 what: "gains and costs",
@@ -182,7 +222,8 @@ impl Planner {
                 right: costs.len(),
             });
         }
-        let worth = |k: usize| gains[k] > self.config.min_gain_nats;
+        let min_gain_nats = self.min_gain_nats(bins);
+        let worth = |k: usize| gains[k] > min_gain_nats;
         let max_gain = (0..gains.len())
             .filter(|&k| worth(k))
             .map(|k| gains[k])
@@ -211,6 +252,34 @@ impl Planner {
             })
             .collect())
     }
+}
+
+/// The widest gap between neighbouring bearings (radians) of a sensor that
+/// sees all around: 45 degrees (the 24-sonar ring's is 15).
+const ALL_AROUND_GAP_RAD: f64 = std::f64::consts::FRAC_PI_4;
+
+/// Whether no two neighbouring `bearings` (around the circle) are more than
+/// 45 degrees apart: a sensor for which the heading of a viewpoint hardly
+/// matters.
+pub fn sees_all_around(bearings: &[f64]) -> bool {
+    widest_gap_rad(bearings) <= ALL_AROUND_GAP_RAD
+}
+
+/// The widest gap between neighbouring `bearings` around the circle,
+/// radians: `2 pi` for one bearing or none.
+pub fn widest_gap_rad(bearings: &[f64]) -> f64 {
+    use std::f64::consts::TAU;
+    let mut angles: Vec<f64> = bearings.iter().map(|b| b.rem_euclid(TAU)).collect();
+    angles.sort_by(f64::total_cmp);
+    let (Some(first), Some(last)) = (angles.first(), angles.last()) else {
+        return TAU;
+    };
+    let wrap = first + TAU - last;
+    angles
+        .windows(2)
+        .map(|w| w[1] - w[0])
+        .chain([wrap])
+        .fold(0.0, f64::max)
 }
 
 /// `k` headings evenly around the circle, `i * 2 pi / k` for `i` in
@@ -272,7 +341,7 @@ mod tests {
             .unwrap();
         let c = &near.candidates;
         let worth: Vec<usize> = (0..c.gains.len())
-            .filter(|&k| c.gains[k] > config.min_gain_nats)
+            .filter(|&k| c.gains[k] > Planner::new(config).unwrap().min_gain_nats(16))
             .collect();
         let min_cost = worth
             .iter()
@@ -296,7 +365,7 @@ mod tests {
         let config = PlannerConfig {
             alpha: 0.0,
             candidate_stride_m: 0.25,
-            min_gain_nats: 0.0,
+            min_gain_nats: Some(0.0),
             unknown_is_free: true,
             ..PlannerConfig::default()
         };

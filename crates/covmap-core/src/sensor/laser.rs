@@ -31,21 +31,7 @@ impl Default for LaserModel {
     /// A SICK-class laser: 30 m, sharp readings.
     fn default() -> Self {
         Self {
-            range: RangeModel {
-                max_range_m: 30.0,
-                band_m: 0.10,
-                sigma_min: 0.08,
-                sigma_per_m: 0.004,
-                sigma_end: 0.25,
-                xi_min: 0.02,
-                xi_per_m: 0.005,
-                no_echo_reach: 1.0,
-                no_echo_weight: 1.0,
-                end_weight: 1.0,
-                posterior_floor: 0.0,
-                end_attribution: 0.0,
-                free_yield: 0.0,
-            },
+            range: RangeModel::LASER,
         }
     }
 }

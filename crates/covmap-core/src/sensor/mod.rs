@@ -67,6 +67,7 @@
 
 mod kernel;
 mod laser;
+pub mod parameters;
 mod range_model;
 mod readings;
 mod sensor_model;
@@ -75,6 +76,10 @@ mod sonar;
 pub use kernel::KernelTable;
 pub(crate) use kernel::ReadingLookup;
 pub use laser::LaserModel;
+pub use parameters::{
+    FITTABLE_RANGE_PARAMETERS, FITTABLE_SONAR_PARAMETERS, Parameter, RANGE_PARAMETERS,
+    SONAR_MODEL_PARAMETERS,
+};
 pub use range_model::RangeModel;
 pub(crate) use range_model::kernel_values;
 pub use readings::{

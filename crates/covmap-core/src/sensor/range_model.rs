@@ -4,202 +4,124 @@ use serde::{Deserialize, Serialize};
 
 use super::KernelTable;
 use super::kernel;
+#[cfg(doc)]
+use super::parameters::Parameter;
+use super::parameters::{MAX_XI, RANGE_PARAMETERS, check_each, find};
 use crate::error::{Result, check_parameter};
 
-/// The parameters shared by every range sensor: the inverse model along one
-/// direction (see the [module documentation](super)).
-#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct RangeModel {
-    /// Readings at or beyond this distance mean "no echo", metres.
-    pub max_range_m: f64,
-    /// How far behind the end point cells are updated (as covered), metres.
-    pub band_m: f64,
-    /// Standard deviation of the coverage mean at zero distance, outside the end band.
-    pub sigma_min: f64,
-    /// Growth of that standard deviation per metre of distance `s = min(d_l, d)`.
-    pub sigma_per_m: f64,
-    /// The constant standard deviation inside the end band (the largest of all).
-    pub sigma_end: f64,
-    /// Weight of the uniform component at zero distance (must be positive).
-    pub xi_min: f64,
-    /// Growth of the uniform weight per metre of distance `s = min(d_l, d)`.
-    pub xi_per_m: f64,
-    /// How far a no-echo reading clears its footprint, as a fraction of
-    /// `max_range_m`, in `(0, 1]`. 1 (the default): out to the maximum range,
-    /// as the paper reads it.
-    #[serde(default = "one")]
-    pub no_echo_reach: f64,
-    /// How strongly a no-echo reading clears, in `[0, 1]`: its kernel is
-    /// `no_echo_weight * k_free + (1 - no_echo_weight) / bins`, a mixture of
-    /// the free-space kernel and the uniform prior. 1 (the default): the
-    /// free-space kernel, as the paper reads it; 0: a no-echo reading
-    /// leaves the map as it was. A specular miss (a sonar pulse that glanced
-    /// off a wall and never came back) is a no-echo reading through a wall,
-    /// so a weight below 1 keeps such misses from erasing walls that echoes
-    /// from other angles found.
-    #[serde(default = "one")]
-    pub no_echo_weight: f64,
-    /// How strongly an echo marks the cells at and behind its end point
-    /// (the end band and the band behind it), in `[0, 1]`: their kernels
-    /// are mixed with the uniform prior as no-echo kernels are. 1 (the
-    /// default): the paper's kernels. A sonar's echo comes from somewhere
-    /// on the arc of its cone, so most cells of the arc are not what it
-    /// hit; a weight below 1 says so, where 1 marks the whole arc covered.
-    #[serde(default = "one")]
-    pub end_weight: f64,
-    /// The least probability an update that contradicts a cell leaves any
-    /// bin of its histogram, in `[0, 1/256]`: after an update whose
-    /// kernel's mean coverage lies on the other side of 1/2 from the cell's
-    /// mean before it, the cell's posterior is mixed with the uniform
-    /// prior, `(1 - bins p) h + p`. 0 (the default): the paper's Bayes
-    /// update (bins floored at 1e-30 only). Readings of one cell are not
-    /// independent (a sonar sees the same wall face from the same places
-    /// again and again), so the product of their kernels grows far more
-    /// confident than the evidence is; where readings disagree, that
-    /// confidence is likely wrong, and the floor caps what it can cost.
-    /// Updates that agree with a cell (and the first of a cell at the
-    /// prior) mix nothing in, so the floor fades as agreeing readings
-    /// accumulate, and a cell every reading finds free keeps a mean
-    /// coverage near 0.
-    #[serde(default)]
-    pub posterior_floor: f64,
-    /// How far an echo's marks follow what the map already holds, in
-    /// `[0, 1]`. A sonar's echo comes from somewhere on the arc of its
-    /// cone, most likely where the map holds the most coverage: the kernels
-    /// of the end band and the band behind it are mixed with the uniform
-    /// prior by the weight `1 - a + a min(1, m / m_arc)`, `a` this value,
-    /// `m` the cell's mean coverage before the reading and `m_arc` the
-    /// largest mean coverage among the end band's cells (at least 1/2). An
-    /// arc across cells the map holds free and a wall the map holds covered
-    /// so marks the wall. 0 (the default): every cell of the arc alike, as
-    /// the paper reads it.
-    #[serde(default)]
-    pub end_attribution: f64,
-    /// How much a free-space update spares a cell the map holds covered,
-    /// in `[0, 1]`. A surface met at a grazing angle sends no echo back, so
-    /// a beam that passes a covered cell without an echo from it says
-    /// little about the cell: the free kernel (of echoes and no-echo
-    /// readings alike) of a cell of mean coverage `m` is mixed with the
-    /// uniform prior by the weight `1 - y min(1, max(0, 2 m - 1))`, `y` this
-    /// value. 0 (the default): the paper's reading.
-    #[serde(default)]
-    pub free_yield: f64,
+/// The struct of the range model, its presets, its serde form and its
+/// per-parameter access, from the declaration's entries.
+macro_rules! range_model_struct {
+    ([ $(
+        $(#[doc = $doc:literal])*
+        $name:ident {
+            unit: $unit:expr, sonar: $sonar:expr, laser: $laser:expr,
+            valid: $valid:expr, expected: $expected:expr,
+            fit: $fit:expr, absent: $absent:expr $(,)?
+        }
+    )* ]) => {
+        /// The parameters shared by every range sensor: the inverse model
+        /// along one direction (see the [module documentation](super)).
+        /// Declared once, with their defaults, checks and fit bounds, in
+        /// [`range_parameters!`](crate::range_parameters); the table
+        /// [`RANGE_PARAMETERS`] lists them in this order.
+        #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+        #[serde(try_from = "StoredRangeModel")]
+        pub struct RangeModel {
+            $( $(#[doc = $doc])* pub $name: f64, )*
+        }
+
+        /// A stored range model as read, every parameter optional: those
+        /// absent take their [`Parameter::absent`] value, or are an error.
+        #[derive(Deserialize)]
+        #[serde(deny_unknown_fields)]
+        struct StoredRangeModel {
+            $( $name: Option<f64>, )*
+        }
+
+        impl StoredRangeModel {
+            /// The values read, in the order of [`RANGE_PARAMETERS`].
+            fn values(&self) -> [Option<f64>; RANGE_PARAMETERS.len()] {
+                [$( self.$name ),*]
+            }
+        }
+
+        impl RangeModel {
+            /// The sonar's defaults: the paper's reading of every term the
+            /// paper has (see [`SonarModel`](super::SonarModel)'s `Default`).
+            pub const SONAR: Self = Self { $( $name: $sonar, )* };
+            /// The laser's defaults (see [`LaserModel`](super::LaserModel)'s `Default`).
+            pub const LASER: Self = Self { $( $name: $laser, )* };
+
+            /// Every parameter's value, in the order of [`RANGE_PARAMETERS`].
+            pub fn values(&self) -> [f64; RANGE_PARAMETERS.len()] {
+                [$( self.$name ),*]
+            }
+
+            /// Every parameter's field, in the order of [`RANGE_PARAMETERS`].
+            fn fields_mut(&mut self) -> [&mut f64; RANGE_PARAMETERS.len()] {
+                [$( &mut self.$name ),*]
+            }
+        }
+    };
 }
 
-/// The default of the no-echo parameters: the paper's reading.
-fn one() -> f64 {
-    1.0
+crate::range_parameters!(range_model_struct! {});
+
+impl TryFrom<StoredRangeModel> for RangeModel {
+    type Error = String;
+    fn try_from(stored: StoredRangeModel) -> std::result::Result<Self, String> {
+        let mut model = Self::SONAR;
+        let read = stored.values().into_iter().zip(&RANGE_PARAMETERS);
+        for ((value, parameter), field) in read.zip(model.fields_mut()) {
+            *field = value
+                .or(parameter.absent)
+                .ok_or_else(|| format!("missing field `{}`", parameter.name))?;
+        }
+        Ok(model)
+    }
 }
-
-/// The largest `posterior_floor`: one bin's share of the largest histogram.
-const MAX_POSTERIOR_FLOOR: f64 = 1.0 / crate::histogram::MAX_BINS as f64;
-
-/// The smallest `sigma_min`: a standard deviation of coverage (which spans
-/// 0 to 1) a millionth wide is already a spike between the bins; far below
-/// it (near 1e-308) the density's scale would overflow.
-const MIN_SIGMA: f64 = 1e-6;
-/// The largest uniform weight `xi` anywhere up to the maximum range: beyond
-/// it the kernel is uniform to far below `f32` precision anyway, and the sum
-/// that normalises it could overflow.
-const MAX_XI: f64 = 1e6;
-/// The largest `max_range_m`: ten kilometres, far beyond any range sensor
-/// a robot carries (and any map's extent at a useful resolution).
-const MAX_RANGE_M: f64 = 1e4;
 
 impl RangeModel {
-    /// Errors unless every parameter lies in its valid range: the distances
-    /// positive (`band_m` non-negative, `max_range_m` at most 10 km), `sigma_min` at least 1e-6,
-    /// `sigma_end` no smaller than `sigma` anywhere outside the band, `xi_min`
-    /// positive, the growths non-negative, and the uniform weight at most 1e6
-    /// out to the maximum range.
-    pub fn validate(&self) -> Result<()> {
-        fn check(name: &'static str, value: f64, ok: bool, expected: &'static str) -> Result<()> {
-            check_parameter(ok && value.is_finite(), name, value, expected)
+    /// The value of the parameter called `name`, if the model has one.
+    pub fn get(&self, name: &str) -> Option<f64> {
+        find(&RANGE_PARAMETERS, name).map(|(i, _)| self.values()[i])
+    }
+
+    /// Set the parameter called `name` to `value` (not validated); false
+    /// if the model has no such parameter.
+    pub fn set(&mut self, name: &str, value: f64) -> bool {
+        match find(&RANGE_PARAMETERS, name) {
+            Some((i, _)) => {
+                *self.fields_mut()[i] = value;
+                true
+            }
+            None => false,
         }
-        check(
-            "max_range_m",
-            self.max_range_m,
-            self.max_range_m > 0.0 && self.max_range_m <= MAX_RANGE_M,
-            "a positive distance of at most 10 km",
-        )?;
-        check(
-            "band_m",
-            self.band_m,
-            self.band_m >= 0.0,
-            "a non-negative distance",
-        )?;
-        check(
-            "sigma_min",
-            self.sigma_min,
-            self.sigma_min >= MIN_SIGMA,
-            "a standard deviation of at least 1e-6 (coverage)",
-        )?;
-        check(
-            "sigma_per_m",
-            self.sigma_per_m,
-            self.sigma_per_m >= 0.0,
-            "a non-negative growth",
-        )?;
-        check(
-            "xi_min",
-            self.xi_min,
-            self.xi_min > 0.0 && self.xi_min <= MAX_XI,
-            "a positive weight of at most 1e6",
-        )?;
-        check(
-            "xi_per_m",
-            self.xi_per_m,
-            self.xi_per_m >= 0.0,
-            "a non-negative growth",
-        )?;
-        check(
-            "xi_per_m",
-            self.xi_per_m,
+    }
+
+    /// The bits of every parameter, in the order of [`RANGE_PARAMETERS`]:
+    /// two models are the same model exactly when these are equal.
+    pub fn bits(&self) -> [u64; RANGE_PARAMETERS.len()] {
+        self.values().map(f64::to_bits)
+    }
+
+    /// Errors unless every parameter lies in its valid range
+    /// ([`Parameter::valid`], finite), the uniform weight is at most 1e6
+    /// out to the maximum range, and `sigma_end` is no smaller than `sigma`
+    /// anywhere outside the band.
+    pub fn validate(&self) -> Result<()> {
+        check_each(&RANGE_PARAMETERS, &self.values())?;
+        check_parameter(
             self.xi(self.max_range_m) <= MAX_XI,
+            "xi_per_m",
+            self.xi_per_m,
             "a growth that keeps xi_min + xi_per_m * max_range_m at most 1e6",
         )?;
-        check(
-            "no_echo_reach",
-            self.no_echo_reach,
-            self.no_echo_reach > 0.0 && self.no_echo_reach <= 1.0,
-            "a fraction of the maximum range in (0, 1]",
-        )?;
-        check(
-            "no_echo_weight",
-            self.no_echo_weight,
-            (0.0..=1.0).contains(&self.no_echo_weight),
-            "a weight in [0, 1]",
-        )?;
-        check(
-            "posterior_floor",
-            self.posterior_floor,
-            (0.0..=MAX_POSTERIOR_FLOOR).contains(&self.posterior_floor),
-            "a probability in [0, 1/256]",
-        )?;
-        check(
-            "end_attribution",
-            self.end_attribution,
-            (0.0..=1.0).contains(&self.end_attribution),
-            "a weight in [0, 1]",
-        )?;
-        check(
-            "free_yield",
-            self.free_yield,
-            (0.0..=1.0).contains(&self.free_yield),
-            "a weight in [0, 1]",
-        )?;
-        check(
-            "end_weight",
-            self.end_weight,
-            (0.0..=1.0).contains(&self.end_weight),
-            "a weight in [0, 1]",
-        )?;
-        let widest = self.sigma(self.max_range_m);
-        check(
+        check_parameter(
+            self.sigma_end >= self.sigma(self.max_range_m),
             "sigma_end",
             self.sigma_end,
-            self.sigma_end >= widest,
             "a standard deviation no smaller than sigma anywhere outside the band (sigma_min + sigma_per_m * max_range_m)",
         )
     }

@@ -2,8 +2,9 @@
 
 use serde::{Deserialize, Serialize};
 
+use super::parameters::{SONAR_PARAMETERS, check_each};
 use super::{Footprint, RangeModel, SensorModel};
-use crate::error::{Result, check_parameter};
+use crate::error::Result;
 
 /// The sonar inverse model: a [`RangeModel`] spread over a cone.
 ///
@@ -43,22 +44,8 @@ impl Default for SonarModel {
     /// fitting on recorded data is the way to do better.
     fn default() -> Self {
         Self {
-            range: RangeModel {
-                max_range_m: 5.0,
-                band_m: 0.20,
-                sigma_min: 0.12,
-                sigma_per_m: 0.02,
-                sigma_end: 0.30,
-                xi_min: 0.08,
-                xi_per_m: 0.08,
-                no_echo_reach: 1.0,
-                no_echo_weight: 1.0,
-                end_weight: 1.0,
-                posterior_floor: 0.0,
-                end_attribution: 0.0,
-                free_yield: 0.0,
-            },
-            opening_angle_rad: 15f64.to_radians(),
+            range: RangeModel::SONAR,
+            opening_angle_rad: SONAR_PARAMETERS[0].sonar_default,
         }
     }
 }
@@ -110,13 +97,7 @@ impl SensorModel for SonarModel {
     }
     fn validate(&self) -> Result<()> {
         self.range.validate()?;
-        let a = self.opening_angle_rad;
-        check_parameter(
-            a.is_finite() && a > 0.0 && a < std::f64::consts::PI,
-            "opening_angle_rad",
-            a,
-            "an angle in (0, pi) radians",
-        )
+        check_each(&SONAR_PARAMETERS, &[self.opening_angle_rad])
     }
 }
 

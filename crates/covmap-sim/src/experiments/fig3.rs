@@ -1,6 +1,7 @@
 //! The paper's Fig. 3: a coverage map of the corridor built from ultrasound,
 //! measured against the exact ground truth.
 
+use covmap_core::ScanMap;
 use std::f64::consts::TAU;
 
 use covmap_core::{CoverageMap, Grid, OccupancyGrid, Pose, SonarModel};

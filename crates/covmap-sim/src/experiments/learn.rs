@@ -9,6 +9,7 @@ use covmap_core::learn::{
 };
 use covmap_core::planner::shortest_paths;
 use covmap_core::{CoverageMap, Grid, Log, OccupancyGrid, Pose};
+use covmap_core::{ScanBeams, ScanMap};
 use rand::RngExt;
 
 use crate::error::{Result, check_param};
@@ -237,9 +238,15 @@ impl Drive {
             for i in 0..log.len() {
                 let (pose, ranges, bearings) =
                     (log.sensor_pose(i), log.scan_ranges(i), log.scan_bearings(i));
-                let reaches = map.no_echo_reaches(&[], &pose, ranges, bearings, model.as_dyn());
-                map.integrate_clipped(&pose, ranges, bearings, model.as_dyn(), &reaches)?;
-                occupancy.integrate_clipped(&pose, ranges, bearings, model.as_dyn(), &reaches)?;
+                let reaches = map.no_echo_reaches(&pose, ranges, bearings, model.as_dyn());
+                let scan = ScanBeams {
+                    pose: &pose,
+                    ranges,
+                    bearings,
+                    no_echo_reach_m: Some(&reaches),
+                };
+                map.integrate_scan(scan, model.as_dyn())?;
+                occupancy.integrate_scan(scan, model.as_dyn())?;
             }
         } else {
             occupancy.integrate_log(&log, model)?;

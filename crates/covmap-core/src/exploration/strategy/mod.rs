@@ -4,13 +4,13 @@
 //! Every strategy chooses on the *maps* the robot has built (never on the
 //! world), plans its path on them, and says when it is done:
 //!
-//! - [`Strategy::Coverage`] ([`coverage`](self) module): eq. 14 through the
+//! - [`Strategy::Coverage`] (`decision_theoretic.rs`): eq. 14 through the
 //!   [`Planner`](crate::planner::Planner); done when every cell of the
 //!   reachable region is certain or stagnated.
-//! - [`Strategy::Counting`]: the paper's (extended) scan counting on the
+//! - [`Strategy::Counting`] (`scan_counting.rs`): the paper's (extended) scan counting on the
 //!   [`ScanCounts`](crate::ScanCounts); done when no reachable candidate
 //!   would intercept an unexplored cell.
-//! - [`Strategy::Frontier`]: nearest-frontier exploration (Yamauchi 1997)
+//! - [`Strategy::Frontier`] (`nearest_frontier.rs`): nearest-frontier exploration (Yamauchi 1997)
 //!   on the [`OccupancyGrid`](crate::OccupancyGrid); done when no frontier
 //!   is left.
 //!
@@ -29,9 +29,9 @@
 //! lies behind walls the robot cannot pass and more than the band behind
 //! their faces, so it does not.
 
-mod counting;
-mod coverage;
-mod frontier;
+mod decision_theoretic;
+mod nearest_frontier;
+mod scan_counting;
 
 use serde::{Deserialize, Serialize};
 
@@ -132,13 +132,6 @@ impl Strategy {
         }
     }
 
-    /// Whether the strategy plans on the coverage map's histograms (with
-    /// the contacts pinned), not only on its ML coverage: the loop keeps a
-    /// copy of the map for it.
-    pub(super) fn plans_on_histograms(&self) -> bool {
-        matches!(self, Self::Coverage { .. })
-    }
-
     /// Errors as the constructors do.
     pub fn validate(&self) -> Result<()> {
         match *self {
@@ -168,147 +161,126 @@ impl Strategy {
     }
 }
 
-/// What a strategy sees when it decides: the maps, the robot, the sensor.
-pub(super) struct View<'a> {
-    /// The coverage map, as the readings and contacts made it.
+/// What a strategy sees when it chooses its next goal: the maps the robot
+/// has built (never the world), where it is, its sensor and the loop's
+/// settings. The loop keeps the read-outs up to date from the coverage
+/// map's change feed ([`CoverageMap::changes_since`]).
+pub struct DecisionInputs<'a> {
+    /// The coverage map, as the readings made it, every cell the robot ran
+    /// into held certainly covered ([`CoverageMap::pin_covered`]).
     pub map: &'a CoverageMap,
-    /// The coverage map to plan on: `map` with every cell the robot has run
-    /// into pinned as covered (the robot remembers its contacts, whatever
-    /// the readings say since). Kept by the loop for the strategy that
-    /// plans on its histograms, coverage's ([`Strategy::plans_on_histograms`]);
-    /// `None` for the others, which read `planning_ml`.
-    pub planning_map: Option<&'a CoverageMap>,
-    /// The ML coverage of the map to plan on ([`CoverageMap::ml`] of
-    /// `map` with the contacts pinned), kept by the loop from step to step.
-    pub planning_ml: &'a [f32],
+    /// The coverage map's ML coverage ([`CoverageMap::ml`]).
+    pub ml: &'a [f32],
+    /// The coverage map's entropy, nats ([`CoverageMap::entropy`]).
+    pub entropy: &'a [f32],
+    /// The cells (row-major, ascending) any map changed since the last
+    /// decision (every cell at the first: the feed from where the loop
+    /// started reading).
+    pub changed: &'a [usize],
+    /// The occupancy grid built from the same beams (and its scan counts).
+    pub occupancy: &'a OccupancyGrid,
     /// The cells the robot has run into.
     pub contact_cells: &'a [Cell],
     /// The cells the robot's centre has driven through (row-major), which
     /// the strategies navigating the occupancy grid may always pass.
     pub driven: &'a [bool],
-    pub occupancy: &'a OccupancyGrid,
-    /// The coverage map's entropy, nats, computed once after the last scan.
-    pub entropy: &'a [f32],
+    /// Where the robot is.
     pub pose: Pose,
+    /// The bearings of its sensor's beams, radians.
     pub bearings: &'a [f64],
+    /// The inverse model its scans are integrated with.
     pub model: &'a AnySensorModel,
+    /// The loop's settings.
     pub config: &'a ExplorationConfig,
     /// Goals (row-major cells) the robot could make no headway towards:
-    /// none is chosen again (the map may keep showing the way free).
+    /// none may be chosen again (the map may keep showing the way free).
     pub failed_goals: &'a [usize],
 }
 
-impl View<'_> {
+impl DecisionInputs<'_> {
+    /// The grid of the maps.
     pub fn grid(&self) -> &Grid {
         self.map.grid()
     }
 }
 
-/// The headings a candidate is considered with when the sensor does not
-/// see all around: every 45 degrees.
-pub(super) const HEADINGS: usize = 8;
-
-/// The widest gap between neighbouring bearings (radians) of a sensor that
-/// sees all around: 45 degrees (the 24-sonar ring's is 15).
-const ALL_AROUND_GAP_RAD: f64 = std::f64::consts::FRAC_PI_4;
-
-/// Whether no two neighbouring `bearings` (around the circle) are more than
-/// [`ALL_AROUND_GAP_RAD`] apart: a sensor for which the heading of a
-/// viewpoint hardly matters.
-pub(super) fn sees_all_around(bearings: &[f64]) -> bool {
-    widest_gap_rad(bearings) <= ALL_AROUND_GAP_RAD
-}
-
-/// The widest gap between neighbouring `bearings` around the circle,
-/// radians: `2 pi` for one bearing or none.
-pub(super) fn widest_gap_rad(bearings: &[f64]) -> f64 {
-    use std::f64::consts::TAU;
-    let mut angles: Vec<f64> = bearings.iter().map(|b| b.rem_euclid(TAU)).collect();
-    angles.sort_by(f64::total_cmp);
-    let (Some(first), Some(last)) = (angles.first(), angles.last()) else {
-        return TAU;
-    };
-    let wrap = first + TAU - last;
-    angles
-        .windows(2)
-        .map(|w| w[1] - w[0])
-        .chain([wrap])
-        .fold(0.0, f64::max)
-}
-
-/// The headings a viewpoint is considered with by a sensor seeing through
-/// `bearings`: `robot_heading` alone for one that sees all around, else
-/// [`HEADINGS`] fixed headings, `i * 2 pi / HEADINGS` (the robot turns on
-/// the spot to the one chosen).
-pub(super) fn viewpoint_headings(bearings: &[f64], robot_heading: f64) -> Vec<f64> {
-    if sees_all_around(bearings) {
-        vec![robot_heading]
-    } else {
-        crate::planner::fixed_headings(HEADINGS)
-    }
-}
-
-/// A strategy's answer.
-pub(super) enum Decision {
+/// A strategy's answer: where to go next, or why exploration is done.
+#[derive(Clone, Debug, PartialEq)]
+pub enum NextGoal {
     /// Drive along `path` (cell centres, from the robot's cell) to `pose`.
-    Goal { pose: Pose, path: Vec<[f64; 2]> },
+    Goal {
+        /// The goal.
+        pose: Pose,
+        /// The path to it.
+        path: Vec<[f64; 2]>,
+    },
     /// Exploration is done.
     Done(Termination),
 }
 
-/// How the drive to a goal went, for the strategy to learn from.
-pub(super) struct Outcome {
-    /// Whether the robot got to the goal.
+/// How the drive to the last goal went.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct GoalOutcome {
+    /// Whether the robot got to the goal (not stopped by a contact or a
+    /// limit).
     pub reached: bool,
 }
 
-/// A strategy at work: its settings and what it remembers between steps.
-pub(super) enum Chooser {
-    // Boxed: the planner's state and the counting strategy's kept
-    // dilations outweigh the frontier strategy's.
-    Coverage(Box<coverage::Coverage>),
-    Counting(Box<counting::Counting>),
-    Frontier(frontier::Frontier),
+/// A strategy at work: chooses the next goal on the maps, and learns from
+/// how the drive to it went. The built-in strategies ([`Strategy`])
+/// implement it; another can drive the loop through
+/// [`Exploration::with_strategy`](super::Exploration::with_strategy).
+pub trait ExplorationStrategy: Send + Sync {
+    /// The next goal, or why there is none.
+    ///
+    /// # Errors
+    /// An error of the strategy's own; the loop passes it on, and the run
+    /// can go on after it.
+    fn decide(&mut self, inputs: &DecisionInputs<'_>) -> Result<NextGoal>;
+
+    /// Learn from how the drive to the goal last decided went; `inputs`
+    /// show the maps after it. Nothing by default.
+    fn learn(&mut self, inputs: &DecisionInputs<'_>, outcome: &GoalOutcome) {
+        let _ = (inputs, outcome);
+    }
 }
 
-impl Chooser {
-    /// The strategy's state at the start of a run on `grid` (validated).
-    pub fn new(
-        strategy: &Strategy,
+pub(crate) use crate::planner::{sees_all_around, widest_gap_rad};
+
+/// The headings a viewpoint is considered with by a sensor seeing through
+/// `bearings`: `robot_heading` alone for one that sees all around, else
+/// the planner's default fixed headings (the robot turns on the spot to the
+/// one chosen).
+pub(super) fn viewpoint_headings(bearings: &[f64], robot_heading: f64) -> Vec<f64> {
+    if sees_all_around(bearings) {
+        vec![robot_heading]
+    } else {
+        crate::planner::fixed_headings(crate::planner::DEFAULT_HEADINGS)
+    }
+}
+
+impl Strategy {
+    /// The strategy at the start of a run on `grid` with a coverage map of
+    /// `bins` bins (validated).
+    ///
+    /// # Errors
+    /// As [`Strategy::validate`].
+    pub fn start(
+        &self,
         config: &ExplorationConfig,
         grid: &Grid,
         bins: usize,
-        bearings: &[f64],
-    ) -> Result<Self> {
-        strategy.validate()?;
-        Ok(match *strategy {
-            Strategy::Coverage { alpha } => Self::Coverage(Box::new(coverage::Coverage::new(
-                alpha, config, grid, bins, bearings,
-            )?)),
+    ) -> Result<Box<dyn ExplorationStrategy>> {
+        self.validate()?;
+        Ok(match *self {
+            Strategy::Coverage { alpha } => Box::new(decision_theoretic::DecisionTheoretic::new(
+                alpha, config, bins,
+            )?),
             Strategy::Counting { n, .. } => {
-                Self::Counting(Box::new(counting::Counting::new(n, config, grid)))
+                Box::new(scan_counting::ScanCounting::new(n, config, grid))
             }
-            Strategy::Frontier => Self::Frontier(frontier::Frontier::new(grid)),
+            Strategy::Frontier => Box::new(nearest_frontier::NearestFrontier::new(grid)),
         })
-    }
-
-    /// The next goal, or why there is none.
-    pub fn decide(&mut self, view: &View) -> Result<Decision> {
-        match self {
-            Self::Coverage(s) => s.decide(view),
-            Self::Counting(s) => s.decide(view),
-            Self::Frontier(s) => s.decide(view),
-        }
-    }
-
-    /// Learn from how the drive to the last goal went; `view` shows the maps
-    /// after it.
-    pub fn learn(&mut self, view: &View, outcome: &Outcome) {
-        match self {
-            Self::Coverage(s) => s.learn(view, outcome),
-            Self::Counting(s) => s.learn(view, outcome),
-            Self::Frontier(s) => s.learn(view, outcome),
-        }
     }
 }
 

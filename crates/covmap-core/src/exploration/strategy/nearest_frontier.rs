@@ -32,7 +32,7 @@
 //! # Termination
 //! [`Termination::NoGoal`]: no reachable frontier group is left.
 
-use super::{Decision, Outcome, View, sees_all_around};
+use super::{DecisionInputs, ExplorationStrategy, GoalOutcome, NextGoal, sees_all_around};
 use crate::error::Result;
 use crate::exploration::region::{
     blocked_on_occupancy, known_cells, paths_from, planning_radius_m,
@@ -42,13 +42,13 @@ use crate::grid::Grid;
 use crate::pose::Pose;
 
 /// The frontier strategy's state.
-pub(crate) struct Frontier {
+pub(crate) struct NearestFrontier {
     given_up: Vec<bool>,
     /// The frontier cells of the last goal's group.
     group: Vec<usize>,
 }
 
-impl Frontier {
+impl NearestFrontier {
     pub fn new(grid: &Grid) -> Self {
         Self {
             given_up: vec![false; grid.len()],
@@ -56,7 +56,7 @@ impl Frontier {
         }
     }
 
-    pub fn decide(&mut self, view: &View) -> Result<Decision> {
+    fn choose(&mut self, view: &DecisionInputs<'_>) -> Result<NextGoal> {
         let grid = view.grid();
         let radius_m = planning_radius_m(view.config.robot_radius_m, grid);
         let (known, known_free) = known_cells(view.occupancy);
@@ -101,7 +101,7 @@ impl Frontier {
             }
         }
         let Some((_, goal, [fx, fy], group)) = best else {
-            return Ok(Decision::Done(Termination::NoGoal));
+            return Ok(NextGoal::Done(Termination::NoGoal));
         };
         self.group = group;
         let [x, y] = grid.cell_center(grid.cell(goal));
@@ -112,13 +112,19 @@ impl Frontier {
         } else {
             (fy - y).atan2(fx - x)
         };
-        Ok(Decision::Goal {
+        Ok(NextGoal::Goal {
             pose: Pose::new(x, y, heading),
             path: reach.path_to(goal),
         })
     }
+}
 
-    pub fn learn(&mut self, view: &View, outcome: &Outcome) {
+impl ExplorationStrategy for NearestFrontier {
+    fn decide(&mut self, inputs: &DecisionInputs<'_>) -> Result<NextGoal> {
+        self.choose(inputs)
+    }
+
+    fn learn(&mut self, view: &DecisionInputs<'_>, outcome: &GoalOutcome) {
         if !outcome.reached {
             return;
         }

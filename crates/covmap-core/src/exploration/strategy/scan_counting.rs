@@ -47,7 +47,7 @@
 //! # Termination
 //! [`Termination::NoGoal`]: no candidate would intercept an unexplored cell.
 
-use super::{Decision, Outcome, View, viewpoint_headings};
+use super::{DecisionInputs, ExplorationStrategy, GoalOutcome, NextGoal, viewpoint_headings};
 use crate::error::Result;
 use crate::exploration::config::ExplorationConfig;
 use crate::exploration::dilation::Dilation;
@@ -66,7 +66,7 @@ use crate::sensor::{SensorModel, trace_readings};
 const GIVE_UP_AFTER: u8 = 3;
 
 /// The scan-counting strategy's state.
-pub(crate) struct Counting {
+pub(crate) struct ScanCounting {
     n: f32,
     /// Visits to each cell that did not count it when the prediction said
     /// they would; at [`GIVE_UP_AFTER`] the cell is given up.
@@ -74,16 +74,19 @@ pub(crate) struct Counting {
     /// The cells the last goal was chosen for, and their counts then.
     targets: Vec<(usize, f32)>,
     /// The blocked cells grown by the planning radius: the cells where the
-    /// robot is not clear of them, kept from step to step.
+    /// robot is not clear of them, kept from step to step by the cells the
+    /// maps changed.
     unclear: Dilation,
     /// The reachable cells grown by the planning radius and a cell: the
-    /// region, kept from step to step.
+    /// region, kept from step to step (a fill of the free space, it can
+    /// change far from the cells the maps changed: compared a block at a
+    /// time).
     region: Dilation,
     /// The memory of the candidates' searches, kept from step to step.
     search: SearchMemory,
 }
 
-impl Counting {
+impl ScanCounting {
     pub fn new(n: u32, config: &ExplorationConfig, grid: &Grid) -> Self {
         let radius_m = planning_radius_m(config.robot_radius_m, grid);
         Self {
@@ -107,13 +110,15 @@ impl Counting {
     /// (ties to the lower index) from a search that stops at the first one
     /// that would intercept something: the goal and path that sorting every
     /// reachable candidate by the lengths of a whole search gives.
-    pub fn decide(&mut self, view: &View) -> Result<Decision> {
+    fn choose(&mut self, view: &DecisionInputs<'_>) -> Result<NextGoal> {
         let grid = view.grid();
         let model = view.model.as_dyn();
         let radius_m = planning_radius_m(view.config.robot_radius_m, grid);
         let blocked = blocked_on_occupancy(view.occupancy, view.contact_cells)?;
         let start = check_pose(grid, &view.pose)?;
-        self.unclear.take_in(&blocked);
+        // The blocked cells change only where the maps did (the loop feeds
+        // the occupancy grid the coverage map's beams and contacts).
+        self.unclear.take_in_cells(view.changed, |i| blocked[i]);
         let unclear = &self.unclear;
         let free = |i: usize| !unclear.covers(i);
         let mut passable: Vec<bool> = (0..grid.len()).map(free).collect();
@@ -125,7 +130,7 @@ impl Counting {
         let (region, misses, n) = (&self.region, &self.misses, self.n);
         let unexplored = |i: usize| region.covers(i) && counts[i] < n && misses[i] < GIVE_UP_AFTER;
         if !(0..grid.len()).any(unexplored) {
-            return Ok(Decision::Done(Termination::NoGoal));
+            return Ok(NextGoal::Done(Termination::NoGoal));
         }
         let stride =
             ((view.config.candidate_stride_m / grid.resolution_m()).round() as usize).max(1);
@@ -151,14 +156,7 @@ impl Counting {
             let [x, y] = grid.cell_center(grid.cell(i));
             for &heading in &headings {
                 let pose = Pose::new(x, y, heading);
-                let targets = intercepted(
-                    grid,
-                    view.planning_ml,
-                    &pose,
-                    view.bearings,
-                    model,
-                    unexplored,
-                );
+                let targets = intercepted(grid, view.ml, &pose, view.bearings, model, unexplored);
                 if !targets.is_empty() {
                     goal = Some((pose, search.path_to(i), targets));
                     break 'candidates;
@@ -169,13 +167,19 @@ impl Counting {
         Ok(match goal {
             Some((pose, path, targets)) => {
                 self.targets = targets.into_iter().map(|t| (t, counts[t])).collect();
-                Decision::Goal { pose, path }
+                NextGoal::Goal { pose, path }
             }
-            None => Decision::Done(Termination::NoGoal),
+            None => NextGoal::Done(Termination::NoGoal),
         })
     }
+}
 
-    pub fn learn(&mut self, view: &View, outcome: &Outcome) {
+impl ExplorationStrategy for ScanCounting {
+    fn decide(&mut self, inputs: &DecisionInputs<'_>) -> Result<NextGoal> {
+        self.choose(inputs)
+    }
+
+    fn learn(&mut self, view: &DecisionInputs<'_>, outcome: &GoalOutcome) {
         if !outcome.reached {
             return;
         }

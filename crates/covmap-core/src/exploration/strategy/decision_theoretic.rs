@@ -63,24 +63,24 @@
 //! counting to 50 (the paper's Table I), and it keeps them travelling less
 //! than counting needs to make 85 % of the cells certain (its Fig. 7).
 
-use super::{Decision, HEADINGS, Outcome, View, sees_all_around};
-use crate::coverage_map::CoverageMap;
+use super::{DecisionInputs, ExplorationStrategy, GoalOutcome, NextGoal};
 use crate::error::Result;
 use crate::exploration::ExplorationConfig;
 use crate::exploration::region::{navigator, reachable_region, region_of};
 use crate::exploration::result::Termination;
-use crate::grid::Grid;
 use crate::planner::{Plan, Planner, PlannerConfig, PlanningCache, Reachability};
-use crate::pose::Pose;
 
 /// Steps without a new settled cell after which the run has stagnated.
 pub(crate) const STALL_STEPS: usize = 60;
 
 /// The decision-theoretic strategy's state.
-pub(crate) struct Coverage {
-    /// The strategies' navigator (see [`navigator`]) with the candidates'
-    /// settings: its paths and free space are the navigator's.
+pub(crate) struct DecisionTheoretic {
+    /// The planner with the loop's settings: its paths and free space are
+    /// the strategies' navigator's ([`navigator`]).
     planner: Planner,
+    /// The least gain a goal must promise, nats ([`Planner::min_gain_nats`]
+    /// on the map's bins).
+    min_gain_nats: f64,
     /// The most cells of the region certain or stagnated at once so far.
     most_settled: usize,
     /// The region's entropy (nats) at each decision since that number last
@@ -93,51 +93,39 @@ pub(crate) struct Coverage {
     last: Option<(usize, f64)>,
     /// What planning after the next scan can keep of this one's work.
     cache: PlanningCache,
-    /// Whether the sensor sees all around, so that candidates are planned
-    /// with one fixed heading (see [`sees_all_around`]).
-    all_around: bool,
 }
 
-impl Coverage {
-    pub fn new(
-        alpha: f64,
-        config: &ExplorationConfig,
-        grid: &Grid,
-        bins: usize,
-        bearings: &[f64],
-    ) -> Result<Self> {
-        let navigator = navigator(config.robot_radius_m, grid, alpha)?;
-        let all_around = sees_all_around(bearings);
+impl DecisionTheoretic {
+    pub fn new(alpha: f64, config: &ExplorationConfig, bins: usize) -> Result<Self> {
+        // The planner's own defaults choose the headings (by the bearings)
+        // and the least gain (by the bins and epsilon).
         let planner = Planner::new(PlannerConfig {
             candidate_stride_m: config.candidate_stride_m,
             min_travel_m: config.min_travel_m,
-            min_gain_nats: min_gain_nats(bins, config.epsilon),
             epsilon: config.epsilon,
-            candidate_headings: if all_around { 1 } else { HEADINGS },
-            ..*navigator.config()
+            ..*navigator(config.robot_radius_m, alpha)?.config()
         })?;
         Ok(Self {
+            min_gain_nats: planner.min_gain_nats(bins),
             planner,
             most_settled: 0,
             entropy_since_more_settled: Vec::new(),
             exhausted: Vec::new(),
             last: None,
             cache: PlanningCache::new(),
-            all_around,
         })
     }
 
-    pub fn decide(&mut self, view: &View) -> Result<Decision> {
+    /// The next goal by eq. 14 (see the module documentation).
+    fn choose(&mut self, view: &DecisionInputs<'_>) -> Result<NextGoal> {
         // The free space and the paths, found once for the termination
         // rule, the plan and the path to a goal other than the plan's (the
         // planner's cache keeps the map's read-outs they need).
-        let (free, reach) = self.planner.free_and_reachable_cached(
-            &mut self.cache,
-            planning_map(view),
-            &view.pose,
-        )?;
+        let (free, reach) =
+            self.planner
+                .free_and_reachable_cached(&mut self.cache, view.map, &view.pose)?;
         if let Some(done) = self.termination(view, &reach)? {
-            return Ok(Decision::Done(done));
+            return Ok(NextGoal::Done(done));
         }
         let plan = self.plan(view, (&free, &reach))?;
         let grid = view.grid();
@@ -152,7 +140,7 @@ impl Coverage {
             other => other,
         };
         let Some(k) = chosen else {
-            return Ok(Decision::Done(Termination::NoGoal));
+            return Ok(NextGoal::Done(Termination::NoGoal));
         };
         let path = if Some(k) == plan.chosen {
             plan.path
@@ -160,7 +148,7 @@ impl Coverage {
             index_of(k).map_or_else(Vec::new, |i| reach.path_to(i))
         };
         self.last = index_of(k).map(|i| (i, total_entropy(view.entropy)));
-        Ok(Decision::Goal {
+        Ok(NextGoal::Goal {
             pose: plan.candidates.poses[k],
             path,
         })
@@ -168,20 +156,15 @@ impl Coverage {
 
     /// The one call of the planner's choice (eq. 14), keeping in the cache
     /// every candidate's gain for the next call, on the free space and
-    /// paths `space` found for the robot's pose. A sensor that sees all
-    /// around plans with the fixed heading 0, so that the gains of the
-    /// candidates the scan did not reach are kept whichever way the robot
-    /// faces; the others consider [`HEADINGS`] fixed headings a candidate.
-    fn plan(&mut self, view: &View, space: (&[bool], &Reachability)) -> Result<Plan> {
-        let pose = if self.all_around {
-            Pose::new(view.pose.x_m, view.pose.y_m, 0.0)
-        } else {
-            view.pose
-        };
+    /// paths `space` found for the robot's pose. The candidates' headings
+    /// are fixed ([`Planner::headings`]: 0 for a sensor that sees all
+    /// around, eight for the others), so that the gains of the candidates
+    /// the scan did not reach are kept whichever way the robot faces.
+    fn plan(&mut self, view: &DecisionInputs<'_>, space: (&[bool], &Reachability)) -> Result<Plan> {
         self.planner.next_viewpoint_on(
             &mut self.cache,
-            planning_map(view),
-            &pose,
+            view.map,
+            &view.pose,
             view.bearings,
             view.model,
             space,
@@ -190,12 +173,16 @@ impl Coverage {
 
     /// Whether every cell of the reachable region is certain or stagnated,
     /// or the run has stagnated (see the module documentation).
-    fn termination(&mut self, view: &View, reach: &Reachability) -> Result<Option<Termination>> {
+    fn termination(
+        &mut self,
+        view: &DecisionInputs<'_>,
+        reach: &Reachability,
+    ) -> Result<Option<Termination>> {
         let band_m = view.model.as_dyn().range_model().band_m;
-        let region = region_of(reach, planning_map(view).grid(), &self.planner, band_m);
+        let region = region_of(reach, view.map.grid(), &self.planner, band_m);
         debug_assert_eq!(
             region,
-            reachable_region(&self.planner, planning_map(view), &view.pose, band_m)?
+            reachable_region(&self.planner, view.map, &view.pose, band_m)?
         );
         let epsilon = view.config.epsilon;
         let (mut certain, mut stagnated, mut open) = (0usize, 0usize, 0usize);
@@ -226,38 +213,26 @@ impl Coverage {
         // The region's entropy `STALL_STEPS` decisions ago, and now.
         let stalled = history.len() > STALL_STEPS
             && history[history.len() - 1 - STALL_STEPS] - entropy
-                < STALL_STEPS as f64 * self.planner.config().min_gain_nats;
+                < STALL_STEPS as f64 * self.min_gain_nats;
         Ok(stalled.then_some(Termination::Stagnated))
+    }
+}
+
+impl ExplorationStrategy for DecisionTheoretic {
+    fn decide(&mut self, inputs: &DecisionInputs<'_>) -> Result<NextGoal> {
+        self.choose(inputs)
     }
 
     /// A goal reached whose drive and scans lowered the map's entropy by
     /// less than the planner's `min_gain_nats` is exhausted.
-    pub fn learn(&mut self, view: &View, outcome: &Outcome) {
+    fn learn(&mut self, view: &DecisionInputs<'_>, outcome: &GoalOutcome) {
         if let Some((goal, before)) = self.last.take()
             && outcome.reached
-            && before - total_entropy(view.entropy) < self.planner.config().min_gain_nats
+            && before - total_entropy(view.entropy) < self.min_gain_nats
         {
             self.exhausted.push(goal);
         }
     }
-}
-
-/// The map the strategy plans on, which the loop keeps for it
-/// ([`Strategy::plans_on_histograms`](super::Strategy)).
-fn planning_map<'v>(view: &View<'v>) -> &'v CoverageMap {
-    #[allow(
-        clippy::expect_used,
-        reason = "the loop keeps the map planned on for the coverage strategy"
-    )]
-    view.planning_map
-        .expect("the loop keeps the map planned on for the coverage strategy")
-}
-
-/// The least gain a goal must promise, nats: what making one cell at the
-/// prior (entropy `ln bins`) certain (entropy `epsilon`) is worth, at least
-/// the planner's default of 1 nat.
-fn min_gain_nats(bins: usize, epsilon: f64) -> f64 {
-    ((bins as f64).ln() - epsilon).max(PlannerConfig::default().min_gain_nats)
 }
 
 /// The sum of a map's entropies, nats.
@@ -301,14 +276,15 @@ mod tests {
             .collect();
         let (entropy, ml) = (map.entropy(), map.ml());
         let driven = vec![false; map.grid().len()];
-        let view = View {
+        let changed: Vec<usize> = (0..map.grid().len()).collect();
+        let view = DecisionInputs {
             map: &map,
-            planning_map: Some(&map),
-            planning_ml: &ml,
+            ml: &ml,
+            entropy: &entropy,
+            changed: &changed,
             contact_cells: &[],
             driven: &driven,
             occupancy: &occupancy,
-            entropy: &entropy,
             pose,
             bearings: &bearings,
             model: &model,
@@ -317,9 +293,8 @@ mod tests {
         };
         let mut goals = Vec::new();
         for alpha in [0.0, 1.0] {
-            let mut strategy =
-                Coverage::new(alpha, &config, map.grid(), map.bins(), &bearings).unwrap();
-            let Decision::Goal { pose: goal, path } = strategy.decide(&view).unwrap() else {
+            let mut strategy = DecisionTheoretic::new(alpha, &config, map.bins()).unwrap();
+            let NextGoal::Goal { pose: goal, path } = strategy.decide(&view).unwrap() else {
                 panic!("alpha {alpha}: no goal in a room not yet explored");
             };
             let (free, reach) = strategy
@@ -336,7 +311,7 @@ mod tests {
             );
             let c = &plan.candidates;
             let worth: Vec<usize> = (0..c.gains.len())
-                .filter(|&k| c.gains[k] > strategy.planner.config().min_gain_nats)
+                .filter(|&k| c.gains[k] > strategy.min_gain_nats)
                 .collect();
             let k = c.poses.iter().position(|p| *p == goal).unwrap();
             if alpha == 0.0 {
@@ -350,6 +325,16 @@ mod tests {
                 assert_eq!(c.gains[k], best);
             }
             assert_eq!(path.last(), Some(&[goal.x_m, goal.y_m]));
+            // A planner with its defaults (the loop's) makes the same choice.
+            let planner = Planner::new(PlannerConfig {
+                alpha,
+                ..PlannerConfig::default()
+            })
+            .unwrap();
+            let fresh = planner
+                .next_viewpoint(&map, &pose, &bearings, &model)
+                .unwrap();
+            assert_eq!((fresh.pose, &fresh.path), (Some(goal), &path));
             goals.push((c.costs[k], c.gains[k]));
         }
         assert!(
