@@ -31,9 +31,6 @@ returns a :class:`RunSummary` of each. :mod:`covmap.plot` draws them with matplo
 
 from __future__ import annotations
 
-# First: it wraps the native module, so that every later import of a native
-# function gets the wrapped one.
-from covmap import _arguments  # noqa: F401
 from covmap import plot
 from covmap import _errors
 from covmap._errors import *  # noqa: F403 (the error classes, listed in _errors.__all__)

@@ -9,7 +9,6 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from covmap._arguments import check_module
 
 if TYPE_CHECKING:
     import numpy.typing as npt
@@ -185,6 +184,3 @@ class ExplorationResult:
             f"{self.path_length_m:.2f} m, {self.scans} scans, {self.steps} steps, "
             f"{100.0 * self.high_entropy_fraction:.2f} % uncertain>"
         )
-
-
-check_module(__name__)  # calls with the wrong arguments raise InvalidTypeError

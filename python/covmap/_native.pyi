@@ -859,7 +859,7 @@ class World:
     def from_file(
         path: _Path,
         *,
-        wall_thickness_m: float = 0.1,
+        wall_thickness_m: float | None = None,
         resolution: float | None = None,
         origin: tuple[float, float] | None = None,
     ) -> World:
@@ -868,15 +868,17 @@ class World:
         - ``.json``, ``.geojson``: GeoJSON polygons in metres (a feature's
           ``properties.material`` is ``"wall"`` or ``"glass"``);
         - ``.map``: the ``LINES`` of an ARIA map, each a wall
-          ``wall_thickness_m`` thick;
+          ``wall_thickness_m`` thick (default 0.1 m);
         - ``.yaml``, ``.yml``: a ROS map_server YAML file and its image;
         - ``.pgm``, ``.png``: an occupancy image (dark = occupied) of
           ``resolution`` metres per pixel, its lower-left corner at ``origin``
           (default ``(0, 0)``); ``resolution`` is required.
 
-        A malformed file raises ``FileFormatError`` (a ``ValueError``) naming
-        the file and the place; a file that cannot be read raises
-        ``FileIOError`` (an ``OSError``).
+        An option the file's format does not use (``resolution`` for a
+        GeoJSON file, say) raises ``InvalidParameterError``: it would be
+        ignored. A malformed file raises ``FileFormatError`` (a
+        ``ValueError``) naming the file and the place; a file that cannot be
+        read raises ``FileIOError`` (an ``OSError``).
         """
     def to_geojson(self) -> str:
         """The world as GeoJSON text (``World.from_file`` reads it back from a

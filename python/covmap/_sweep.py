@@ -62,7 +62,6 @@ from typing import TYPE_CHECKING, Any, Callable, Union
 
 import numpy as np
 
-from covmap._arguments import check_module
 from covmap._errors import (
     CovmapError,
     InvalidExecutorError,
@@ -265,7 +264,7 @@ def strategy_of(value: Any) -> Strategy:
         raise InvalidParameterError(f"unknown strategy {name!r}: expected one of {', '.join(builders)}")
     try:
         return builders[name](**keywords)
-    except InvalidTypeError as e:  # an unknown keyword among them, or a value of the wrong type
+    except TypeError as e:  # an unknown keyword among them, or a value of the wrong type
         raise InvalidTypeError(f"strategy {name!r}: {e}") from None
 
 
@@ -594,6 +593,3 @@ def dask_client(
         raise SchedulerError(f"no Dask scheduler answered at {address!r} within {timeout_s:g} s: {e}") from None
     with client:
         yield client
-
-
-check_module(__name__)  # calls with the wrong arguments raise InvalidTypeError

@@ -143,13 +143,6 @@ impl Exception {
     }
 }
 
-/// Whether `err` is already one of covmap's exceptions.
-pub(crate) fn is_covmap_error(py: Python<'_>, err: &PyErr) -> bool {
-    Exception::Base
-        .class(py)
-        .is_ok_and(|base| err.get_type(py).is_subclass(&base).unwrap_or(false))
-}
-
 /// A core error as the matching Python exception.
 ///
 /// A file that cannot be read raises `FileIOError` with `filename` (and

@@ -14,10 +14,11 @@ use pyo3::prelude::*;
 use pyo3::sync::PyOnceLock;
 use pyo3::types::PyDict;
 
-use crate::convert::{self, Seed, cell_array, poses_array, rows_array};
+use crate::convert::{self, cell_array, poses_array, rows_array};
 use crate::coverage_map::PyCoverageMap;
 use crate::errors::{Exception, OrRaise};
 use crate::grid::PyGrid;
+use crate::numbers::{Bins, Float, Int, Seed};
 use crate::occupancy::PyOccupancyGrid;
 use crate::sensor::any_model;
 use crate::sim_sensor::{PyLaser, PySonarRing};
@@ -30,14 +31,14 @@ struct Keywords<'a, 'py> {
     seed: Seed,
     sensor: Option<&'a Bound<'py, PyAny>>,
     model: Option<&'a Bound<'py, PyAny>>,
-    resolution: f64,
-    bins: i64,
-    epsilon: f64,
-    robot_radius_m: f64,
-    candidate_stride_m: f64,
-    scan_spacing_m: f64,
-    max_path_m: f64,
-    max_steps: i64,
+    resolution: Float,
+    bins: Bins,
+    epsilon: Float,
+    robot_radius_m: Float,
+    candidate_stride_m: Float,
+    scan_spacing_m: Float,
+    max_path_m: Float,
+    max_steps: Int<usize, 1, { usize::MAX as i128 }>,
 }
 
 impl Keywords<'_, '_> {
@@ -51,38 +52,29 @@ impl Keywords<'_, '_> {
             Some(s) => sim_sensor(s)?,
         };
         // Named as Python names it (the simulator's option is `resolution_m`).
-        if !(self.resolution > 0.0 && self.resolution.is_finite()) {
+        let resolution = self.resolution.0;
+        if !(resolution > 0.0 && resolution.is_finite()) {
             return Err(Exception::InvalidParameter.err(
                 py,
                 format!(
-                    "invalid parameter `resolution` = {}: expected a positive, finite resolution (metres)",
-                    self.resolution
+                    "invalid parameter `resolution` = {resolution}: expected a positive, finite resolution (metres)"
                 ),
             ));
         }
-        let Ok(max_steps) = usize::try_from(self.max_steps) else {
-            return Err(Exception::InvalidParameter.err(
-                py,
-                format!(
-                    "invalid parameter `max_steps` = {}: expected at least one step",
-                    self.max_steps
-                ),
-            ));
-        };
         Ok(ExploreOptions {
             start: self.start.map(convert::pose).transpose()?,
             seed: self.seed.0,
             sensor,
             model: self.model.map(any_model).transpose()?,
-            resolution_m: self.resolution,
-            bins: convert::bins(py, self.bins)?,
+            resolution_m: resolution,
+            bins: self.bins.0,
             config: ExplorationConfig {
-                epsilon: self.epsilon,
-                robot_radius_m: self.robot_radius_m,
-                candidate_stride_m: self.candidate_stride_m,
-                scan_spacing_m: self.scan_spacing_m,
-                max_path_m: self.max_path_m,
-                max_steps,
+                epsilon: self.epsilon.0,
+                robot_radius_m: self.robot_radius_m.0,
+                candidate_stride_m: self.candidate_stride_m.0,
+                scan_spacing_m: self.scan_spacing_m.0,
+                max_path_m: self.max_path_m.0,
+                max_steps: self.max_steps.0,
                 ..d.config
             },
             ..d
@@ -139,8 +131,9 @@ macro_rules! run_keywords {
         $callback! {
             signature: (
                 world, strategy, *, start=None, seed=Seed(0), sensor=None, model=None,
-                resolution=0.05, bins=16, epsilon=0.65, robot_radius_m=0.25,
-                candidate_stride_m=0.5, scan_spacing_m=0.25, max_path_m=10000.0, max_steps=20000
+                resolution=Float(0.05), bins=Int(16), epsilon=Float(0.65),
+                robot_radius_m=Float(0.25), candidate_stride_m=Float(0.5),
+                scan_spacing_m=Float(0.25), max_path_m=Float(10000.0), max_steps=Int(20000)
             ),
             text: "(world, strategy, *, start=None, seed=0, sensor=None, model=None, resolution=0.05, bins=16, epsilon=0.65, robot_radius_m=0.25, candidate_stride_m=0.5, scan_spacing_m=0.25, max_path_m=10000.0, max_steps=20000)",
             params: (
@@ -148,14 +141,14 @@ macro_rules! run_keywords {
                 seed: Seed,
                 sensor: Option<&Bound<'_, PyAny>>,
                 model: Option<&Bound<'_, PyAny>>,
-                #[pyo3(from_py_with = crate::convert::arg)] resolution: f64,
-                #[pyo3(from_py_with = crate::convert::arg)] bins: i64,
-                #[pyo3(from_py_with = crate::convert::arg)] epsilon: f64,
-                #[pyo3(from_py_with = crate::convert::arg)] robot_radius_m: f64,
-                #[pyo3(from_py_with = crate::convert::arg)] candidate_stride_m: f64,
-                #[pyo3(from_py_with = crate::convert::arg)] scan_spacing_m: f64,
-                #[pyo3(from_py_with = crate::convert::arg)] max_path_m: f64,
-                #[pyo3(from_py_with = crate::convert::arg)] max_steps: i64,
+                resolution: Float,
+                bins: Bins,
+                epsilon: Float,
+                robot_radius_m: Float,
+                candidate_stride_m: Float,
+                scan_spacing_m: Float,
+                max_path_m: Float,
+                max_steps: Int<usize, 1, { usize::MAX as i128 }>,
             ),
             keywords: (Keywords {
                 start, seed, sensor, model, resolution, bins, epsilon, robot_radius_m,
@@ -204,7 +197,7 @@ macro_rules! explore_function {
         #[allow(clippy::too_many_arguments, reason = "one keyword argument per setting")]
         pub(crate) fn explore<'py>(
             py: Python<'py>,
-            #[pyo3(from_py_with = crate::convert::arg)] world: Bound<'py, PyWorld>,
+            world: Bound<'py, PyWorld>,
             strategy: &Bound<'py, PyAny>,
             $($param)*
         ) -> PyResult<Bound<'py, PyAny>> {
@@ -280,7 +273,7 @@ macro_rules! exploration_methods {
             #[allow(clippy::too_many_arguments, reason = "one keyword argument per setting")]
             fn new(
                 py: Python<'_>,
-                #[pyo3(from_py_with = crate::convert::arg)] world: Bound<'_, PyWorld>,
+                world: Bound<'_, PyWorld>,
                 strategy: &Bound<'_, PyAny>,
                 $($param)*
             ) -> PyResult<Self> {

@@ -15,11 +15,7 @@ use crate::errors::OrRaise;
 /// left behind. The directory must exist. A file that cannot be written
 /// raises ``FileIOError`` (an ``OSError``). Runs with the GIL released.
 #[pyfunction]
-pub(crate) fn write_atomic(
-    py: Python<'_>,
-    #[pyo3(from_py_with = crate::convert::arg)] path: PathBuf,
-    #[pyo3(from_py_with = crate::convert::arg)] data: &[u8],
-) -> PyResult<()> {
+pub(crate) fn write_atomic(py: Python<'_>, path: PathBuf, data: &[u8]) -> PyResult<()> {
     py.detach(|| covmap::sim::write_atomic(&path, data))
         .or_raise(py)
 }

@@ -14,6 +14,7 @@ use pyo3::types::{PyBytes, PySlice};
 
 use crate::convert;
 use crate::errors::{Exception, OrRaise};
+use crate::numbers::Float;
 
 /// A recorded drive: scan ``i`` taken at ``timestamps[i]`` from robot pose
 /// ``poses[i]`` (x, y metres, theta radians), reading ``ranges[i, k]``
@@ -64,6 +65,17 @@ fn scans(
     Ok((poses, ranges))
 }
 
+/// A sensor's mounting on the robot, `(x, y, theta)` (metres, radians):
+/// any sequence of three numbers, as [`convert::fixed_numbers`] reads it.
+struct SensorOffset([f64; 3]);
+
+impl<'a, 'py> FromPyObject<'a, 'py> for SensorOffset {
+    type Error = PyErr;
+    fn extract(obj: Borrowed<'a, 'py, PyAny>) -> PyResult<Self> {
+        convert::fixed_numbers::<3>(&obj, "sensor_offset", "(x, y, theta)").map(Self)
+    }
+}
+
 #[pymethods]
 impl PyLog {
     /// A log of ``poses`` ((N, 3)), ``ranges`` ((N, B), metres, float64 or
@@ -72,7 +84,7 @@ impl PyLog {
     /// ``sensor_offset`` to the robot's own pose.
     #[new]
     #[pyo3(
-        signature = (poses, ranges, bearings, *, max_range_m, timestamps=None, sensor_offset=(0.0, 0.0, 0.0)),
+        signature = (poses, ranges, bearings, *, max_range_m, timestamps=None, sensor_offset=SensorOffset([0.0; 3])),
         text_signature = "(poses, ranges, bearings, *, max_range_m, timestamps=None, sensor_offset=(0.0, 0.0, 0.0))"
     )]
     fn new(
@@ -80,9 +92,9 @@ impl PyLog {
         poses: &Bound<'_, PyAny>,
         ranges: &Bound<'_, PyAny>,
         bearings: &Bound<'_, PyAny>,
-        #[pyo3(from_py_with = crate::convert::arg)] max_range_m: f64,
+        max_range_m: Float,
         timestamps: Option<&Bound<'_, PyAny>>,
-        #[pyo3(from_py_with = crate::convert::arg)] sensor_offset: (f64, f64, f64),
+        sensor_offset: SensorOffset,
     ) -> PyResult<Self> {
         let (poses, ranges) = scans(py, poses, ranges)?;
         let n = poses.len();
@@ -91,9 +103,8 @@ impl PyLog {
             Some(t) => convert::readings(t, "timestamps", convert::MAX_VALUES)?,
             None => (0..n).map(|i| i as f64).collect(),
         };
-        let offset = Pose::from([sensor_offset.0, sensor_offset.1, sensor_offset.2]);
-        Log::new(poses, timestamps, ranges, bearings, max_range_m)
-            .and_then(|log| log.with_sensor_offset(offset))
+        Log::new(poses, timestamps, ranges, bearings, max_range_m.0)
+            .and_then(|log| log.with_sensor_offset(Pose::from(sensor_offset.0)))
             .map(Self)
             .or_raise(py)
     }
@@ -109,9 +120,9 @@ impl PyLog {
     #[pyo3(signature = (path, *, max_range_m=None, laser="front"))]
     fn from_carmen(
         py: Python<'_>,
-        #[pyo3(from_py_with = crate::convert::arg)] path: PathBuf,
-        #[pyo3(from_py_with = crate::convert::arg)] max_range_m: Option<f64>,
-        #[pyo3(from_py_with = crate::convert::arg)] laser: &str,
+        path: PathBuf,
+        max_range_m: Option<Float>,
+        laser: &str,
     ) -> PyResult<Self> {
         let laser = match laser {
             "front" => CarmenLaser::Front,
@@ -126,7 +137,7 @@ impl PyLog {
             }
         };
         let options = CarmenOptions {
-            max_range_m,
+            max_range_m: max_range_m.map(|m| m.0),
             laser,
             ..Default::default()
         };
@@ -141,24 +152,30 @@ impl PyLog {
     /// ``length_unit_m`` metres, the heading in ``angle_unit_rad`` radians;
     /// ``bearings_deg`` gives each column's sonar, degrees from the heading.
     #[staticmethod]
-    #[pyo3(signature = (poses_path, measurements_path, *, bearings_deg, length_unit_m=1.0, angle_unit_rad=1.0, max_range_m))]
+    #[pyo3(
+        signature = (
+            poses_path, measurements_path, *, bearings_deg, length_unit_m=Float(1.0),
+            angle_unit_rad=Float(1.0), max_range_m
+        ),
+        text_signature = "(poses_path, measurements_path, *, bearings_deg, length_unit_m=1.0, angle_unit_rad=1.0, max_range_m)"
+    )]
     fn from_sonar_text(
         py: Python<'_>,
-        #[pyo3(from_py_with = crate::convert::arg)] poses_path: PathBuf,
-        #[pyo3(from_py_with = crate::convert::arg)] measurements_path: PathBuf,
+        poses_path: PathBuf,
+        measurements_path: PathBuf,
         bearings_deg: &Bound<'_, PyAny>,
-        #[pyo3(from_py_with = crate::convert::arg)] length_unit_m: f64,
-        #[pyo3(from_py_with = crate::convert::arg)] angle_unit_rad: f64,
-        #[pyo3(from_py_with = crate::convert::arg)] max_range_m: f64,
+        length_unit_m: Float,
+        angle_unit_rad: Float,
+        max_range_m: Float,
     ) -> PyResult<Self> {
         let options = SonarTextOptions {
             bearings_rad: convert::readings(bearings_deg, "bearings_deg", covmap::sim::MAX_BEAMS)?
                 .into_iter()
                 .map(f64::to_radians)
                 .collect(),
-            length_unit_m,
-            angle_unit_rad,
-            max_range_m,
+            length_unit_m: length_unit_m.0,
+            angle_unit_rad: angle_unit_rad.0,
+            max_range_m: max_range_m.0,
         };
         py.detach(|| Log::from_sonar_text(&poses_path, &measurements_path, &options))
             .map(Self)
@@ -177,10 +194,10 @@ impl PyLog {
         py: Python<'_>,
         poses: &Bound<'_, PyAny>,
         ranges: &Bound<'_, PyAny>,
-        #[pyo3(from_py_with = crate::convert::arg)] angle_min: f64,
-        #[pyo3(from_py_with = crate::convert::arg)] angle_increment: f64,
-        #[pyo3(from_py_with = crate::convert::arg)] range_min: f64,
-        #[pyo3(from_py_with = crate::convert::arg)] range_max: f64,
+        angle_min: Float,
+        angle_increment: Float,
+        range_min: Float,
+        range_max: Float,
         timestamps: Option<&Bound<'_, PyAny>>,
     ) -> PyResult<Self> {
         let (poses, ranges) = scans(py, poses, ranges)?;
@@ -188,10 +205,10 @@ impl PyLog {
             .map(|t| convert::readings(t, "timestamps", convert::MAX_VALUES))
             .transpose()?;
         let fan = LaserScanFan {
-            angle_min_rad: angle_min,
-            angle_increment_rad: angle_increment,
-            range_min_m: range_min,
-            range_max_m: range_max,
+            angle_min_rad: angle_min.0,
+            angle_increment_rad: angle_increment.0,
+            range_min_m: range_min.0,
+            range_max_m: range_max.0,
         };
         Log::from_laser_scans(poses, &ranges, &fan, timestamps)
             .map(Self)
@@ -218,7 +235,7 @@ impl PyLog {
         odom_topic: Option<&str>,
         base_frame: Option<&str>,
         fixed_frame: Option<&str>,
-        max_range_m: Option<f64>,
+        max_range_m: Option<Float>,
     ) -> PyResult<Bound<'py, PyAny>> {
         // The reading is Python's (rosbags is a Python package).
         let kwargs = pyo3::types::PyDict::new(py);
@@ -226,7 +243,7 @@ impl PyLog {
         kwargs.set_item("odom_topic", odom_topic)?;
         kwargs.set_item("base_frame", base_frame)?;
         kwargs.set_item("fixed_frame", fixed_frame)?;
-        kwargs.set_item("max_range_m", max_range_m)?;
+        kwargs.set_item("max_range_m", max_range_m.map(|m| m.0))?;
         py.import("covmap._bag")?
             .getattr("read_bag")?
             .call((path,), Some(&kwargs))
@@ -283,12 +300,8 @@ impl PyLog {
     /// ``(x_min, y_min, x_max, y_max)`` covering every pose and every beam's
     /// end point, each beam cut at ``reach_m`` metres (no-echo beams end at
     /// the maximum range); ``None`` for an empty log.
-    fn extent(
-        &self,
-        py: Python<'_>,
-        #[pyo3(from_py_with = crate::convert::arg)] reach_m: f64,
-    ) -> PyResult<Option<(f64, f64, f64, f64)>> {
-        let bounds = self.0.extent(reach_m).or_raise(py)?;
+    fn extent(&self, py: Python<'_>, reach_m: Float) -> PyResult<Option<(f64, f64, f64, f64)>> {
+        let bounds = self.0.extent(reach_m.0).or_raise(py)?;
         Ok(bounds.map(|[a, b, c, d]| (a, b, c, d)))
     }
 
@@ -357,10 +370,7 @@ impl PyLog {
 
     /// Unpickling support: the log saved by ``__reduce__`` (validated).
     #[staticmethod]
-    fn _from_state(
-        py: Python<'_>,
-        #[pyo3(from_py_with = crate::convert::arg)] state: Bound<'_, PyBytes>,
-    ) -> PyResult<Self> {
+    fn _from_state(py: Python<'_>, state: Bound<'_, PyBytes>) -> PyResult<Self> {
         crate::pickling::restored(py, state.as_bytes(), "log").map(Self)
     }
 }

@@ -128,7 +128,7 @@ keyword_class! {
             fn next_viewpoint(
                 &self,
                 py: Python<'_>,
-                #[pyo3(from_py_with = crate::convert::arg)] map: PyRef<'_, PyCoverageMap>,
+                map: PyRef<'_, PyCoverageMap>,
                 pose: &Bound<'_, PyAny>,
                 bearings: &Bound<'_, PyAny>,
                 model: &Bound<'_, PyAny>,
@@ -146,7 +146,7 @@ keyword_class! {
             fn status(
                 &self,
                 py: Python<'_>,
-                #[pyo3(from_py_with = crate::convert::arg)] map: PyRef<'_, PyCoverageMap>,
+                map: PyRef<'_, PyCoverageMap>,
                 pose: &Bound<'_, PyAny>,
             ) -> PyResult<PyExplorationStatus> {
                 let pose = convert::pose(pose)?;
@@ -160,7 +160,7 @@ keyword_class! {
             fn free_space<'py>(
                 &self,
                 py: Python<'py>,
-                #[pyo3(from_py_with = crate::convert::arg)] map: PyRef<'py, PyCoverageMap>,
+                map: PyRef<'py, PyCoverageMap>,
             ) -> PyResult<Bound<'py, PyArray2<bool>>> {
                 let (planner, map) = (&self.0, &map.0);
                 let free = py.detach(|| planner.free_space(map));
@@ -173,7 +173,7 @@ keyword_class! {
             fn path_costs<'py>(
                 &self,
                 py: Python<'py>,
-                #[pyo3(from_py_with = crate::convert::arg)] map: PyRef<'py, PyCoverageMap>,
+                map: PyRef<'py, PyCoverageMap>,
                 pose: &Bound<'py, PyAny>,
             ) -> PyResult<Bound<'py, PyArray2<f64>>> {
                 let pose = convert::pose(pose)?;

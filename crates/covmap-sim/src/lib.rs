@@ -62,5 +62,5 @@ pub use rng::{SimRng, sim_rng, sim_rng_stream};
 pub use robot::Robot;
 pub use scan::Scan;
 pub use simulate::{RangeSensor, record, simulate};
-pub use sonar::SonarRing;
+pub use sonar::{MAX_RAYS_PER_CONE, SonarRing};
 pub use world::World;

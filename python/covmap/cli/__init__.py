@@ -12,7 +12,6 @@ import argparse
 import sys
 from typing import TYPE_CHECKING
 
-from covmap._arguments import check_module
 from covmap._errors import CovmapError
 from covmap._native import __version__
 from covmap.cli import explore, fig1, fig2, fig3, fig7, gain, learn, map, sweep, table1, world
@@ -48,6 +47,3 @@ def main(argv: Sequence[str] | None = None) -> int:
         print(f"covmap {args.command}: error: {e}", file=sys.stderr)
         return 2 if isinstance(e, ValueError) else 1
     return status
-
-
-check_module(__name__)  # calls with the wrong arguments raise InvalidTypeError

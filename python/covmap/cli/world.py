@@ -40,7 +40,7 @@ def add_arguments(command: argparse.ArgumentParser) -> None:
     command.add_argument(
         "--wall-thickness",
         type=_options.wall_thickness,
-        default=0.1,
+        default=None,
         help="thickness of the walls of an ARIA .map file, metres, at most 100 (default 0.1)",
     )
     command.add_argument(

@@ -17,7 +17,6 @@ from typing import TYPE_CHECKING, Callable, Literal
 
 import numpy as np
 
-from covmap._arguments import check_module
 from covmap._native import CoverageMap, Grid, LaserModel, Log, OccupancyGrid, SonarModel
 
 if TYPE_CHECKING:
@@ -146,6 +145,3 @@ def agreement(r: MappingRun) -> float:
     if not both.any():
         return math.nan
     return float(np.mean((a[both] >= 65) == (b[both] >= 65)))
-
-
-check_module(__name__)  # calls with the wrong arguments raise InvalidTypeError

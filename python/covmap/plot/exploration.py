@@ -9,7 +9,6 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from covmap._arguments import check_module
 from covmap.plot.drawing import plot_map, plot_trajectory, plot_world, unknown_colormap
 from covmap.plot.figures import _figure_file
 
@@ -210,6 +209,3 @@ def plot_table1(t: Table1, path: Path) -> Path:
         ax.grid(alpha=0.3)
         ax.legend(fontsize=7)
     return path
-
-
-check_module(__name__)  # calls with the wrong arguments raise InvalidTypeError

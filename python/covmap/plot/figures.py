@@ -9,7 +9,6 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from covmap._arguments import check_module
 from covmap.plot.drawing import plot_map, plot_trajectory, plot_world, unknown_colormap
 from covmap.plot.saving import save_figure
 
@@ -221,6 +220,3 @@ def plot_planning_step(step: Step, path: Path) -> Path:
             )
         gain_ax.legend(loc="upper right", fontsize=8)
     return path
-
-
-check_module(__name__)  # calls with the wrong arguments raise InvalidTypeError

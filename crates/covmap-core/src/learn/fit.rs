@@ -19,6 +19,9 @@ use crate::sensor::SensorModel;
 /// each is about a million; a fit of 13 parameters converges in hundreds).
 pub const MAX_EVALUATIONS: usize = 100_000;
 
+/// The most restarts a fit runs (each from its own seeded start).
+pub const MAX_RESTARTS: usize = 256;
+
 /// What a fit scores models on: a recorded drive, the grid its maps are
 /// built on, and the ground-truth coverage of that grid's cells (row-major),
 /// scored over every cell or those where `cells` is true.
@@ -244,10 +247,10 @@ impl<'a, M: Fittable> Search<'a, M> {
                 ),
             ));
         }
-        if !(1..=256).contains(&options.restarts) {
+        if !(1..=MAX_RESTARTS).contains(&options.restarts) {
             return Err(setting(
                 "restarts",
-                format!("{}: expected 1 to 256", options.restarts),
+                format!("{}: expected 1 to {MAX_RESTARTS}", options.restarts),
             ));
         }
         if !(options.tolerance >= 0.0 && options.tolerance.is_finite()) {
