@@ -173,7 +173,7 @@ def add_dask(command: argparse.ArgumentParser, *, local: bool = True) -> None:
 def executor(args: argparse.Namespace) -> Iterator[Any]:
     """The executor :func:`add_dask`'s options ask for (``None``: the local
     cores), closed when the block ends."""
-    from covmap._sweep import dask_client
+    from covmap._executors import dask_client
 
     if args.dask is not None:
         with dask_client(args.dask) as client:

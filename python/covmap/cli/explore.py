@@ -90,7 +90,7 @@ def strategy(args: argparse.Namespace) -> Strategy:
 def run(args: argparse.Namespace) -> int:
     """Explore, print the summary and draw the run; 1 unless it ended by its
     strategy's rule (rather than at a limit)."""
-    from covmap.cli._progress import Progress
+    from covmap._progress import Progress
     from covmap.experiments import exploration
     from covmap.plot import plot_exploration
 

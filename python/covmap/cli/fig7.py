@@ -95,7 +95,7 @@ def add_arguments(command: argparse.ArgumentParser) -> None:
 def run(args: argparse.Namespace) -> int:
     """Run the sweep, print its comparison, write its CSV and figure."""
     from covmap._sweep import RunSummary, SweepFailure
-    from covmap.cli._progress import Progress
+    from covmap._progress import Progress
     from covmap.experiments import fig7
     from covmap.plot import plot_fig7
 

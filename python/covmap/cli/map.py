@@ -8,7 +8,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING
 
 from covmap.cli import _options
-from covmap.cli._progress import Progress
+from covmap._progress import Progress
 
 if TYPE_CHECKING:
     from covmap.experiments import mapping

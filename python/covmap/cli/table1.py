@@ -45,7 +45,7 @@ def add_arguments(command: argparse.ArgumentParser) -> None:
 
 def run(args: argparse.Namespace) -> int:
     """Run the table, print it, write its CSV and chart."""
-    from covmap.cli._progress import Progress
+    from covmap._progress import Progress
     from covmap.experiments import table1
     from covmap.plot import plot_table1
 
