@@ -1311,9 +1311,25 @@ def write_atomic(path: _Path, data: bytes) -> None:
     """Write ``data`` to ``path`` atomically: a temporary file of a short name of
     its own in the same directory, flushed to disk, then renamed over
     ``path``, so a reader never sees a partial file; on failure nothing is
-    left behind. The directory must exist. A file that cannot be written
-    raises ``FileIOError`` (an ``OSError``). Runs with the GIL released.
+    left behind. The directory must exist. A path where something other
+    than a regular file is (a directory, a device, a FIFO, a socket, a
+    symlink) is refused before anything is written, as is a file that cannot
+    be written: ``FileIOError`` (an ``OSError``). Runs with the GIL released.
     """
+
+def check_write_target(path: _Path) -> None:
+    """Raise ``FileIOError`` unless ``write_atomic(path, ...)`` may write
+    ``path``: nothing is there, or a regular file is (a directory, a device,
+    a FIFO, a socket or a symlink is never replaced).
+    """
+
+def flow_collections(text: str) -> int:
+    """How many flow collections that hold something a YAML ``text`` may
+    open, at most: its ``[`` and ``{`` not closed at once (the bound of
+    ``MAX_FLOW_COLLECTIONS`` that map_server files are held to).
+    """
+
+MAX_FLOW_COLLECTIONS: int
 
 @final
 class Strategy:

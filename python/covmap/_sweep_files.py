@@ -116,10 +116,13 @@ def read_specs(path: Path) -> list[dict[str, Any]]:
     :func:`sweep`.
 
     TOML needs Python 3.11 (``tomllib``) or the ``tomli`` package."""
-    from covmap._read import read_small_file
+    from covmap._read import read_small_file, too_deep
 
     data = read_small_file(path)
     suffix = path.suffix.lower()
+    deep = too_deep(data, "toml" if suffix == ".toml" else "json")
+    if deep is not None:
+        raise _file_error(path, "content", deep)
     try:
         if suffix == ".json":
             document: Any = json.loads(data)

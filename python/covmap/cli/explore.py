@@ -10,6 +10,7 @@ from covmap.experiments.exploration import MAX_FRAMES
 
 if TYPE_CHECKING:
     import argparse
+    from pathlib import Path
 
     from covmap._exploration import Step
     from covmap._native import Exploration
@@ -85,6 +86,14 @@ def strategy(args: argparse.Namespace) -> Strategy:
     if args.strategy == "counting":
         return Strategy.counting(args.n, args.discount_beyond_m)
     return Strategy.frontier()
+
+
+def outputs(args: argparse.Namespace) -> list[Path]:
+    """The files the command writes: the map, the entropy and the
+    animation, named after the world and the strategy."""
+    from covmap.plot.exploration import exploration_paths
+
+    return exploration_paths(args.out, f"{args.world}-{args.strategy}")
 
 
 def run(args: argparse.Namespace) -> int:

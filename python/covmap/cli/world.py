@@ -50,6 +50,20 @@ def add_arguments(command: argparse.ArgumentParser) -> None:
     )
 
 
+def _name(args: argparse.Namespace) -> str:
+    """The name of the world's files: a built-in world's, a file's stem."""
+    if args.name in World.builtin_names() or not Path(args.name).suffix:
+        return str(args.name)
+    return Path(args.name).stem
+
+
+def outputs(args: argparse.Namespace) -> list[Path]:
+    """The files the command writes: the obstacles and the coverage."""
+    from covmap.plot.figures import world_paths
+
+    return world_paths(_name(args), args.out)
+
+
 def _load_world(args: argparse.Namespace) -> tuple[World, str]:
     """The world NAME names, and a name for its files."""
     if args.name in World.builtin_names():
