@@ -574,7 +574,10 @@ pub(crate) fn gain_method(py: Python<'_>, name: &str) -> PyResult<GainMethod> {
         "exact" => Ok(GainMethod::Exact),
         _ => Err(Exception::InvalidParameter.err(
             py,
-            format!("method must be \"fast\" or \"exact\", got {name:?}"),
+            format!(
+                "method must be \"fast\" or \"exact\", got {}",
+                covmap::quoted(name)
+            ),
         )),
     }
 }
@@ -587,7 +590,10 @@ pub(crate) fn stop_coverage(py: Python<'_>, name: &str) -> PyResult<StopCoverage
         "mean" => Ok(StopCoverage::Mean),
         _ => Err(Exception::InvalidParameter.err(
             py,
-            format!("stop_coverage must be \"ml\" or \"mean\", got {name:?}"),
+            format!(
+                "stop_coverage must be \"ml\" or \"mean\", got {}",
+                covmap::quoted(name)
+            ),
         )),
     }
 }

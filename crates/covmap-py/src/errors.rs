@@ -48,6 +48,8 @@ pub(crate) enum Exception {
     IntegerOverflow,
     /// Memory for a map or a result could not be had (a `MemoryError`).
     OutOfMemory,
+    /// A map was used inside its own `integrate_log`'s progress callback.
+    MapBusy,
 }
 
 impl Exception {
@@ -76,6 +78,7 @@ impl Exception {
             Self::InvalidType => "InvalidTypeError",
             Self::IntegerOverflow => "IntegerOverflowError",
             Self::OutOfMemory => "OutOfMemoryError",
+            Self::MapBusy => "MapBusyError",
         }
     }
 

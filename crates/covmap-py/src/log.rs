@@ -9,6 +9,7 @@ use covmap::{Bearings, CarmenLaser, CarmenOptions, Log, Pose, SonarTextOptions};
 use numpy::ndarray::Array2;
 use numpy::{IntoPyArray, PyArray1, PyArray2};
 
+use pyo3::exceptions::PyRuntimeError;
 use pyo3::prelude::*;
 use pyo3::types::{PyBytes, PySlice};
 
@@ -131,7 +132,8 @@ impl PyLog {
                 return Err(Exception::InvalidParameter.err(
                     py,
                     format!(
-                        "invalid parameter `laser` = {other:?}: expected \"front\" or \"rear\""
+                        "invalid parameter `laser` = {}: expected \"front\" or \"rear\"",
+                        covmap::quoted(other)
                     ),
                 ));
             }
@@ -333,7 +335,15 @@ impl PyLog {
                 ),
             ));
         };
-        let indices = slice.indices(self.0.len() as isize)?;
+        // Python's own check of the slice raises a bare ValueError for step 0
+        // and a TypeError for bounds that are no integers.
+        let indices = slice.indices(self.0.len() as isize).map_err(|e| {
+            let said = e.value(py).to_string();
+            match e.is_instance_of::<pyo3::exceptions::PyTypeError>(py) {
+                true => Exception::InvalidType.err(py, format!("a log's slice: {said}")),
+                false => Exception::InvalidValue.err(py, format!("a log's slice: {said}")),
+            }
+        })?;
         if indices.step != 1 {
             return Err(Exception::InvalidValue.err(
                 py,
@@ -461,6 +471,10 @@ impl Progress {
 /// went in: with one, the scans go into a copy (`try_clone`) that replaces
 /// `map` only if nothing raised, so that an error leaves `map` as it was;
 /// without one, into `map` itself.
+///
+/// The map is borrowed for the whole call, so a progress callable that uses
+/// it (reads it, integrates into it, saves it) fails to borrow it: pyo3's
+/// `RuntimeError` of that borrow is raised as `MapBusyError`, which says so.
 pub(crate) fn integrate_log_shown<M: Send>(
     py: Python<'_>,
     map: &mut M,
@@ -476,9 +490,31 @@ pub(crate) fn integrate_log_shown<M: Send>(
     let mut copy = try_clone(map).or_raise(py)?;
     let updates = with_progress(py, progress, (scans, " scans"), |show| {
         integrate(&mut copy, &mut |done| show(done))
-    })?;
+    })
+    .map_err(|e| busy(py, e))?;
     *map = copy;
     Ok(updates)
+}
+
+/// `error`, raised by a progress callable of `integrate_log`, as
+/// `MapBusyError` if it is pyo3's failure to borrow a map (the map the call
+/// holds: the callable used it), else as it is.
+fn busy(py: Python<'_>, error: PyErr) -> PyErr {
+    let borrow_failed = error.get_type(py).is(py.get_type::<PyRuntimeError>())
+        && matches!(
+            error.value(py).to_string().as_str(),
+            "Already borrowed" | "Already mutably borrowed"
+        );
+    if !borrow_failed {
+        return error;
+    }
+    let busy = Exception::MapBusy.err(
+        py,
+        "the map is busy in this call: integrate_log's progress callback cannot use the map it \
+         integrates into (read it once integrate_log has returned); nothing was changed",
+    );
+    busy.set_cause(py, Some(error));
+    busy
 }
 
 /// Run `work` with the GIL released, showing progress over `total` steps

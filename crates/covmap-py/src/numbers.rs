@@ -21,15 +21,15 @@ use pyo3::exceptions::{PyOverflowError, PyTypeError};
 use pyo3::prelude::*;
 use pyo3::types::{PyBool, PyFloat, PyInt};
 
-use crate::errors::Exception;
+use covmap::QUOTED_CHARS;
 
-/// The most characters of a value an error message quotes.
-pub(crate) const QUOTED_CHARS: usize = 60;
+use crate::errors::Exception;
 
 /// `obj` as an error message quotes it: its `repr`, cut to
 /// [`QUOTED_CHARS`] characters (a cut one ends in `...` and says how long it
 /// was); an integer too large for Python to print by its bit length, any
-/// other value whose `repr` fails by its type.
+/// other value whose `repr` fails by its type. (A Rust string is quoted by
+/// [`covmap::quoted`], to the same length.)
 pub(crate) fn quoted(obj: &Bound<'_, PyAny>) -> String {
     match obj.repr() {
         Ok(text) => shortened(&text.to_string_lossy()),

@@ -29,7 +29,10 @@ fn material(py: Python<'_>, name: &str, index: usize) -> PyResult<Material> {
     Material::from_name(name).ok_or_else(|| {
         Exception::InvalidParameter.err(
             py,
-            format!("materials[{index}] must be \"wall\" or \"glass\", got {name:?}"),
+            format!(
+                "materials[{index}] must be \"wall\" or \"glass\", got {}",
+                covmap::quoted(name)
+            ),
         )
     })
 }

@@ -62,7 +62,12 @@ def read_log(
             max_range_m=max_range_m,
         )
     if measurements is None:
-        raise ValueError("a sonar-text log needs its measurements file (--measurements)")
+        from covmap._errors import InvalidParameterError
+
+        raise InvalidParameterError(
+            f"{path}: a sonar-text log is a poses file and its measurements file: give measurements "
+            "(covmap map POSES --format sonar-text --measurements FILE)"
+        )
     return Log.from_sonar_text(
         path,
         measurements,

@@ -272,11 +272,18 @@ impl<'a, M: Fittable> Search<'a, M> {
                     let Some(p) = known.iter().find(|p| p.name == w.as_str()) else {
                         return Err(setting(
                             "parameters",
-                            format!("unknown parameter `{w}`: expected one of {}", known_names()),
+                            format!(
+                                "unknown parameter {}: expected one of {}",
+                                crate::quoted(w),
+                                known_names()
+                            ),
                         ));
                     };
                     if names.contains(&p.name) {
-                        return Err(setting("parameters", format!("`{w}` is named twice")));
+                        return Err(setting(
+                            "parameters",
+                            format!("{} is named twice", crate::quoted(w)),
+                        ));
                     }
                     names.push(p.name);
                 }
@@ -300,7 +307,8 @@ impl<'a, M: Fittable> Search<'a, M> {
                 return Err(setting(
                     "bounds",
                     format!(
-                        "bounds for `{name}`, which is not fitted (fitted: {})",
+                        "bounds for {}, which is not fitted (fitted: {})",
+                        crate::quoted(name),
                         names.join(", ")
                     ),
                 ));
