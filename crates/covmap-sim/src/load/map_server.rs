@@ -14,13 +14,13 @@
 //!
 //! The YAML's nesting is bounded before it is parsed: the parser's time
 //! grows with the square of how deeply flow collections (`[...]`, `{...}`)
-//! nest (16,000 levels under an ignored key took 5 s), so a file may hold
-//! at most [`MAX_FLOW_COLLECTIONS`] of them that hold something
+//! nest (thousands of levels under an ignored key take seconds), so a file
+//! may hold at most [`MAX_FLOW_COLLECTIONS`] of them that hold something
 //! ([`flow_collections`]: the `[` and `{` not closed at once, quoted or
 //! not, which bound the depth without parsing). map_saver's files hold
-//! one, the origin. Nested block
-//! collections cost the parser time in proportion to the file's size (each
-//! level is a line indented further), so they need no bound of their own.
+//! one, the origin. Nested block collections cost the parser time in
+//! proportion to the file's size (each level is a line indented further),
+//! so they need no bound of their own.
 //!
 //! # Writing
 //! Pixels as map_saver makes them: in `trinary` mode a cell at or above
