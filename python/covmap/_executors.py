@@ -24,6 +24,7 @@ the script, the line and the fix.
 from __future__ import annotations
 
 import ast
+import inspect
 import math
 import os
 import queue
@@ -135,7 +136,7 @@ def _module_frame(main: ModuleType) -> FrameType | None:
     """The outermost frame running the main module's own code (its
     ``<module>`` frame), if the main module is still being run."""
     found = None
-    frame = sys._getframe(1)
+    frame = inspect.currentframe()
     while frame is not None:
         if frame.f_code.co_name == "<module>" and frame.f_globals is vars(main):
             found = frame
