@@ -25,29 +25,13 @@ use crate::sim_sensor::{PyLaser, PySonarRing};
 use crate::strategy::PyStrategy;
 use crate::world::PyWorld;
 
-/// The keyword arguments of `explore` and `Exploration`, as Python gave them.
-struct Keywords<'a, 'py> {
-    start: Option<&'a Bound<'py, PyAny>>,
-    seed: Seed,
-    sensor: Option<&'a Bound<'py, PyAny>>,
-    model: Option<&'a Bound<'py, PyAny>>,
-    resolution: Float,
-    bins: Bins,
-    epsilon: Float,
-    robot_radius_m: Float,
-    candidate_stride_m: Float,
-    scan_spacing_m: Float,
-    max_path_m: Float,
-    max_steps: Int<usize, 1, { usize::MAX as i128 }>,
-}
-
-impl Keywords<'_, '_> {
+impl Keywords<'_> {
     /// The simulator's options. Only the conversions (and the resolution,
     /// under its Python name) are checked here; the values are checked by
     /// the run before anything starts.
     fn options(&self, py: Python<'_>) -> PyResult<ExploreOptions> {
         let d = ExploreOptions::default();
-        let sensor = match self.sensor {
+        let sensor = match &self.sensor {
             None => d.sensor,
             Some(s) => sim_sensor(s)?,
         };
@@ -62,10 +46,10 @@ impl Keywords<'_, '_> {
             ));
         }
         Ok(ExploreOptions {
-            start: self.start.map(convert::pose).transpose()?,
+            start: self.start.as_ref().map(convert::pose).transpose()?,
             seed: self.seed.0,
             sensor,
-            model: self.model.map(any_model).transpose()?,
+            model: self.model.as_ref().map(any_model).transpose()?,
             resolution_m: resolution,
             bins: self.bins.0,
             config: ExplorationConfig {
@@ -123,11 +107,39 @@ pub(crate) fn defaults(py: Python<'_>) -> PyResult<Bound<'_, PyDict>> {
 /// The keyword arguments of a run after `(world, strategy)`, written once
 /// for `explore` and `Exploration` so that they cannot drift apart: hands
 /// `$callback!` the pyo3 signature, the text signature Python shows, the
-/// parameters and the expression that gathers them into [`Keywords`], then
-/// `$rest`. (The defaults are the simulator's, `_EXPLORE_DEFAULTS`, as a
-/// test of the package checks.)
+/// parameters (of a function with the lifetime `'py`) and the expression
+/// that gathers them into [`Keywords`], then `$rest`; `@list
+/// keywords_struct` declares [`Keywords`] from the same list. (The defaults
+/// are the simulator's, `_EXPLORE_DEFAULTS`, as a test of the package
+/// checks.)
 macro_rules! run_keywords {
     ($callback:ident! { $($rest:tt)* }) => {
+        run_keywords! { @list $callback! { $($rest)* } }
+    };
+    (@list $($then:tt)*) => {
+        run_keywords! { @expand [$($then)*] (
+            start: Option<Bound<'py, PyAny>>,
+            seed: Seed,
+            sensor: Option<Bound<'py, PyAny>>,
+            model: Option<Bound<'py, PyAny>>,
+            resolution: Float,
+            bins: Bins,
+            epsilon: Float,
+            robot_radius_m: Float,
+            candidate_stride_m: Float,
+            scan_spacing_m: Float,
+            max_path_m: Float,
+            max_steps: Int<usize, 1, { usize::MAX as i128 }>,
+        ) }
+    };
+    (@expand [keywords_struct] ($($name:ident: $ty:ty,)*)) => {
+        /// The keyword arguments of `explore` and `Exploration`, as Python
+        /// gave them.
+        struct Keywords<'py> {
+            $($name: $ty,)*
+        }
+    };
+    (@expand [$callback:ident! { $($rest:tt)* }] ($($name:ident: $ty:ty,)*)) => {
         $callback! {
             signature: (
                 world, strategy, *, start=None, seed=Seed(0), sensor=None, model=None,
@@ -136,28 +148,14 @@ macro_rules! run_keywords {
                 scan_spacing_m=Float(0.25), max_path_m=Float(10000.0), max_steps=Int(20000)
             ),
             text: "(world, strategy, *, start=None, seed=0, sensor=None, model=None, resolution=0.05, bins=16, epsilon=0.65, robot_radius_m=0.25, candidate_stride_m=0.5, scan_spacing_m=0.25, max_path_m=10000.0, max_steps=20000)",
-            params: (
-                start: Option<&Bound<'_, PyAny>>,
-                seed: Seed,
-                sensor: Option<&Bound<'_, PyAny>>,
-                model: Option<&Bound<'_, PyAny>>,
-                resolution: Float,
-                bins: Bins,
-                epsilon: Float,
-                robot_radius_m: Float,
-                candidate_stride_m: Float,
-                scan_spacing_m: Float,
-                max_path_m: Float,
-                max_steps: Int<usize, 1, { usize::MAX as i128 }>,
-            ),
-            keywords: (Keywords {
-                start, seed, sensor, model, resolution, bins, epsilon, robot_radius_m,
-                candidate_stride_m, scan_spacing_m, max_path_m, max_steps,
-            }),
+            params: ($($name: $ty,)*),
+            keywords: (Keywords { $($name),* }),
             $($rest)*
         }
     };
 }
+
+run_keywords! { @list keywords_struct }
 
 /// A run of `strategy` in `world` set up, nothing scanned yet; every option
 /// checked first. The world is copied (the run owns what it drives through).
@@ -271,10 +269,10 @@ macro_rules! exploration_methods {
             #[new]
             #[pyo3(signature = ($($signature)*), text_signature = $text)]
             #[allow(clippy::too_many_arguments, reason = "one keyword argument per setting")]
-            fn new(
-                py: Python<'_>,
-                world: Bound<'_, PyWorld>,
-                strategy: &Bound<'_, PyAny>,
+            fn new<'py>(
+                py: Python<'py>,
+                world: Bound<'py, PyWorld>,
+                strategy: &Bound<'py, PyAny>,
                 $($param)*
             ) -> PyResult<Self> {
                 let (run, strategy) = start_run(py, &world, strategy, &$keywords)?;
