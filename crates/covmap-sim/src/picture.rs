@@ -98,6 +98,6 @@ mod tests {
         }
         assert!(write_map_png(&path, &grid, &v[..3]).is_err());
         // No temporary file is left behind.
-        assert_eq!(std::fs::read_dir(&dir).unwrap().count(), 1);
+        assert_eq!(std::fs::read_dir(dir).unwrap().count(), 1);
     }
 }

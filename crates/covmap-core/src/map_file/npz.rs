@@ -282,10 +282,11 @@ pub(crate) fn unzip<'a>(b: &'a [u8], known: &[&str]) -> Result<Vec<(String, &'a 
         .map(|e| (e.local, e.data.end, e.name.as_str()))
         .collect();
     spans.sort_unstable();
-    if let Some(w) = spans.windows(2).find(|w| w[1].0 < w[0].1) {
+    let neighbours = spans.iter().zip(spans.iter().skip(1));
+    if let Some((a, b)) = neighbours.clone().find(|(a, b)| b.0 < a.1) {
         return Err(format!(
             "entries {} and {} overlap (bytes {} to {} and {} to {})",
-            w[0].2, w[1].2, w[0].0, w[0].1, w[1].0, w[1].1
+            a.2, b.2, a.0, a.1, b.0, b.1
         ));
     }
     let mut checked = Vec::with_capacity(entries.len());

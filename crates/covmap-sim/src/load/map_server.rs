@@ -406,7 +406,7 @@ mod tests {
                 err.to_string().contains(&path.display().to_string()),
                 "{err}"
             );
-            assert_eq!(std::fs::read_dir(&dir).unwrap().count(), 0, "{name}");
+            assert_eq!(std::fs::read_dir(dir).unwrap().count(), 0, "{name}");
         }
     }
 
@@ -422,14 +422,14 @@ mod tests {
         let occupancy = [100, 0, 0, 0, 0, 100];
         let write = || write_ros_map(&yaml, &grid, &occupancy, RosMapMode::Trinary, 0.65, 0.196);
         assert!(write().is_err());
-        assert_eq!(std::fs::read_dir(&dir).unwrap().count(), 1);
+        assert_eq!(std::fs::read_dir(dir).unwrap().count(), 1);
         std::fs::write(yaml.with_extension("pgm"), b"old image").unwrap();
         assert!(write().is_err());
         assert_eq!(
             std::fs::read(yaml.with_extension("pgm")).unwrap(),
             b"old image"
         );
-        assert_eq!(std::fs::read_dir(&dir).unwrap().count(), 2);
+        assert_eq!(std::fs::read_dir(dir).unwrap().count(), 2);
     }
 
     /// A bad `occupied_thresh` is reported as itself, not as the

@@ -426,7 +426,7 @@ mod tests {
                 "a file mixed from two writes"
             );
         }
-        let left: Vec<_> = std::fs::read_dir(&dir)
+        let left: Vec<_> = std::fs::read_dir(dir)
             .unwrap()
             .map(|e| e.unwrap().file_name())
             .collect();
@@ -535,7 +535,7 @@ mod tests {
         };
         let files: [(&Path, &[u8]); 2] = [(&first, b"new image"), (&second, b"new yaml")];
         let names = || {
-            let mut n: Vec<_> = std::fs::read_dir(&dir)
+            let mut n: Vec<_> = std::fs::read_dir(dir)
                 .unwrap()
                 .map(|e| e.unwrap().file_name().into_string().unwrap())
                 .collect();
