@@ -10,7 +10,7 @@ if ! cargo +nightly --version >/dev/null 2>&1 || ! cargo +nightly fuzz --version
     echo "fuzz/run.sh: no nightly toolchain with cargo-fuzz here: the fuzz targets were not run"
     exit 0
 fi
-for t in carmen sonar_text map_file image ros_map_yaml geojson aria; do
+for t in carmen sonar_text map_file map_file_entries image ros_map_yaml yaml_nesting geojson aria; do
     mkdir -p "corpus/$t"
     log=$(mktemp)
     if ! cargo +nightly fuzz run "$t" "corpus/$t" -- -max_total_time="$seconds" -seed=1 -rss_limit_mb=2048 -timeout=10 -max_len=65536 >"$log" 2>&1; then

@@ -31,14 +31,12 @@ returns a :class:`RunSummary` of each. :mod:`covmap.plot` draws them with matplo
 
 from __future__ import annotations
 
-# First: it wraps the native module, so that every later import of a native
-# function gets the wrapped one.
-from covmap import _arguments  # noqa: F401
 from covmap import plot
 from covmap import _errors
 from covmap._errors import *  # noqa: F403 (the error classes, listed in _errors.__all__)
 from covmap._exploration import ExplorationErrors, ExplorationResult, Step, Timing
-from covmap._sweep import RunSummary, SweepFailure, dask_client, sweep
+from covmap._executors import dask_client
+from covmap._sweep import RunSummary, SweepFailure, sweep
 from covmap._native import (
     DEFAULT_BINS,
     DEFAULT_DISCOUNT_BEYOND_M,

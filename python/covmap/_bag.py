@@ -32,15 +32,27 @@ else ``/tf``                 the robot's poses: ``base_frame`` in
 Poses between two samples are interpolated as the CARMEN reader's ``ODOM``
 poses are: linearly by timestamp, the heading the short way round; a scan
 before the first sample or after the last takes the nearest. Every message
-on ``topic`` must have the same frame, fan (LaserScan) or limits (Range).
+on ``topic`` must have the same frame, fan (LaserScan) or limits (Range),
+and a stamp no earlier than the message's before it (a log is a drive in
+time order: stamps that go back, a clock reset, are refused).
 The robot is planar: heights, roll and pitch are dropped. A sonar ring
 published as one ``Range`` topic a sonar is one log a topic, each with its
 own mounting.
 
-A bag that cannot be read (truncated, not a bag), a topic that is missing
-or holds other messages, a frame without transforms: ``FileFormatError``
-naming the file (``filename``), where (``place``: the bag, a topic, a
-message, ``/tf``) and why (``reason``). A missing path: ``FileIOError``.
+A bag that cannot be read (truncated, not a bag, a message that is not of
+its topic's type, a size that runs past the data), a topic that is missing
+or holds other messages, a frame without transforms, transforms that form
+a loop: ``FileFormatError`` naming the file (``filename``), where
+(``place``: the bag, a topic, a message, ``/tf``) and why (``reason``). A
+missing path: ``FileIOError``. A ROS 2 bag's ``metadata.yaml`` is read by
+rosbags' YAML parser, whose time grows with the square of how deeply flow
+collections nest: it is refused first if it is no small regular file or
+holds more than :data:`MAX_FLOW_COLLECTIONS` flow collections that hold
+something (the rule of covmap's map_server reader).
+
+What covmap parses itself here (the messages' fields into a log) is held
+to that by ``python/tests/test_bag_hostile.py``, a property test over
+bags of hostile field values.
 """
 
 from __future__ import annotations
@@ -55,7 +67,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from covmap._errors import FileFormatError, FileIOError, MissingDependencyError
-from covmap._native import Log
+from covmap._native import MAX_FLOW_COLLECTIONS, Log, flow_collections
 
 if TYPE_CHECKING:
     from collections.abc import Iterator
@@ -102,6 +114,7 @@ def read_bag(
     bag = Path(path)
     if not bag.exists():
         raise FileIOError(errno.ENOENT, os.strerror(errno.ENOENT), str(bag))
+    _check_metadata(bag)
     try:
         # rosbags raises many kinds of exception for a damaged bag (its own,
         # sqlite3's, struct's, the decompressors'): all are "not a readable
@@ -113,6 +126,24 @@ def read_bag(
     except Exception as err:  # noqa: BLE001 (see above)
         raise _format_error(bag, "the bag", f"not a readable bag: {err}") from err
     return contents.log(base_frame=base_frame, fixed_frame=fixed_frame, max_range_m=max_range_m)
+
+
+def _check_metadata(bag: Path) -> None:
+    """Refuse a ROS 2 bag whose ``metadata.yaml`` is no small regular file
+    or would take the YAML parser long (see the module's documentation)."""
+    metadata = bag / "metadata.yaml"
+    if not bag.is_dir() or not os.path.lexists(metadata):
+        return  # a ROS 1 bag, or none: rosbags says what is wrong
+    from covmap._read import read_small_file
+
+    text = read_small_file(metadata).decode("utf-8", errors="replace")
+    collections = flow_collections(text)
+    if collections > MAX_FLOW_COLLECTIONS:
+        reason = (
+            f"{collections} flow collections (`[` or `{{`), more than the {MAX_FLOW_COLLECTIONS} a YAML file "
+            "covmap reads may hold (a bound on their nesting)"
+        )
+        raise _format_error(bag, "metadata.yaml", reason)
 
 
 def _format_error(bag: Path, place: str, reason: str) -> FileFormatError:
@@ -275,6 +306,14 @@ class _Contents:
                     reason = f"its {what} {value} differs from the first message's {expected}"
                     raise _format_error(self.bag, f"topic {self.topic} message {i}", reason)
         times = np.array([s.stamp_s for s in self.scans], dtype=np.float64)
+        back = np.flatnonzero(np.diff(times) < 0.0)
+        if back.size:
+            i = int(back[0]) + 1
+            reason = (
+                f"its stamp {times[i]:.9f} s is earlier than message {i - 1}'s, {times[i - 1]:.9f} s: the stamps "
+                "go back (a clock reset?), and a log is read in time order"
+            )
+            raise _format_error(self.bag, f"topic {self.topic} message {i}", reason)
         if self.odometry is not None:
             base = self.odom_frame or base_frame or DEFAULT_BASE_FRAME
             if base_frame is not None and base_frame != base:

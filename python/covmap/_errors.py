@@ -37,6 +37,8 @@ __all__ = [
     "InvalidTypeError",
     "InvalidValueError",
     "LengthMismatchError",
+    "MainGuardError",
+    "MapBusyError",
     "MissingDependencyError",
     "OutOfMemoryError",
     "PoseOutsideMapError",
@@ -67,6 +69,25 @@ class CovmapError(Exception):
 
 _ARGUMENT_NOTE = re.compile(r"while processing '(\w+)'")
 
+#: The most characters of a value an error message quotes.
+QUOTED_CHARS = 60
+
+
+def quoted(value: object) -> str:
+    """``value`` as an error message quotes it: its ``repr``, cut to
+    :data:`QUOTED_CHARS` characters (a cut one says how long it was); an
+    integer too large for Python to print by its bit length, any other
+    value whose ``repr`` fails by its type."""
+    try:
+        text = repr(value)
+    except Exception:  # noqa: BLE001 (an int beyond Python's digit limit, a broken __repr__)
+        if isinstance(value, int):
+            return f"an integer of {value.bit_length()} bits"
+        return f"a {type(value).__name__} that cannot be shown"
+    if len(text) > QUOTED_CHARS:
+        return f"{text[:QUOTED_CHARS]}... ({len(text)} characters)"
+    return text
+
 
 class InvalidGridError(CovmapError, ValueError):
     """A grid was described with an unusable geometry."""
@@ -77,11 +98,13 @@ class InvalidParameterError(CovmapError, ValueError):
 
 
 class IntegerOverflowError(InvalidParameterError, OverflowError):
-    """An integer argument lies beyond what covmap takes: most integers are
-    64-bit signed (``-2**63`` to ``2**63 - 1``), seeds unsigned (up to
-    ``2**64 - 1``); the message names the argument and the limit. An
-    :class:`InvalidParameterError` (a :class:`ValueError`) and an
-    :class:`OverflowError`, as Python's own conversions raise."""
+    """A number argument lies beyond what a 64-bit number holds: an integer
+    outside ``-2**63`` to ``2**63 - 1`` (outside its own range too: a seed
+    goes up to ``2**64 - 1``), a float beyond float64's ``1.8e308``; the
+    message names the argument, quotes the value and states the range the
+    argument takes. An :class:`InvalidParameterError` (a
+    :class:`ValueError`) and an :class:`OverflowError`, as Python's own
+    conversions raise."""
 
 
 class InvalidRangeError(CovmapError, ValueError):
@@ -135,12 +158,12 @@ class ArrayDtypeError(CovmapError, TypeError):
 
 
 class InvalidTypeError(CovmapError, TypeError):
-    """An argument has the wrong type: a model that is neither a SonarModel
-    nor a LaserModel, a pickled state of the wrong form, a seed that is not an
-    integer, arguments that exclude each other. Also a call with the wrong
-    arguments (too many, a missing one, an unknown keyword, one given twice),
-    with Python's message naming the callable and the argument; a class that
-    cannot be created (a result, such as ``Plan``), called."""
+    """An argument covmap converts itself has the wrong type: a number that
+    is no number (a string, a bool where a count is asked), a model that is
+    neither a SonarModel nor a LaserModel, a pickled state of the wrong
+    form, arguments that exclude each other. (A call whose arguments do not
+    bind to the signature, and an object argument of the wrong class, raise
+    Python's own :class:`TypeError`, of which this is a subclass.)"""
 
 
 class InvalidPolygonError(CovmapError, ValueError):
@@ -214,6 +237,20 @@ class InvalidExecutorError(CovmapError, ValueError):
     """An executor handed to :func:`covmap.sweep` cannot run its runs (no
     ``submit``, or a process pool that forks: covmap's thread pool does not
     survive a fork, and the children would wait for it forever)."""
+
+
+class MainGuardError(CovmapError, RuntimeError):
+    """:func:`covmap.sweep` (or :func:`covmap.dask_client` with local
+    workers) was called by a script's module-level code outside ``if
+    __name__ == "__main__":``. Worker processes are spawned, and each
+    imports the script again: it would start the call again in every
+    worker. The message names the script, the line and the fix."""
+
+
+class MapBusyError(CovmapError, RuntimeError):
+    """A map was used from inside the progress callback of its own
+    ``integrate_log`` (read, integrated into, saved...): the map is busy in
+    that call until it returns. Nothing was changed."""
 
 
 class SchedulerError(CovmapError, OSError):

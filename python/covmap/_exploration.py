@@ -1,15 +1,18 @@
 """What an exploration run reports (:func:`covmap.explore`,
 :class:`covmap.Exploration`): the native module builds these dataclasses
-from the run; they pickle, and compare by identity (they hold arrays)."""
+from the run; they pickle (a result's pickled state checked on load,
+:mod:`covmap._state`), and compare by identity (they hold arrays)."""
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from covmap._arguments import check_module
+from covmap import _state
+
 
 if TYPE_CHECKING:
     import numpy.typing as npt
@@ -29,10 +32,10 @@ def real_time_factor(path_length_m: float, seconds: float, speed_m_s: float) -> 
     if isinstance(speed_m_s, bool) or not isinstance(speed_m_s, (int, float, np.floating, np.integer)) or not (
         0.0 < speed_m_s < float("inf")
     ):
-        from covmap._errors import InvalidParameterError
+        from covmap._errors import InvalidParameterError, quoted
 
         raise InvalidParameterError(
-            f"invalid parameter `speed_m_s` = {speed_m_s!r}: expected a positive, finite speed (m/s)"
+            f"invalid parameter `speed_m_s` = {quoted(speed_m_s)}: expected a positive, finite speed (m/s)"
         )
     driving_s = path_length_m / float(speed_m_s)
     return driving_s / seconds if seconds > 0.0 else float("inf")
@@ -179,6 +182,9 @@ class ExplorationResult:
         wall time (``inf`` for a run that took no measurable time)."""
         return real_time_factor(self.path_length_m, self.seconds, speed_m_s)
 
+    def __setstate__(self, state: Any) -> None:
+        _state.restore(self, state, _result_fields())
+
     def __repr__(self) -> str:
         return (
             f"<ExplorationResult: {self.strategy!r}, seed {self.seed}, {self.termination}, "
@@ -187,4 +193,52 @@ class ExplorationResult:
         )
 
 
-check_module(__name__)  # calls with the wrong arguments raise InvalidTypeError
+def outcome_fields() -> dict[str, _state.Check]:
+    """The checks of what a run's result and its summary share: how it
+    ended, its figures and its timing (:mod:`covmap._state`)."""
+    from covmap._native import Strategy
+
+    count = _state.integer(0, 2**63 - 1)
+    seconds = _state.number(0.0)
+    fraction = _state.number(0.0, 1.0)
+    return {
+        "strategy": _state.instance(Strategy),
+        "seed": _state.integer(0, 2**64 - 1),
+        "termination": _state.one_of(_state.TERMINATIONS),
+        "path_length_m": _state.number(0.0),
+        "scans": count,
+        "steps": count,
+        "contacts": count,
+        "trace": _state.trace,
+        "epsilon": _state.number(0.0),
+        "high_entropy_fraction": fraction,
+        "coverage_error": _state.fields_of(ExplorationErrors, {"coverage_map": fraction, "occupancy": fraction}),
+        "seconds": seconds,
+        "timing": _state.fields_of(Timing, {"planning_s": seconds, "sensing_s": seconds, "integration_s": seconds}),
+    }
+
+
+def _result_fields() -> dict[str, _state.Check]:
+    from covmap._native import CoverageMap, Grid, OccupancyGrid
+
+    cells = _state.grid_shape
+
+    def poses(state: Any) -> tuple[int | None, ...]:
+        return (None, 3)
+
+    def one_a_pose(state: Any) -> tuple[int | None, ...]:
+        trajectory = state.get("trajectory")
+        return (len(trajectory) if isinstance(trajectory, np.ndarray) else None,)
+
+    return {
+        **outcome_fields(),
+        "start": _state.array(np.float64, lambda _: (3,), finite=True),
+        "grid": _state.instance(Grid),
+        "trajectory": _state.array(np.float64, poses, finite=True),
+        "scanned": _state.array(np.bool_, one_a_pose),
+        "counts": _state.array(np.float32, cells, finite=True, within=(0.0, math.inf)),
+        "map": _state.all_of(_state.instance(CoverageMap), _state.on_grid),
+        "occupancy": _state.all_of(_state.instance(OccupancyGrid), _state.on_grid),
+        "truth": _state.array(np.float64, cells, within=(0.0, 1.0)),
+        "evaluation_cells": _state.array(np.bool_, cells),
+    }

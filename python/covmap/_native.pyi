@@ -923,7 +923,7 @@ class World:
     def from_file(
         path: _Path,
         *,
-        wall_thickness_m: float = 0.1,
+        wall_thickness_m: float | None = None,
         resolution: float | None = None,
         origin: tuple[float, float] | None = None,
     ) -> World:
@@ -932,15 +932,17 @@ class World:
         - ``.json``, ``.geojson``: GeoJSON polygons in metres (a feature's
           ``properties.material`` is ``"wall"`` or ``"glass"``);
         - ``.map``: the ``LINES`` of an ARIA map, each a wall
-          ``wall_thickness_m`` thick;
+          ``wall_thickness_m`` thick (default 0.1 m);
         - ``.yaml``, ``.yml``: a ROS map_server YAML file and its image;
         - ``.pgm``, ``.png``: an occupancy image (dark = occupied) of
           ``resolution`` metres per pixel, its lower-left corner at ``origin``
           (default ``(0, 0)``); ``resolution`` is required.
 
-        A malformed file raises ``FileFormatError`` (a ``ValueError``) naming
-        the file and the place; a file that cannot be read raises
-        ``FileIOError`` (an ``OSError``).
+        An option the file's format does not use (``resolution`` for a
+        GeoJSON file, say) raises ``InvalidParameterError``: it would be
+        ignored. A malformed file raises ``FileFormatError`` (a
+        ``ValueError``) naming the file and the place; a file that cannot be
+        read raises ``FileIOError`` (an ``OSError``).
         """
     def to_geojson(self) -> str:
         """The world as GeoJSON text (``World.from_file`` reads it back from a
@@ -1373,9 +1375,25 @@ def write_atomic(path: _Path, data: bytes) -> None:
     """Write ``data`` to ``path`` atomically: a temporary file of a short name of
     its own in the same directory, flushed to disk, then renamed over
     ``path``, so a reader never sees a partial file; on failure nothing is
-    left behind. The directory must exist. A file that cannot be written
-    raises ``FileIOError`` (an ``OSError``). Runs with the GIL released.
+    left behind. The directory must exist. A path where something other
+    than a regular file is (a directory, a device, a FIFO, a socket, a
+    symlink) is refused before anything is written, as is a file that cannot
+    be written: ``FileIOError`` (an ``OSError``). Runs with the GIL released.
     """
+
+def check_write_target(path: _Path) -> None:
+    """Raise ``FileIOError`` unless ``write_atomic(path, ...)`` may write
+    ``path``: nothing is there, or a regular file is (a directory, a device,
+    a FIFO, a socket or a symlink is never replaced).
+    """
+
+def flow_collections(text: str) -> int:
+    """How many flow collections that hold something a YAML ``text`` may
+    open, at most: its ``[`` and ``{`` not closed at once (the bound of
+    ``MAX_FLOW_COLLECTIONS`` that map_server files are held to).
+    """
+
+MAX_FLOW_COLLECTIONS: int
 
 @final
 class Strategy:

@@ -24,17 +24,28 @@ Where the runs go:
   do not fight over the cores. A sweep of one spec (or a machine of one
   core) runs in this process, with the run's parallelism on.
 - ``executor=`` anything with ``submit(fn, *args)`` returning a future with
-  ``result()`` and ``add_done_callback``: every run goes there. In a process
-  other than the caller's, a run sets ``RAYON_NUM_THREADS=1`` unless it is
-  set already (rayon reads it once, when covmap first uses its thread pool
-  in that process), so one run uses one core; set the variable in the
-  workers' environment to give each run more threads. A
+  ``result()`` and ``add_done_callback``: every run goes there (only that
+  public API is used; an executor without it is refused with
+  :class:`~covmap.InvalidExecutorError`, see :mod:`covmap._executors`). In
+  a process other than the caller's, a run sets ``RAYON_NUM_THREADS=1``
+  unless it is set already (rayon reads it once, when covmap first uses its
+  thread pool in that process), so one run uses one core; set the variable
+  in the workers' environment to give each run more threads. A
   ``ProcessPoolExecutor`` must not fork (``mp_context`` ``spawn`` or
   ``forkserver``): the thread pool of a process that has used covmap does
-  not survive a fork, and the children would hang, so such a pool is
-  refused with :class:`~covmap.InvalidExecutorError`. :func:`dask_client`
+  not survive a fork, and the children would hang, so a run in a worker
+  forked from a process that had imported covmap refuses to start and the
+  sweep raises :class:`~covmap.InvalidExecutorError`. :func:`dask_client`
   connects to a Dask scheduler or starts a local cluster (``pip install
   covmap[dask]``).
+
+Worker processes are spawned, and each imports the caller's script again:
+a script must call :func:`sweep` under ``if __name__ == "__main__":``
+(otherwise every worker would call it again), which :func:`sweep` checks
+before anything starts (:class:`~covmap.MainGuardError`, naming the line).
+``timeout_s`` bounds the wait: runs not done within that many seconds of
+the first submission are cancelled (the sweep's own worker processes
+killed) and reported as failures (``TimeoutError``).
 
 Every random draw of a run comes from its seed, and a run gives the same
 result at any thread count: the same specs give equal summaries locally, in
@@ -54,27 +65,18 @@ import difflib
 import math
 import os
 import pickle
-import queue
 from collections import abc
-from contextlib import contextmanager
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any, Callable, Union
 
 import numpy as np
 
-from covmap._arguments import check_module
-from covmap._errors import (
-    CovmapError,
-    InvalidExecutorError,
-    InvalidSpecError,
-    MissingDependencyError,
-    SchedulerError,
-    SweepError,
-)
+from covmap import _executors, _state
+from covmap._errors import CovmapError, InvalidSpecError, SweepError, quoted
 from covmap._exploration import REAL_TIME_SPEED_M_S, ExplorationErrors, Timing, real_time_factor
 
 if TYPE_CHECKING:
-    from collections.abc import Iterator, Mapping, Sequence
+    from collections.abc import Mapping, Sequence
 
     import numpy.typing as npt
 
@@ -84,16 +86,11 @@ if TYPE_CHECKING:
 __all__ = [
     "RunSummary",
     "SweepFailure",
-    "dask_client",
     "prepare",
     "strategy_of",
     "summarise",
     "sweep",
 ]
-
-THREADS_VARIABLE = "RAYON_NUM_THREADS"
-"""The environment variable rayon sizes its thread pool by, once, when covmap
-first uses the pool in a process."""
 
 SPEC_KEYS = ("world", "strategy")
 """The keys every spec must hold; the others are :func:`covmap.explore`'s
@@ -197,11 +194,36 @@ class RunSummary:
 
     __hash__ = None  # type: ignore[assignment]
 
+    def __setstate__(self, state: Any) -> None:
+        _state.restore(self, state, _summary_fields())
+
     def __repr__(self) -> str:
         return (
             f"<RunSummary {self.index}: {self.world}, {self.strategy!r}, seed {self.seed}, {self.termination}, "
             f"{self.path_length_m:.2f} m, {100.0 * self.high_entropy_fraction:.2f} % uncertain>"
         )
+
+
+def _summary_fields() -> dict[str, _state.Check]:
+    """The checks of a pickled :class:`RunSummary` (:mod:`covmap._state`)."""
+    from covmap._exploration import outcome_fields
+
+    def start(value: Any, _: Any) -> str | None:
+        finite = isinstance(value, tuple) and len(value) == 3 and all(type(v) is float and math.isfinite(v) for v in value)
+        return None if finite else f"must be three finite floats (x, y, theta), got {quoted(value)}"
+
+    def options(value: Any, _: Any) -> str | None:
+        if not isinstance(value, dict) or not all(k in explore_keywords() for k in value):
+            return f"must be a dict of covmap.explore keywords, got {quoted(value)}"
+        return None
+
+    return {
+        **outcome_fields(),
+        "index": _state.integer(0, 2**63 - 1),
+        "world": _state.instance(str),
+        "options": options,
+        "start": start,
+    }
 
 
 @dataclass(frozen=True)
@@ -256,17 +278,17 @@ def strategy_of(value: Any) -> Strategy:
         keywords = dict(value)
         name = keywords.pop("name", None)
         if not isinstance(name, str):
-            raise InvalidTypeError(f"a strategy dict needs a \"name\" ({', '.join(builders)}), got {value!r}")
+            raise InvalidTypeError(f"a strategy dict needs a \"name\" ({', '.join(builders)}), got {quoted(value)}")
     else:
         raise InvalidTypeError(
             f"strategy must be a Strategy, a name ({', '.join(builders)}) or a dict with a name, got {type(value).__name__}"
         )
     if name not in builders:
-        raise InvalidParameterError(f"unknown strategy {name!r}: expected one of {', '.join(builders)}")
+        raise InvalidParameterError(f"unknown strategy {quoted(name)}: expected one of {', '.join(builders)}")
     try:
         return builders[name](**keywords)
-    except InvalidTypeError as e:  # an unknown keyword among them, or a value of the wrong type
-        raise InvalidTypeError(f"strategy {name!r}: {e}") from None
+    except TypeError as e:  # an unknown keyword among them, or a value of the wrong type
+        raise InvalidTypeError(f"strategy {quoted(name)}: {e}") from None
 
 
 def _world_of(value: Any) -> tuple[World, str]:
@@ -287,8 +309,21 @@ def _seed_of(value: Any) -> int:
     if isinstance(value, bool) or not isinstance(value, (int, np.integer)):
         raise InvalidTypeError(f"seed must be an integer, got {type(value).__name__}")
     if not 0 <= int(value) <= MAX_SEED:
-        raise InvalidParameterError(f"invalid parameter `seed` = {value}: expected 0 to 2**64 - 1")
+        raise InvalidParameterError(f"invalid parameter `seed` = {quoted(value)}: expected 0 to 2**64 - 1")
     return int(value)
+
+
+def _start_of(value: Any) -> tuple[float, float, float] | None:
+    """A spec's ``start``: ``None``, or ``(x, y, theta)`` (any sequence or
+    1-D array of three numbers; nothing is flattened or dropped)."""
+    from covmap._errors import ArrayShapeError
+
+    if value is None:
+        return None
+    start = np.asarray(value, dtype=np.float64)
+    if start.shape != (3,):
+        raise ArrayShapeError(f"start must be (x, y, theta), three numbers, got shape {start.shape}")
+    return (float(start[0]), float(start[1]), float(start[2]))
 
 
 def prepare(specs: Sequence[Mapping[str, Any]]) -> list[_Run]:
@@ -315,7 +350,7 @@ def prepare(specs: Sequence[Mapping[str, Any]]) -> list[_Run]:
                 near = difflib.get_close_matches(str(key), allowed, n=1)
                 hint = f" (did you mean {near[0]!r}?)" if near else ""
                 raise InvalidSpecError(
-                    index, f"unknown key {key!r}{hint}; a spec takes {', '.join(allowed)}"
+                    index, f"unknown key {quoted(key)}{hint}; a spec takes {', '.join(allowed)}"
                 )
         for key in SPEC_KEYS:
             if key not in spec:
@@ -331,8 +366,8 @@ def prepare(specs: Sequence[Mapping[str, Any]]) -> list[_Run]:
             strategy = strategy_of(spec["strategy"])
             seed = _seed_of(spec.get("seed", 0))
             options = {k: v for k, v in spec.items() if k not in (*SPEC_KEYS, "seed")}
-            if options.get("start") is not None:
-                options["start"] = tuple(float(x) for x in np.asarray(options["start"], dtype=np.float64).ravel())
+            if "start" in options:
+                options["start"] = _start_of(options["start"])
             same_check = (id(world), repr(sorted(options.items())))
             if same_check not in checked:
                 Exploration(world, strategy, seed=seed, **options)
@@ -370,8 +405,9 @@ def summarise(index: int, world: str, options: Mapping[str, Any], result: Explor
 def _run_pickled(payload: bytes, caller_pid: int) -> RunSummary:
     """Run one pickled :class:`_Run` (in a worker, or in the caller's process)."""
     if os.getpid() != caller_pid:
+        _executors.refuse_forked_worker()
         # Before covmap's first parallel call in this process: one thread a run.
-        os.environ.setdefault(THREADS_VARIABLE, "1")
+        os.environ.setdefault(_executors.THREADS_VARIABLE, "1")
     from covmap._native import explore
 
     run: _Run = pickle.loads(payload)
@@ -381,36 +417,14 @@ def _run_pickled(payload: bytes, caller_pid: int) -> RunSummary:
 
 def _one_thread() -> None:
     """The initializer of :func:`sweep`'s own worker processes."""
-    os.environ[THREADS_VARIABLE] = "1"
-
-
-def local_cores() -> int:
-    """The cores this process may run on."""
-    if hasattr(os, "sched_getaffinity"):
-        return max(1, len(os.sched_getaffinity(0)))
-    return max(1, os.cpu_count() or 1)
-
-
-def _check_executor(executor: Any) -> None:
-    if not callable(getattr(executor, "submit", None)):
-        raise InvalidExecutorError(
-            f"executor must have a submit method (a concurrent.futures executor, a dask.distributed.Client), "
-            f"got {type(executor).__name__}"
-        )
-    context = getattr(executor, "_mp_context", None)
-    method = getattr(context, "get_start_method", None)
-    if callable(method) and method() == "fork":
-        raise InvalidExecutorError(
-            "a ProcessPoolExecutor that forks would hang (covmap's thread pool does not survive a fork): "
-            "pass mp_context=multiprocessing.get_context('spawn') or 'forkserver'"
-        )
+    os.environ[_executors.THREADS_VARIABLE] = "1"
 
 
 class _Bar:
     """The default progress display: a bar of the runs."""
 
     def __init__(self, total: int) -> None:
-        from covmap.cli._progress import Progress as Display
+        from covmap._progress import Progress as Display
 
         self.display = Display(total, "run")
 
@@ -437,65 +451,84 @@ def _failure(index: int, error: BaseException) -> SweepFailure:
 
 
 def sweep(
-    specs: Sequence[Mapping[str, Any]], *, executor: Any = None, progress: Progress = True
+    specs: Sequence[Mapping[str, Any]],
+    *,
+    executor: Any = None,
+    progress: Progress = True,
+    timeout_s: float | None = None,
 ) -> list[RunSummary]:
     """Run every spec of ``specs`` (dicts of :func:`covmap.explore`
     arguments; see :mod:`covmap._sweep`) and return their summaries in the
     specs' order.
 
-    ``executor=None`` runs them on this machine's cores, one run a core;
-    otherwise every run is submitted to ``executor`` (a
-    ``ProcessPoolExecutor`` that does not fork, a ``dask.distributed.Client``,
-    anything with ``submit``). ``progress``: a bar on standard error
-    (``True``), nothing (``False``), or a callable given each run's index and
-    :class:`RunSummary` (or :class:`SweepFailure`) as it ends.
+    ``executor=None`` runs them on this machine's cores, one run a core, in
+    worker processes of their own; otherwise every run is submitted to
+    ``executor`` (a ``ProcessPoolExecutor`` that does not fork, a
+    ``dask.distributed.Client``, anything with ``submit``). ``progress``: a
+    bar on standard error (``True``), nothing (``False``), or a callable
+    given each run's index and :class:`RunSummary` (or
+    :class:`SweepFailure`) as it ends. ``timeout_s``: the most seconds to
+    wait for the runs, from the first submission (``None``: no limit); runs
+    not done by then are cancelled (the sweep's own worker processes
+    killed) and fail with ``TimeoutError``.
 
     Every spec is checked first (:class:`~covmap.InvalidSpecError` names the
-    first bad one; nothing runs). Runs that raise are collected: after every
-    run has ended, :class:`~covmap.SweepError` carries the summaries of the
-    others and the failures with their specs' indexes.
+    first bad one; nothing runs), and so is the call: new worker processes
+    import the caller's script again, so a script must call ``sweep`` under
+    ``if __name__ == "__main__":`` (:class:`~covmap.MainGuardError`
+    otherwise). Runs that raise are collected: after every run has ended,
+    :class:`~covmap.SweepError` carries the summaries of the others and the
+    failures with their specs' indexes.
     """
     if not (isinstance(progress, bool) or callable(progress)):
         from covmap._errors import InvalidTypeError
 
         raise InvalidTypeError(f"progress must be True, False or a callable, got {type(progress).__name__}")
+    _check_timeout(timeout_s)
     runs = prepare(specs)
     if executor is not None:
-        _check_executor(executor)
+        _executors.check_executor(executor)
     payloads = []
     for run in runs:
         try:
             payloads.append(pickle.dumps(run))
         except Exception as e:
             raise InvalidSpecError(run.index, f"does not pickle, so no worker can run it: {e}") from e
-    results: list[RunSummary | None] = [None] * len(runs)
-    failures: list[SweepFailure] = []
     if not runs:
         return []
+    workers = min(_executors.local_cores(), len(runs))
+    # One run, or one core, runs here (its own parallelism on), unless a
+    # timeout asks for a process that can be stopped. The main guard is
+    # checked whatever the cores, so that a script runs on every machine.
+    in_this_process = executor is None and workers == 1 and timeout_s is None
+    if executor is None or _starts_processes(executor):
+        _executors.check_main_guard("covmap.sweep")
+    results: list[RunSummary | None] = [None] * len(runs)
+    failures: list[SweepFailure] = []
     bar = _Bar(len(runs)) if progress is True else None
     report = bar if bar is not None else (progress if callable(progress) else None)
-    try:
-        workers = min(local_cores(), len(runs))
-        if executor is None and workers == 1:
-            for run, payload in zip(runs, payloads):
-                outcome: RunSummary | SweepFailure
-                try:
-                    outcome = results[run.index] = _run_pickled(payload, os.getpid())
-                except Exception as e:
-                    outcome = _failure(run.index, e)
-                    failures.append(outcome)
-                if report is not None:
-                    report(run.index, outcome)
-        elif executor is None:
-            import multiprocessing
-            from concurrent.futures import ProcessPoolExecutor
 
-            with ProcessPoolExecutor(
-                workers, mp_context=multiprocessing.get_context("spawn"), initializer=_one_thread
-            ) as pool:
-                _gather(pool, payloads, results, failures, report)
+    def record(index: int, outcome: RunSummary | SweepFailure) -> None:
+        if isinstance(outcome, RunSummary):
+            results[index] = outcome
         else:
-            _gather(executor, payloads, results, failures, report)
+            failures.append(outcome)
+        if report is not None:
+            report(index, outcome)
+
+    try:
+        if in_this_process:
+            for run, payload in zip(runs, payloads):
+                try:
+                    summary = _run_pickled(payload, os.getpid())
+                except Exception as e:
+                    record(run.index, _failure(run.index, e))
+                else:
+                    record(run.index, summary)
+        else:
+            for index in _run_on(executor, workers, payloads, record, timeout_s):
+                message = f"no result within {timeout_s:g} s: the run was cancelled"
+                record(index, SweepFailure(index, "TimeoutError", message))
     finally:
         if bar is not None:
             bar.close()
@@ -505,95 +538,55 @@ def sweep(
     return [r for r in results if r is not None]
 
 
-def _gather(
-    executor: Any,
-    payloads: list[bytes],
-    results: list[RunSummary | None],
-    failures: list[SweepFailure],
-    report: Callable[[int, RunSummary | SweepFailure], None] | None,
-) -> None:
-    """Submit every payload to ``executor`` and collect the outcomes as they
-    end (``add_done_callback``: the concurrent.futures and Dask futures both
-    have it)."""
-    done: queue.Queue[tuple[int, Any]] = queue.Queue()
-    futures = []
-    try:
-        for index, payload in enumerate(payloads):
-            future = executor.submit(_run_pickled, payload, os.getpid())
-            futures.append(future)
-            future.add_done_callback(lambda f, i=index: done.put((i, f)))
-        for _ in payloads:
-            index, future = done.get()
-            try:
-                summary = future.result()
-            except Exception as e:
-                failed = _failure(index, e)
-            else:
-                if isinstance(summary, RunSummary):
-                    results[index] = summary
-                    if report is not None:
-                        report(index, summary)
-                    continue
-                failed = SweepFailure(index, "TypeError", f"the executor returned {type(summary).__name__}")
-            failures.append(failed)
-            if report is not None:
-                report(index, failed)
-    except BaseException:
-        for future in futures:
-            future.cancel()
-        raise
-
-
-#: The most worker processes :func:`dask_client` starts on this machine.
-MAX_LOCAL_WORKERS = 1024
-
-
-@contextmanager
-def dask_client(
-    address: str | None = None, *, workers: int | None = None, timeout_s: float = 10.0
-) -> Iterator[Any]:
-    """A ``dask.distributed.Client`` for :func:`sweep`, closed when the block
-    ends: connected to the scheduler at ``address`` (``"tcp://host:8786"``),
-    or, with ``workers``, to a local cluster of that many worker processes of
-    one thread each, started here. A scheduler that does not answer within
-    ``timeout_s`` raises :class:`~covmap.SchedulerError`; Dask missing,
-    :class:`~covmap.MissingDependencyError`."""
-    if (address is None) == (workers is None):
-        from covmap._errors import InvalidTypeError
-
-        raise InvalidTypeError("dask_client takes an address or a number of workers, not both or neither")
-    if isinstance(timeout_s, bool) or not isinstance(timeout_s, (int, float)) or not 0 < timeout_s < math.inf:
-        from covmap._errors import InvalidParameterError
-
-        raise InvalidParameterError(
-            f"invalid parameter `timeout_s` = {timeout_s!r}: expected a positive, finite number of seconds"
-        )
-    if workers is not None and (
-        isinstance(workers, bool) or not isinstance(workers, int) or not 1 <= workers <= MAX_LOCAL_WORKERS
-    ):
-        from covmap._errors import InvalidParameterError
-
-        raise InvalidParameterError(
-            f"invalid parameter `workers` = {workers!r}: expected from 1 to {MAX_LOCAL_WORKERS} workers"
-        )
-    try:
-        from distributed import Client, LocalCluster
-    except ImportError:
-        raise MissingDependencyError(
-            "Dask is not installed: pip install 'covmap[dask]' (dask.distributed)"
-        ) from None
-    if workers is not None:
-        with LocalCluster(
-            n_workers=workers, processes=True, threads_per_worker=1, dashboard_address=None
-        ) as cluster, Client(cluster) as client:
-            yield client
+def _check_timeout(timeout_s: Any) -> None:
+    if timeout_s is None:
         return
+    if isinstance(timeout_s, bool) or not isinstance(timeout_s, (int, float)) or not 0.0 < timeout_s < math.inf:
+        from covmap._errors import InvalidParameterError
+
+        raise InvalidParameterError(
+            f"invalid parameter `timeout_s` = {quoted(timeout_s)}: expected None or a positive, finite number of seconds"
+        )
+
+
+def _starts_processes(executor: Any) -> bool:
+    """Whether ``executor`` runs its calls in processes it starts here (a
+    ``ProcessPoolExecutor``), which import the caller's script again."""
+    from concurrent.futures import ProcessPoolExecutor
+
+    return isinstance(executor, ProcessPoolExecutor)
+
+
+def _run_on(
+    executor: Any,
+    workers: int,
+    payloads: list[bytes],
+    record: Callable[[int, RunSummary | SweepFailure], None],
+    timeout_s: float | None,
+) -> list[int]:
+    """Run every payload on ``executor`` (``None``: a pool of ``workers``
+    spawned processes of this sweep's own), recording each outcome as it
+    ends; returns the indexes of the runs not done within ``timeout_s``."""
+
+    def ended(outcome: _executors.Outcome) -> None:
+        index, summary, error = outcome
+        if error is not None:
+            record(index, _failure(index, error))
+        elif isinstance(summary, RunSummary):
+            record(index, summary)
+        else:
+            record(index, SweepFailure(index, "TypeError", f"the executor returned {type(summary).__name__}"))
+
+    calls = [(payload, os.getpid()) for payload in payloads]
+    # Looked up now, so that a test may stand in for the worker function.
+    function = _run_pickled
+    if executor is not None:
+        return _executors.gather(executor, function, calls, ended, timeout_s)
+    pool = _executors.LocalPool(workers, _one_thread)
+    finished = False
     try:
-        client = Client(address, timeout=timeout_s)
-    except (OSError, TimeoutError, ValueError) as e:
-        raise SchedulerError(f"no Dask scheduler answered at {address!r} within {timeout_s:g} s: {e}") from None
-    with client:
-        yield client
-
-
-check_module(__name__)  # calls with the wrong arguments raise InvalidTypeError
+        late = _executors.gather(pool.executor, function, calls, ended, timeout_s)
+        finished = not late
+        return late
+    finally:
+        pool.close(finished=finished)

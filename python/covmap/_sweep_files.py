@@ -106,7 +106,9 @@ def read_specs(path: Path) -> list[dict[str, Any]]:
     The file holds ``runs``, a list of specs, and optionally ``defaults``,
     keys every run takes unless it gives them itself (a JSON file may also be
     a bare list of specs). A run (or the defaults) may give ``seeds``, a
-    list of seeds, in place of ``seed``: one spec each, in that order.
+    list of seeds, in place of ``seed``: one spec each, in that order; a
+    table that gives both is refused (one would be dropped), and a run's
+    ``seed`` or ``seeds`` replaces either of the defaults'.
     Strategies are written as names or tables (``strategy = { name =
     "counting", n = 50, discount_beyond_m = 2.0 }``), worlds as built-in
     names. A malformed file raises :class:`~covmap.FileFormatError` naming
@@ -114,10 +116,13 @@ def read_specs(path: Path) -> list[dict[str, Any]]:
     :func:`sweep`.
 
     TOML needs Python 3.11 (``tomllib``) or the ``tomli`` package."""
-    from covmap._read import read_small_file
+    from covmap._read import read_small_file, too_deep
 
     data = read_small_file(path)
     suffix = path.suffix.lower()
+    deep = too_deep(data, "toml" if suffix == ".toml" else "json")
+    if deep is not None:
+        raise _file_error(path, "content", deep)
     try:
         if suffix == ".json":
             document: Any = json.loads(data)
@@ -152,18 +157,24 @@ def read_specs(path: Path) -> list[dict[str, Any]]:
         raise _file_error(path, "runs", "expected a list of runs, at least one")
     if not isinstance(defaults, dict):
         raise _file_error(path, "defaults", f"expected a table, got {type(defaults).__name__}")
+    if "seed" in defaults and "seeds" in defaults:
+        raise _file_error(path, "defaults", "seed and seeds both given: give one")
     specs: list[dict[str, Any]] = []
     for number, run in enumerate(runs):
         if not isinstance(run, dict):
             raise _file_error(path, f"run {number}", f"expected a table, got {type(run).__name__}")
-        spec = {**defaults, **run}
-        if "seed" in run:
+        if "seed" in run and "seeds" in run:
+            raise _file_error(path, f"run {number}", "seed and seeds both given: give one")
+        spec = dict(defaults)
+        if "seed" in run or "seeds" in run:  # the run's seeds replace the defaults'
+            spec.pop("seed", None)
             spec.pop("seeds", None)
+        spec.update(run)
         seeds = spec.pop("seeds", None)
         if seeds is None:
             specs.append(spec)
             continue
-        if "seed" in spec or not isinstance(seeds, list) or not seeds:
-            raise _file_error(path, f"run {number}", "seeds must be a list of seeds, and not given with seed")
+        if not isinstance(seeds, list) or not seeds:
+            raise _file_error(path, f"run {number}", "seeds must be a non-empty list of seeds")
         specs.extend({**spec, "seed": seed} for seed in seeds)
     return specs

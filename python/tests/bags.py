@@ -145,3 +145,68 @@ class BagWriter:
                 )
             )
         return self._type("tf2_msgs/msg/TFMessage")(transforms=transforms)
+
+
+#: The hostile bags :func:`hostile` writes, each of both formats.
+HOSTILE = ("truncated", "wrong type", "huge size", "stamps back", "tf loop", "deep metadata")
+
+
+def hostile(directory: Path, kind: str, bag_format: str) -> Path:
+    """A bag of ``bag_format`` made hostile as ``kind`` says (one of
+    :data:`HOSTILE`), in ``directory``: three LaserScans on ``/scan`` with
+    odometry on ``/odom`` and the laser's static mounting, then
+
+    - ``truncated``: cut in half (a ROS 2 bag: its database);
+    - ``wrong type``: a Range message on the LaserScan topic;
+    - ``huge size``: a size claiming 2**31 bytes (ROS 1: the first record's
+      header length; ROS 2: the scans' ``ranges`` length);
+    - ``stamps back``: the scans' header stamps going back in time;
+    - ``tf loop``: no odometry, the ``/tf`` transforms forming a loop;
+    - ``deep metadata`` (ROS 2; ROS 1 is truncated): ``metadata.yaml``
+      nested 100,000 deep under a key it ignores.
+
+    Read it with ``odom_topic="/odom"`` (``tf loop``: without)."""
+    import sqlite3
+
+    name = f"{kind.replace(' ', '-')}-{bag_format}"
+    with BagWriter(directory, name, bag_format) as w:
+        w.write("/tf_static", w.tf(0.0, ("base_link", "laser", (0.1, 0.0, 0.0))), 0.0)
+        for i in range(3):
+            t = 0.1 * (i + 1)
+            stamp = 0.3 - 0.1 * i if kind == "stamps back" else t
+            if kind == "wrong type" and i == 1:
+                message = w.range(stamp, "laser", 1.0)
+                connection = w.connections["/scan"]
+                data = w.store.serialize_ros1(message, message.__msgtype__) if w.ros1 else w.store.serialize_cdr(message, message.__msgtype__)
+                w.writer.write(connection, ns(t), data)
+            else:
+                w.write("/scan", w.laser_scan(stamp, "laser", [1.0, 2.0, 3.0], angle_min=-0.5, angle_increment=0.5, range_max=5.0), t)
+            if kind == "tf loop":
+                w.write("/tf", w.tf(t, ("odom", "base_link", (0.1 * i, 0.0, 0.0)), ("base_link", "odom", (0.0, 0.0, 0.0))), t)
+            else:
+                w.write("/odom", w.odometry(t, (0.1 * i, 0.0, 0.0)), t)
+    path = w.path
+    database = next(iter(path.glob("*.db3")), None) if not w.ros1 else None
+    if kind == "truncated" or (kind == "deep metadata" and w.ros1):
+        target = path if w.ros1 else database
+        assert target is not None
+        data = target.read_bytes()
+        target.write_bytes(data[: len(data) // 2])
+    elif kind == "huge size" and w.ros1:
+        data = bytearray(path.read_bytes())
+        data[13:17] = (2**31).to_bytes(4, "little")  # after the 13-byte magic line
+        path.write_bytes(bytes(data))
+    elif kind == "huge size":
+        with sqlite3.connect(database) as connection:
+            rows = connection.execute("SELECT id, data FROM messages").fetchall()
+            for row_id, data in rows:
+                # The ranges' length, 3, after the header and the fan's five floats.
+                at = bytes(data).find((3).to_bytes(4, "little"), 8)
+                if at > 0:
+                    patched = data[:at] + (2**31 - 1).to_bytes(4, "little") + data[at + 4 :]
+                    connection.execute("UPDATE messages SET data = ? WHERE id = ?", (patched, row_id))
+        connection.close()
+    elif kind == "deep metadata":
+        metadata = path / "metadata.yaml"
+        metadata.write_text(metadata.read_text() + "ignored: " + "[" * 100_000 + "]" * 100_000 + "\n")
+    return path

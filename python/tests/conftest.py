@@ -1,9 +1,14 @@
 """Shared fixtures: a small grid, the default models, random scans, the
-real worlds of the shared data folder."""
+real worlds of the shared data folder. Tests write only into temporary
+directories they make: hypothesis keeps its files (examples, caches) in
+one made for the session, not in the folder the tests run from."""
 
 from __future__ import annotations
 
+import atexit
 import os
+import shutil
+import tempfile
 from collections.abc import Callable, Iterator
 from pathlib import Path
 from typing import Any, NoReturn
@@ -12,6 +17,18 @@ import numpy as np
 import pytest
 
 import covmap
+
+try:
+    from hypothesis import configuration as _hypothesis_configuration
+    from hypothesis import settings as _hypothesis_settings
+except ImportError:  # the property tests skip themselves
+    pass
+else:
+    _HYPOTHESIS_HOME = tempfile.mkdtemp(prefix="covmap-hypothesis-")
+    atexit.register(shutil.rmtree, _HYPOTHESIS_HOME, ignore_errors=True)
+    _hypothesis_configuration.set_hypothesis_home_dir(_HYPOTHESIS_HOME)
+    _hypothesis_settings.register_profile("covmap", database=None)
+    _hypothesis_settings.load_profile("covmap")
 
 Scan = tuple[tuple[float, float, float], np.ndarray, np.ndarray]
 

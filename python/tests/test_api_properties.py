@@ -1,6 +1,7 @@
 """Property: every call of the Python API, with arguments of every kind,
-either succeeds or raises a ``covmap.CovmapError``, and a map (or grid) a
-call raised on is exactly as it was."""
+either succeeds or raises a ``covmap.CovmapError`` (or, for an argument of
+the wrong class, Python's ``TypeError`` naming it: ``wrong_type.py``), and
+a map (or grid) a call raised on is exactly as it was."""
 
 from __future__ import annotations
 
@@ -11,6 +12,7 @@ import numpy as np
 import pytest
 
 import covmap
+from wrong_type import converted_argument
 
 hypothesis = pytest.importorskip("hypothesis")
 from hypothesis import HealthCheck, given, settings  # noqa: E402
@@ -106,11 +108,16 @@ def state(target: Any) -> tuple[bytes, ...]:
 
 
 def check(call: Callable[[], Any], target: Any) -> None:
-    """The call succeeds, or raises a CovmapError and leaves ``target`` as it was."""
+    """The call succeeds, or raises a CovmapError (or the TypeError of an
+    argument of the wrong class) and leaves ``target`` as it was."""
     before = state(target)
     try:
         call()
     except covmap.CovmapError:
+        assert state(target) == before, "a call that raised changed the map"
+    except TypeError as e:
+        if converted_argument(e) is None:
+            raise
         assert state(target) == before, "a call that raised changed the map"
 
 

@@ -5,8 +5,10 @@ from __future__ import annotations
 
 import copy
 import pickle
+from typing import Any
 
 import numpy as np
+import pytest
 
 import covmap
 
@@ -52,3 +54,63 @@ def test_a_log_with_dropped_beams_pickles_and_copies() -> None:
     for back in (pickle.loads(pickle.dumps(log)), copy.deepcopy(log)):
         ranges = back.ranges
         assert np.isnan(ranges[0, 0]) and ranges[0, 1] == 1.0
+
+
+def _blank(cls: type) -> Any:
+    return cls.__new__(cls)
+
+
+class _Tampered:
+    """Pickles as ``cls`` restored from ``state``, as a changed pickle would."""
+
+    def __init__(self, cls: type, state: Any) -> None:
+        self.cls, self.state = cls, state
+
+    def __reduce__(self) -> tuple[Any, ...]:
+        return (_blank, (self.cls,), self.state)
+
+
+def _loaded(cls: type, state: Any) -> Any:
+    return pickle.loads(pickle.dumps(_Tampered(cls, state)))
+
+
+def test_a_tampered_exploration_result_is_refused_naming_the_field() -> None:
+    result = covmap.explore(covmap.World.builtin("partial"), covmap.Strategy.frontier(), resolution=0.1, max_steps=2)
+    state = dict(vars(result))
+    back = _loaded(covmap.ExplorationResult, state)
+    assert back.path_length_m == result.path_length_m and np.array_equal(back.truth, result.truth)
+    other = covmap.CoverageMap(covmap.Grid(origin=(0.0, 0.0), resolution=0.1, shape=(2, 2)))
+    for field, value in (
+        ("truth", state["truth"] * 3.0),
+        ("scanned", state["scanned"][:-1]),
+        ("map", other),
+        ("termination", "won"),
+        ("seed", -1),
+        ("steps", True),
+        ("trace", {**state["trace"], "scans": np.arange(7)}),
+        ("start", np.array([np.nan, 0.0, 0.0])),
+        ("coverage_error", covmap.ExplorationErrors(2.0, 0.1)),
+        ("strategy", "frontier"),
+    ):
+        with pytest.raises(covmap.InvalidValueError, match=f"not a saved ExplorationResult: {field}"):
+            _loaded(covmap.ExplorationResult, {**state, field: value})
+    with pytest.raises(covmap.InvalidValueError, match="expected the fields"):
+        _loaded(covmap.ExplorationResult, {k: v for k, v in state.items() if k != "grid"})
+    with pytest.raises(covmap.InvalidValueError, match="expected the fields"):
+        _loaded(covmap.ExplorationResult, [1, 2])
+
+
+def test_a_tampered_run_summary_is_refused_naming_the_field() -> None:
+    summary = covmap.sweep([{"world": "partial", "strategy": "frontier", "resolution": 0.1, "max_steps": 2}], progress=False)[0]
+    state = dict(vars(summary))
+    assert _loaded(covmap.RunSummary, state) == summary
+    for field, value in (
+        ("index", -1),
+        ("start", (1.0, 2.0)),
+        ("options", {"not_a_keyword": 1}),
+        ("high_entropy_fraction", 1.5),
+        ("timing", "fast"),
+        ("world", 3),
+    ):
+        with pytest.raises(covmap.InvalidValueError, match=f"not a saved RunSummary: {field}"):
+            _loaded(covmap.RunSummary, {**state, field: value})

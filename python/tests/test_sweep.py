@@ -8,6 +8,7 @@ from __future__ import annotations
 import csv
 import io
 import json
+import math
 import multiprocessing
 import os
 import pickle
@@ -107,6 +108,123 @@ def test_a_forking_pool_is_refused(specs: list[dict[str, Any]]) -> None:
         covmap.sweep(specs, executor=object(), progress=False)
 
 
+class _NoFuture:
+    """An executor whose submit returns None."""
+
+    def submit(self, *args: Any) -> Any:
+        return None
+
+
+class _FutureWithoutCallback:
+    """An executor whose futures have no add_done_callback (nor a working cancel)."""
+
+    def submit(self, function: Any, *args: Any) -> Any:
+        class Future:
+            def result(self) -> Any:
+                return function(*args)
+
+            def cancel(self) -> bool:
+                raise RuntimeError("cannot cancel")
+
+        return Future()
+
+
+class _NeverDone:
+    """An executor whose futures never complete."""
+
+    def __init__(self) -> None:
+        self.cancelled = 0
+
+    def submit(self, *args: Any) -> Any:
+        executor = self
+
+        class Future:
+            def result(self) -> Any:
+                raise AssertionError("a future that never completed was asked for its result")
+
+            def add_done_callback(self, callback: Any) -> None:
+                pass
+
+            def cancel(self) -> bool:
+                executor.cancelled += 1
+                return True
+
+        return Future()
+
+
+def test_foreign_executors_without_futures_are_refused_with_the_cause(specs: list[dict[str, Any]]) -> None:
+    with pytest.raises(covmap.InvalidExecutorError, match="_NoFuture.submit returned NoneType, not a future"):
+        covmap.sweep(specs, executor=_NoFuture(), progress=False)
+    with pytest.raises(covmap.InvalidExecutorError, match="add_done_callback"):
+        covmap.sweep(specs, executor=_FutureWithoutCallback(), progress=False)
+
+
+def test_runs_not_done_within_the_timeout_are_cancelled_and_reported(specs: list[dict[str, Any]]) -> None:
+    never = _NeverDone()
+    with pytest.raises(covmap.SweepError, match="4 of 4 runs failed") as caught:
+        covmap.sweep(specs, executor=never, progress=False, timeout_s=0.2)
+    assert [(f.index, f.error_type) for f in caught.value.failures] == [(i, "TimeoutError") for i in range(4)]
+    assert "no result within 0.2 s" in caught.value.failures[0].message
+    assert never.cancelled == 4
+    for bad in (0, -1.0, math.nan, math.inf, "10", True):
+        with pytest.raises(covmap.InvalidParameterError, match="timeout_s"):
+            covmap.sweep(specs, progress=False, timeout_s=bad)
+
+
+def test_the_sweeps_own_pool_is_stopped_at_the_timeout() -> None:
+    """Runs of the whole corridor take minutes: the timeout ends them, the
+    worker processes are killed, and the call returns at once."""
+    import time
+
+    slow = [{"world": "corridor", "strategy": "coverage", "seed": s} for s in range(2)]
+    start = time.monotonic()
+    with pytest.raises(covmap.SweepError) as caught:
+        covmap.sweep(slow, progress=False, timeout_s=2.0)
+    assert time.monotonic() - start < 30.0
+    assert {f.error_type for f in caught.value.failures} == {"TimeoutError"}
+    assert not [p for p in multiprocessing.active_children() if p.is_alive()]
+
+
+SCRIPT = """
+import covmap
+specs = [{"world": "partial", "strategy": "frontier", "resolution": 0.1, "max_steps": 2, "seed": s} for s in range(2)]
+GUARD
+    print(len(covmap.sweep(specs, progress=False)), "runs")
+"""
+
+
+def test_a_script_without_the_main_guard_gets_one_clear_error(tmp_path: Path) -> None:
+    import subprocess
+    import sys
+
+    results = {}
+    for name, guard in (("unguarded", "if True:"), ("guarded", 'if __name__ == "__main__":')):
+        script = tmp_path / f"{name}.py"
+        script.write_text(SCRIPT.replace("GUARD", guard))
+        results[name] = subprocess.run(
+            [sys.executable, str(script)], capture_output=True, text=True, timeout=300, cwd=tmp_path, check=False
+        )
+    unguarded = results["unguarded"]
+    assert unguarded.returncode == 1
+    assert "MainGuardError" in unguarded.stderr and f"{tmp_path / 'unguarded.py'}, line 5" in unguarded.stderr
+    assert 'if __name__ == "__main__":' in unguarded.stderr and "BrokenProcessPool" not in unguarded.stderr
+    assert results["guarded"].returncode == 0 and "2 runs" in results["guarded"].stdout, results["guarded"].stderr
+
+
+def test_the_sweep_module_needs_no_command_line() -> None:
+    import subprocess
+    import sys
+
+    code = (
+        "import sys, covmap\n"
+        "covmap.sweep([{'world': 'partial', 'strategy': 'frontier', 'resolution': 0.1, 'max_steps': 1}])\n"
+        "print(sorted(m for m in sys.modules if m.startswith('covmap.cli')))\n"
+    )
+    done = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=300, check=False)
+    assert done.returncode == 0, done.stderr
+    assert done.stdout.strip() == "[]"
+
+
 def test_a_dask_cluster_gives_the_same_summaries(
     specs: list[dict[str, Any]], local: list[covmap.RunSummary]
 ) -> None:
@@ -144,6 +262,8 @@ def test_a_dead_scheduler_is_a_clear_error() -> None:
         ({"resolution": "fine"}, "spec 2: InvalidTypeError: argument 'resolution'"),
         ({"resolution": -0.1}, "spec 2: InvalidParameterError.*resolution"),
         ({"start": (2.0, 1.0, 0.0)}, "spec 2: InvalidStartError"),
+        ({"start": [[0.5, 0.5, 0.0]]}, r"spec 2: ArrayShapeError: start must be \(x, y, theta\), three numbers, got shape \(1, 3\)"),
+        ({"seed": 10**5000}, "spec 2: InvalidParameterError: invalid parameter `seed` = an integer of 16610 bits"),
         ({"sensor": "sonar"}, "spec 2: InvalidTypeError: sensor must be a SonarRing or a Laser"),
     ],
 )
@@ -219,6 +339,37 @@ def test_covmap_sweep_runs_a_toml_file(tmp_path: Path) -> None:
     assert all(r["world"] == "partial" and float(r["path_length_m"]) >= 0.0 and r["error"] == "" for r in rows)
     assert json.loads(rows[0]["options"]) == {"max_steps": 2, "resolution": 0.1}
     assert f"wrote {out}" in result.stdout
+
+
+@pytest.mark.parametrize(
+    ("defaults", "run", "seeds"),
+    [
+        ({}, {"seed": 4}, [4]),
+        ({"seed": 1}, {"seeds": [5, 6]}, [5, 6]),
+        ({"seeds": [1, 2]}, {"seed": 7}, [7]),
+        ({"seeds": [1, 2]}, {}, [1, 2]),
+    ],
+)
+def test_a_runs_seed_or_seeds_replace_the_defaults(tmp_path: Path, defaults: dict[str, Any], run: dict[str, Any], seeds: list[int]) -> None:
+    from covmap._sweep_files import read_specs
+
+    spec_file = tmp_path / "study.json"
+    spec_file.write_text(json.dumps({"defaults": {"world": "partial", **defaults}, "runs": [{"strategy": "frontier", **run}]}))
+    assert [s.get("seed") for s in read_specs(spec_file)] == seeds
+
+
+@pytest.mark.parametrize("where", ["defaults", "runs"])
+def test_seed_and_seeds_in_one_table_are_refused(tmp_path: Path, where: str) -> None:
+    from covmap._sweep_files import read_specs
+
+    both = {"seed": 1, "seeds": [2, 3]}
+    document = {"defaults": both, "runs": [{"world": "partial", "strategy": "frontier"}]}
+    if where == "runs":
+        document = {"runs": [{"world": "partial", "strategy": "frontier", **both}]}
+    spec_file = tmp_path / "study.json"
+    spec_file.write_text(json.dumps(document))
+    with pytest.raises(covmap.FileFormatError, match="seed and seeds both given"):
+        read_specs(spec_file)
 
 
 def test_covmap_sweep_names_a_bad_spec_and_writes_nothing(tmp_path: Path) -> None:

@@ -9,6 +9,7 @@ import numpy as np
 import pytest
 
 import covmap
+from wrong_type import converted_argument
 
 if TYPE_CHECKING:
     from conftest import ScanSource
@@ -119,18 +120,22 @@ def test_wrong_argument_types_are_type_errors(grid: covmap.Grid, model: Any) -> 
 
 def test_every_error_class_derives_from_covmap_error() -> None:
     classes = [getattr(covmap, name) for name in covmap.__all__ if name.endswith("Error")]
-    assert len(classes) == 28
+    assert len(classes) == 30
     for cls in classes:
         assert issubclass(cls, covmap.CovmapError)
         # RobotError is no bad input: a robot's sensor or drive failed during a
-        # run; SweepError, that some runs of a sweep raised.
-        assert cls in (covmap.CovmapError, covmap.RobotError, covmap.SweepError) or issubclass(
+        # run; SweepError, that some runs of a sweep raised; MainGuardError,
+        # that a script runs a sweep where its workers would run it again;
+        # MapBusyError, that a map was used inside its own integrate_log.
+        no_bad_input = (covmap.CovmapError, covmap.RobotError, covmap.SweepError, covmap.MainGuardError, covmap.MapBusyError)
+        assert cls in no_bad_input or issubclass(
             cls, (ValueError, IndexError, TypeError, OSError, ImportError, MemoryError)
         )
     assert issubclass(covmap.SweepError, RuntimeError) and not issubclass(covmap.SweepError, ValueError)
     assert issubclass(covmap.InvalidSpecError, ValueError) and issubclass(covmap.InvalidExecutorError, ValueError)
     assert issubclass(covmap.SchedulerError, OSError) and issubclass(covmap.MissingDependencyError, ImportError)
     assert issubclass(covmap.RobotError, RuntimeError) and not issubclass(covmap.RobotError, ValueError)
+    assert issubclass(covmap.MainGuardError, RuntimeError) and issubclass(covmap.MapBusyError, RuntimeError)
     assert issubclass(covmap.InvalidStartError, ValueError)
     assert issubclass(covmap.IntegerOverflowError, OverflowError) and issubclass(covmap.IntegerOverflowError, ValueError)
     assert issubclass(covmap.OutOfMemoryError, MemoryError)
@@ -191,7 +196,7 @@ def test_sensor_counts_are_bounded_before_anything_is_allocated() -> None:
     assert len(covmap.SonarRing.ring(65536).bearings_rad) == 65536
 
 
-def test_arguments_of_the_wrong_type_are_covmap_errors(grid: covmap.Grid) -> None:
+def test_values_of_the_wrong_type_are_covmap_errors(grid: covmap.Grid) -> None:
     square = [[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]]
     with pytest.raises(covmap.InvalidTypeError, match="materials"):
         covmap.World([square], "wall")  # type: ignore[arg-type]
@@ -265,16 +270,32 @@ def test_masked_arrays_are_refused(grid: covmap.Grid) -> None:
         (lambda g: g.cell_center(0, 2**64), covmap.IntegerOverflowError, OverflowError, "col"),
         (lambda g: covmap.Grid(origin=(0.0, 0.0), resolution=0.1, shape=(1, 2, 3)), covmap.ArrayShapeError, ValueError, "shape"),
         (lambda g: covmap.Planner(alpha="half"), covmap.InvalidTypeError, TypeError, "alpha"),
-        (lambda g: covmap.OccupancyGrid("grid"), covmap.InvalidTypeError, TypeError, "grid"),
+        (lambda g: covmap.Strategy.counting(True), covmap.InvalidTypeError, TypeError, "n"),
+        (lambda g: covmap.Planner(alpha=10**400), covmap.IntegerOverflowError, OverflowError, "alpha"),
     ],
-    ids=["int 2**63", "str for int", "int 2**64", "tuple of three", "str for float", "str for Grid"],
+    ids=["int 2**63", "str for int", "int 2**64", "tuple of three", "str for float", "bool for int", "int for float"],
 )
-def test_arguments_python_cannot_convert_raise_covmap_errors_naming_them(
+def test_numbers_python_cannot_convert_raise_covmap_errors_naming_them(
     grid: covmap.Grid, call: Any, cls: type[Exception], builtin: type[Exception], argument: str
 ) -> None:
     with pytest.raises(cls, match=f"argument '{argument}'") as raised:
         call(grid)
     assert isinstance(raised.value, builtin)
+
+
+def test_an_object_of_the_wrong_class_raises_pythons_type_error_naming_the_argument() -> None:
+    with pytest.raises(TypeError, match="not an instance of 'Grid'") as raised:
+        covmap.OccupancyGrid("grid")  # type: ignore[arg-type]
+    assert converted_argument(raised.value) == "grid"
+
+
+def test_a_huge_value_is_quoted_in_part() -> None:
+    with pytest.raises(covmap.IntegerOverflowError) as raised:
+        covmap.Strategy.counting(10**5000)  # more digits than Python prints
+    assert "an integer of 16610 bits" in str(raised.value) and len(str(raised.value)) < 200
+    with pytest.raises(covmap.IntegerOverflowError) as raised:
+        covmap.Strategy.counting(10**1000)
+    assert "(1001 characters)" in str(raised.value) and len(str(raised.value)) < 200
 
 
 def test_a_sequence_is_never_reserved_by_its_claimed_length(grid: covmap.Grid) -> None:

@@ -102,7 +102,7 @@ def main() -> None:
         runs = len(f.counting) + len(f.coverage)
         run_s = sum(r.seconds for r in [*f.counting, *f.coverage])
         print(
-            f"default fig7 sweep: {runs} runs in {seconds:.1f} s on {covmap._sweep.local_cores()} cores "
+            f"default fig7 sweep: {runs} runs in {seconds:.1f} s on {covmap._executors.local_cores()} cores "
             f"({run_s:.1f} s of runs)"
         )
         print(fig7.report(f))

@@ -45,8 +45,8 @@ fn fig3_is_reproducible_and_writes_pictures() {
     let b = fig3_with(&c).unwrap();
     assert_eq!(a.ml, b.ml);
     assert_eq!(a.log_likelihood, b.log_likelihood);
-    let dir = std::env::temp_dir().join(format!("covmap-fig3-test-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
+    let tmp = tempfile::tempdir().unwrap();
+    let dir = tmp.path();
     let truth = dir.join("truth.png");
     write_map_png(&truth, &a.grid, &a.truth).unwrap();
     let bytes = std::fs::read(&truth).unwrap();
@@ -55,5 +55,4 @@ fn fig3_is_reproducible_and_writes_pictures() {
     let world =
         covmap::sim::World::from_image_file(&truth, &covmap::sim::ImageOptions::new(0.1)).unwrap();
     assert!(!world.is_empty());
-    std::fs::remove_dir_all(&dir).unwrap();
 }

@@ -125,13 +125,13 @@ fn stata_basement_yaml_places_the_rotated_image() {
     let area = world.polygon_area_m2();
     assert!((covered - area).abs() < 1e-9 * area, "{covered} vs {area}");
     // Errors name the file and line.
-    let bad = std::env::temp_dir().join(format!("covmap-bad-{}.yaml", std::process::id()));
+    let tmp = tempfile::tempdir().unwrap();
+    let bad = tmp.path().join("bad.yaml");
     std::fs::write(
         &bad,
         "image: stata_basement.png\nresolution: fine\norigin: [0, 0, 0]\n",
     )
     .unwrap();
     let e = World::from_ros_map_yaml(&bad).unwrap_err();
-    std::fs::remove_file(&bad).unwrap();
     assert!(e.to_string().contains(".yaml, line 2"), "{e}");
 }

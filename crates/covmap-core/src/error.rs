@@ -198,6 +198,28 @@ impl CovmapError {
 /// Shorthand for results of this crate.
 pub type Result<T, E = CovmapError> = std::result::Result<T, E>;
 
+/// The most characters of a text an error message quotes.
+pub const QUOTED_CHARS: usize = 60;
+
+/// `text` as an error message quotes it (a name given by a caller, which
+/// may be of any length): at most [`QUOTED_CHARS`] characters, in quotes; a
+/// longer one cut, with `...` and its length in characters.
+///
+/// ```
+/// assert_eq!(covmap_core::quoted("corridor"), "\"corridor\"");
+/// assert!(covmap_core::quoted(&"x".repeat(1000)).ends_with("... (1000 characters)"));
+/// ```
+pub fn quoted(text: &str) -> String {
+    match text.char_indices().nth(QUOTED_CHARS) {
+        Some((end, _)) => format!(
+            "{:?}... ({} characters)",
+            &text[..end],
+            text.chars().count()
+        ),
+        None => format!("{text:?}"),
+    }
+}
+
 /// `Ok` if `ok`, else [`CovmapError::InvalidParameter`]: parameter `name`
 /// has `value`, and `expected` says what it must satisfy.
 pub(crate) fn check_parameter(

@@ -57,7 +57,7 @@ pub use coverage_map::{
     CONTACT_COVERAGE, ChangeCursor, Changes, CoverageMap, HistoryState, STAGNATION_MEASUREMENTS,
     STAGNATION_NATS,
 };
-pub use error::{CovmapError, Result};
+pub use error::{CovmapError, QUOTED_CHARS, Result, quoted};
 pub use grid::{Cell, Grid, MAX_CELLS, MAX_CELLS_FROM_ZERO, MIN_RESOLUTION_M};
 pub use log::{Bearings, CarmenLaser, CarmenOptions, Log, SonarTextOptions};
 pub use map_file::{MAP_FILE_VERSION, MAX_MAP_FILE_BYTES};

@@ -13,13 +13,12 @@ use numpy::{
     Element, IntoPyArray, PyArray2, PyArray3, PyArrayDyn, PyArrayMethods, PyUntypedArray,
     PyUntypedArrayMethods,
 };
-use pyo3::exceptions::{
-    PyOverflowError, PyRuntimeError, PyTypeError, PyUnicodeError, PyValueError,
-};
+use pyo3::exceptions::{PyOverflowError, PyRuntimeError};
 use pyo3::prelude::*;
-use pyo3::types::{PyBytes, PyString};
+use pyo3::types::{PyBool, PyBytes, PyString};
 
 use crate::errors::{Exception, to_py};
+use crate::numbers;
 
 /// The values of a numpy array of `ndim` dimensions and element type `T`, in
 /// row-major order, with its shape. Other dimensions or dtypes, and masked
@@ -225,6 +224,12 @@ fn number_sequence(
     };
     let mut values = Vec::new();
     each_item(obj, name, max_len, &not_numbers, |i, item| {
+        if item.is_instance_of::<PyBool>() {
+            return Err(Exception::ArrayDtype.err(
+                py,
+                format!("{name}[{i}] must be a number, got the bool {item}"),
+            ));
+        }
         let value = item.extract::<f64>().map_err(|e| {
             let message = format!("{name}[{i}] must be a number, got {}: {e}", item.get_type());
             match e.is_instance_of::<PyOverflowError>(py) {
@@ -241,7 +246,7 @@ fn number_sequence(
 /// Exactly `N` numbers from a Python sequence (`what` says what they are,
 /// `"(x, y, theta)"`): another length raises `ArrayShapeError`, anything
 /// else `ArrayDtypeError`.
-fn fixed_numbers<const N: usize>(
+pub(crate) fn fixed_numbers<const N: usize>(
     obj: &Bound<'_, PyAny>,
     name: &str,
     what: &str,
@@ -368,66 +373,67 @@ fn per_cell<T: Element + Copy>(
     numpy_values::<T>(array, name, expected.len(), dtype, &check)
 }
 
-/// A seed for the random generators, from a Python integer (an `int`, a
-/// numpy integer, anything with `__index__`): 0 to 2**64 - 1. Anything else
-/// raises `InvalidTypeError`, a negative integer `InvalidParameterError`,
-/// one of 2**64 or more `IntegerOverflowError` (an `InvalidParameterError`
-/// and an `OverflowError`).
-#[derive(Clone, Copy, Debug)]
-pub(crate) struct Seed(pub(crate) u64);
-
-impl<'a, 'py> FromPyObject<'a, 'py> for Seed {
-    type Error = PyErr;
-    fn extract(obj: Borrowed<'a, 'py, PyAny>) -> PyResult<Self> {
-        let py = obj.py();
-        if let Ok(seed) = obj.extract::<u64>() {
-            return Ok(Self(seed));
-        }
-        match obj.call_method0(pyo3::intern!(py, "__index__")) {
-            // Beyond 64 bits, as Python's own conversion says it.
-            Ok(value) if value.gt(0).unwrap_or(false) => Err(Exception::IntegerOverflow.err(
-                py,
-                format!(
-                    "invalid parameter `seed` = {value}: expected an integer from 0 to 2**64 - 1"
-                ),
-            )),
-            Ok(value) => Err(Exception::InvalidParameter.err(
-                py,
-                format!(
-                    "invalid parameter `seed` = {value}: expected an integer from 0 to 2**64 - 1"
-                ),
-            )),
-            Err(_) => Err(Exception::InvalidType.err(
-                py,
-                format!("seed must be an integer, got {}", obj.get_type()),
-            )),
-        }
-    }
-}
-
-/// A bin count from a Python int: `MIN_BINS..=MAX_BINS`.
-pub(crate) fn bins(py: Python<'_>, bins: i64) -> PyResult<usize> {
-    let checked = usize::try_from(bins)
-        .map_err(|_| CovmapError::InvalidParameter {
-            name: "bins",
-            value: bins as f64,
-            expected: "a bin count from 2 to 256",
-        })
-        .and_then(|b| histogram::check_bins(b).map(|()| b));
-    checked.map_err(|e| to_py(py, e))
-}
-
-/// A cell of `grid` from Python ints; negative or too large is out of bounds.
-pub(crate) fn cell(py: Python<'_>, grid: &Grid, row: i64, col: i64) -> PyResult<Cell> {
-    match (usize::try_from(row), usize::try_from(col)) {
-        (Ok(row), Ok(col)) if row < grid.rows() && col < grid.cols() => Ok(Cell { row, col }),
+/// The cell `(row, col)` of `grid`, from Python integers (anything else
+/// raises `InvalidTypeError`); a cell outside the grid raises
+/// `CellOutOfBoundsError` naming it and the grid's shape.
+pub(crate) fn cell(grid: &Grid, row: &Bound<'_, PyAny>, col: &Bound<'_, PyAny>) -> PyResult<Cell> {
+    let index = |obj, n: usize| numbers::integer(obj, 0, n as i128 - 1);
+    match (index(row, grid.rows())?, index(col, grid.cols())?) {
+        (Some(r), Some(c)) => Ok(Cell {
+            row: r as usize,
+            col: c as usize,
+        }),
         _ => Err(Exception::CellOutOfBounds.err(
-            py,
+            row.py(),
             format!(
-                "cell (row {row}, col {col}) lies outside a grid of {} x {} cells",
+                "cell (row {}, col {}) lies outside a grid of {} x {} cells",
+                numbers::quoted(row),
+                numbers::quoted(col),
                 grid.rows(),
                 grid.cols()
             ),
+        )),
+    }
+}
+
+/// A grid's shape, `(rows, cols)`: a sequence of two integers, each from 0
+/// to 2**64 - 1 (`InvalidGridError` outside; the grid checks the rest).
+pub(crate) struct Shape(pub(crate) usize, pub(crate) usize);
+
+impl<'a, 'py> FromPyObject<'a, 'py> for Shape {
+    type Error = PyErr;
+    fn extract(obj: Borrowed<'a, 'py, PyAny>) -> PyResult<Self> {
+        shape(&obj).map(|(rows, cols)| Self(rows, cols))
+    }
+}
+
+/// The `(rows, cols)` of a [`Shape`].
+fn shape(obj: &Bound<'_, PyAny>) -> PyResult<(usize, usize)> {
+    let py = obj.py();
+    let expected = "a sequence of two integers (rows, cols)";
+    let not_a_shape = || {
+        Exception::ArrayDtype.err(
+            py,
+            format!("shape must be {expected}, got {}", obj.get_type()),
+        )
+    };
+    let items = items(obj, "shape", 2, &not_a_shape)?;
+    let [rows, cols] = items.as_slice() else {
+        return Err(Exception::ArrayShape.err(
+            py,
+            format!("shape must be {expected}, got {} items", items.len()),
+        ));
+    };
+    let count = |n| numbers::integer(n, 0, usize::MAX as i128);
+    match (count(rows)?, count(cols)?) {
+        (Some(r), Some(c)) => Ok((r as usize, c as usize)),
+        _ => Err(to_py(
+            py,
+            CovmapError::InvalidGrid(format!(
+                "shape must be two non-negative counts, got ({}, {})",
+                numbers::quoted(rows),
+                numbers::quoted(cols)
+            )),
         )),
     }
 }
@@ -514,61 +520,6 @@ pub(crate) fn point(obj: &Bound<'_, PyAny>, name: &str, heading_ok: bool) -> PyR
     }
 }
 
-/// An argument converted as pyo3 converts `T`, its failures raised as
-/// covmap's errors: a value of the wrong type `InvalidTypeError`, an
-/// integer beyond `T`'s range `IntegerOverflowError`, a tuple of the wrong
-/// length `ArrayShapeError`. Used as `#[pyo3(from_py_with = convert::arg)]`
-/// on the arguments of the functions and methods; pyo3 then notes the
-/// argument's name on the exception, which `CovmapError.add_note` puts into
-/// its message.
-pub(crate) fn arg<'a, 'py, T: FromPyObject<'a, 'py>>(obj: &'a Bound<'py, PyAny>) -> PyResult<T> {
-    obj.extract::<T>()
-        .map_err(|e| as_covmap_error(obj, e.into(), std::any::type_name::<T>()))
-}
-
-/// A conversion's error `err` for `obj` (meant as a `target`) as a covmap
-/// error: errors already covmap's pass unchanged.
-pub(crate) fn as_covmap_error(obj: &Bound<'_, PyAny>, err: PyErr, target: &str) -> PyErr {
-    let py = obj.py();
-    if crate::errors::is_covmap_error(py, &err) {
-        return err;
-    }
-    // The message alone: the class is covmap's now.
-    let said = err.value(py).to_string();
-    if err.is_instance_of::<PyOverflowError>(py) {
-        let limit = if target.contains("u64") || target.contains("usize") {
-            "an integer from 0 to 2**64 - 1"
-        } else if target.contains("i64") {
-            "an integer from -2**63 to 2**63 - 1"
-        } else {
-            "a float64, at most about 1.8e308"
-        };
-        let value = obj
-            .repr()
-            .map_or_else(|_| "the value".to_owned(), |r| shortened(&r.to_string()));
-        Exception::IntegerOverflow.err(
-            py,
-            format!("{value} is out of range: expected {limit} ({said})"),
-        )
-    } else if err.is_instance_of::<PyTypeError>(py) {
-        Exception::InvalidType.err(py, format!("{said} (got {})", obj.get_type()))
-    } else if err.is_instance_of::<PyUnicodeError>(py) {
-        Exception::InvalidValue.err(py, said)
-    } else if err.is_instance_of::<PyValueError>(py) {
-        Exception::ArrayShape.err(py, said)
-    } else {
-        err
-    }
-}
-
-/// `text` cut to at most 60 characters for a message.
-fn shortened(text: &str) -> String {
-    match text.char_indices().nth(60) {
-        Some((end, _)) => format!("{}...", &text[..end]),
-        None => text.to_owned(),
-    }
-}
-
 /// A per-cell array of `grid` as a `(rows, cols)` numpy array.
 pub(crate) fn cell_array<'py, T: Element>(
     py: Python<'py>,
@@ -623,7 +574,10 @@ pub(crate) fn gain_method(py: Python<'_>, name: &str) -> PyResult<GainMethod> {
         "exact" => Ok(GainMethod::Exact),
         _ => Err(Exception::InvalidParameter.err(
             py,
-            format!("method must be \"fast\" or \"exact\", got {name:?}"),
+            format!(
+                "method must be \"fast\" or \"exact\", got {}",
+                covmap::quoted(name)
+            ),
         )),
     }
 }
@@ -636,7 +590,10 @@ pub(crate) fn stop_coverage(py: Python<'_>, name: &str) -> PyResult<StopCoverage
         "mean" => Ok(StopCoverage::Mean),
         _ => Err(Exception::InvalidParameter.err(
             py,
-            format!("stop_coverage must be \"ml\" or \"mean\", got {name:?}"),
+            format!(
+                "stop_coverage must be \"ml\" or \"mean\", got {}",
+                covmap::quoted(name)
+            ),
         )),
     }
 }

@@ -10,9 +10,11 @@ use pyo3::types::{PyTuple, PyType};
 use crate::convert::{self, cell_array};
 use crate::errors::{Exception, OrRaise};
 use crate::grid::PyGrid;
+use crate::numbers::{Bins, Float, Int};
 use crate::scan::Scan;
 
-// The signature spells the default out so that Python shows it; keep it the core's.
+// The text signature spells the default out so that Python shows it; keep
+// it the core's.
 const _: () = assert!(DEFAULT_BINS == 16);
 
 /// The entropy history as `__reduce__` saves it: each cell's ring of entropies,
@@ -40,14 +42,9 @@ pub(crate) struct PyCoverageMap(pub(crate) CoverageMap);
 #[pymethods]
 impl PyCoverageMap {
     #[new]
-    #[pyo3(signature = (grid, bins=16))]
-    fn new(
-        py: Python<'_>,
-        #[pyo3(from_py_with = crate::convert::arg)] grid: Bound<'_, PyGrid>,
-        #[pyo3(from_py_with = crate::convert::arg)] bins: i64,
-    ) -> PyResult<Self> {
-        let bins = convert::bins(py, bins)?;
-        CoverageMap::with_bins(grid.get().0, bins)
+    #[pyo3(signature = (grid, bins=Int(DEFAULT_BINS)), text_signature = "(grid, bins=16)")]
+    fn new(py: Python<'_>, grid: Bound<'_, PyGrid>, bins: Bins) -> PyResult<Self> {
+        CoverageMap::with_bins(grid.get().0, bins.0)
             .map(Self)
             .or_raise(py)
     }
@@ -58,13 +55,12 @@ impl PyCoverageMap {
     #[classmethod]
     fn from_histograms(
         _cls: &Bound<'_, PyType>,
-        #[pyo3(from_py_with = crate::convert::arg)] grid: Bound<'_, PyGrid>,
+        grid: Bound<'_, PyGrid>,
         histograms: &Bound<'_, PyAny>,
     ) -> PyResult<Self> {
         let py = histograms.py();
         let grid = grid.get().0;
         let (values, bins) = convert::histograms(histograms, &grid)?;
-        let bins = convert::bins(py, i64::try_from(bins).unwrap_or(i64::MAX))?;
         CoverageMap::from_histograms(grid, bins, values)
             .map(Self)
             .or_raise(py)
@@ -99,10 +95,10 @@ impl PyCoverageMap {
     fn histogram<'py>(
         &self,
         py: Python<'py>,
-        #[pyo3(from_py_with = crate::convert::arg)] row: i64,
-        #[pyo3(from_py_with = crate::convert::arg)] col: i64,
+        row: &Bound<'py, PyAny>,
+        col: &Bound<'py, PyAny>,
     ) -> PyResult<Bound<'py, PyArray1<f32>>> {
-        let cell = convert::cell(py, self.0.grid(), row, col)?;
+        let cell = convert::cell(self.0.grid(), row, col)?;
         let h = self.0.histogram(cell).or_raise(py)?;
         Ok(PyArray1::from_slice(py, h))
     }
@@ -175,9 +171,9 @@ impl PyCoverageMap {
     fn integrate_log(
         &mut self,
         py: Python<'_>,
-        #[pyo3(from_py_with = crate::convert::arg)] log: Bound<'_, crate::log::PyLog>,
+        log: Bound<'_, crate::log::PyLog>,
         model: &Bound<'_, PyAny>,
-        #[pyo3(from_py_with = crate::convert::arg)] occlude_no_echo: bool,
+        occlude_no_echo: bool,
         progress: crate::log::ProgressArg,
     ) -> PyResult<usize> {
         let model = crate::sensor::any_model(model)?;
@@ -202,11 +198,7 @@ impl PyCoverageMap {
     /// scan that updates a cell counts as one measurement of it. Off by
     /// default; turning it on (again) starts an empty history. Pickling and
     /// copying keep the history.
-    fn track_history(
-        &mut self,
-        py: Python<'_>,
-        #[pyo3(from_py_with = crate::convert::arg)] on: bool,
-    ) -> PyResult<()> {
+    fn track_history(&mut self, py: Python<'_>, on: bool) -> PyResult<()> {
         self.0.try_track_history(on).or_raise(py)
     }
     /// Whether the entropy history is kept.
@@ -243,11 +235,7 @@ impl PyCoverageMap {
     /// CRC-32. Written atomically: a reader never sees half a file, and a
     /// failed write leaves ``path`` as it was (``FileIOError``). Runs with
     /// the GIL released.
-    fn save(
-        &self,
-        py: Python<'_>,
-        #[pyo3(from_py_with = crate::convert::arg)] path: std::path::PathBuf,
-    ) -> PyResult<()> {
+    fn save(&self, py: Python<'_>, path: std::path::PathBuf) -> PyResult<()> {
         let map = &self.0;
         let bytes = py.detach(|| map.to_file_bytes()).or_raise(py)?;
         py.detach(|| covmap::sim::write_atomic(&path, &bytes))
@@ -258,10 +246,7 @@ impl PyCoverageMap {
     /// version) raises ``FileFormatError``, one that cannot be read
     /// ``FileIOError``; never a wrong map. Runs with the GIL released.
     #[staticmethod]
-    fn load(
-        py: Python<'_>,
-        #[pyo3(from_py_with = crate::convert::arg)] path: std::path::PathBuf,
-    ) -> PyResult<Self> {
+    fn load(py: Python<'_>, path: std::path::PathBuf) -> PyResult<Self> {
         // The map file's own limit, not other files': what `save` wrote
         // (up to 4 GiB) must load.
         let bytes = py
@@ -276,17 +261,20 @@ impl PyCoverageMap {
     /// (unknown) for every cell whose entropy is still within
     /// ``unknown_within_nats`` of the prior's ``ln(bins)`` (0: only cells no
     /// evidence reached). Row 0 is the grid's row 0, as in the message.
-    #[pyo3(signature = (*, source="ml", unknown_within_nats=0.05))]
+    #[pyo3(
+        signature = (*, source="ml", unknown_within_nats=Float(0.05)),
+        text_signature = "($self, *, source='ml', unknown_within_nats=0.05)"
+    )]
     fn ros_occupancy<'py>(
         &self,
         py: Python<'py>,
-        #[pyo3(from_py_with = crate::convert::arg)] source: &str,
-        #[pyo3(from_py_with = crate::convert::arg)] unknown_within_nats: f64,
+        source: &str,
+        unknown_within_nats: Float,
     ) -> PyResult<Bound<'py, PyArray2<i8>>> {
         let value = crate::ros_map::coverage_value(py, source)?;
         let data = self
             .0
-            .ros_occupancy(value, unknown_within_nats)
+            .ros_occupancy(value, unknown_within_nats.0)
             .or_raise(py)?;
         crate::ros_map::array(py, self.0.grid(), data)
     }
@@ -299,7 +287,13 @@ impl PyCoverageMap {
     /// written together: both files whole to temporary files first, then
     /// renamed into place, the old pair kept if either fails
     /// (``FileIOError``); a ``yaml_path`` ending in ``.pgm`` is refused.
-    #[pyo3(signature = (yaml_path, *, mode="trinary", occupied_thresh=0.65, free_thresh=0.196, source="ml", unknown_within_nats=0.05))]
+    #[pyo3(
+        signature = (
+            yaml_path, *, mode="trinary", occupied_thresh=Float(0.65), free_thresh=Float(0.196),
+            source="ml", unknown_within_nats=Float(0.05)
+        ),
+        text_signature = "($self, yaml_path, *, mode='trinary', occupied_thresh=0.65, free_thresh=0.196, source='ml', unknown_within_nats=0.05)"
+    )]
     #[allow(
         clippy::too_many_arguments,
         reason = "map_saver's settings and the read-out's"
@@ -307,17 +301,17 @@ impl PyCoverageMap {
     fn to_ros_map(
         &self,
         py: Python<'_>,
-        #[pyo3(from_py_with = crate::convert::arg)] yaml_path: std::path::PathBuf,
-        #[pyo3(from_py_with = crate::convert::arg)] mode: &str,
-        #[pyo3(from_py_with = crate::convert::arg)] occupied_thresh: f64,
-        #[pyo3(from_py_with = crate::convert::arg)] free_thresh: f64,
-        #[pyo3(from_py_with = crate::convert::arg)] source: &str,
-        #[pyo3(from_py_with = crate::convert::arg)] unknown_within_nats: f64,
+        yaml_path: std::path::PathBuf,
+        mode: &str,
+        occupied_thresh: Float,
+        free_thresh: Float,
+        source: &str,
+        unknown_within_nats: Float,
     ) -> PyResult<()> {
         let value = crate::ros_map::coverage_value(py, source)?;
         let data = self
             .0
-            .ros_occupancy(value, unknown_within_nats)
+            .ros_occupancy(value, unknown_within_nats.0)
             .or_raise(py)?;
         let grid = *self.0.grid();
         crate::ros_map::write(
@@ -326,8 +320,8 @@ impl PyCoverageMap {
             &grid,
             &data,
             mode,
-            occupied_thresh,
-            free_thresh,
+            occupied_thresh.0,
+            free_thresh.0,
         )
     }
     /// Pickle and copy support: rebuilt from the grid and the histograms, the

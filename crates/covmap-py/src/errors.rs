@@ -48,6 +48,8 @@ pub(crate) enum Exception {
     IntegerOverflow,
     /// Memory for a map or a result could not be had (a `MemoryError`).
     OutOfMemory,
+    /// A map was used inside its own `integrate_log`'s progress callback.
+    MapBusy,
 }
 
 impl Exception {
@@ -76,6 +78,7 @@ impl Exception {
             Self::InvalidType => "InvalidTypeError",
             Self::IntegerOverflow => "IntegerOverflowError",
             Self::OutOfMemory => "OutOfMemoryError",
+            Self::MapBusy => "MapBusyError",
         }
     }
 
@@ -141,13 +144,6 @@ impl Exception {
         };
         build().unwrap_or_else(|failed| failed)
     }
-}
-
-/// Whether `err` is already one of covmap's exceptions.
-pub(crate) fn is_covmap_error(py: Python<'_>, err: &PyErr) -> bool {
-    Exception::Base
-        .class(py)
-        .is_ok_and(|base| err.get_type(py).is_subclass(&base).unwrap_or(false))
 }
 
 /// A core error as the matching Python exception.

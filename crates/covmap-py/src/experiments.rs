@@ -4,13 +4,15 @@
 //! (`covmap.experiments.fig3.Fig3Result`, beside the experiment's table), as
 //! `covmap.experiments.fig1`'s runs are.
 
+use covmap::learn::{MAX_EVALUATIONS, MAX_RESTARTS};
 use covmap::sim::experiments::{self, MapErrors};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
-use crate::convert::{Seed, cell_array, poses_array};
+use crate::convert::{cell_array, poses_array};
 use crate::errors::OrRaise;
 use crate::grid::PyGrid;
+use crate::numbers::{Float, Int, Seed};
 
 /// Run the paper's Fig. 3 with ``seed``: 24 simulated sonars driven along a
 /// seeded path through the built-in ``corridor``, every scan integrated into
@@ -84,50 +86,50 @@ pub(crate) fn run_fig3(py: Python<'_>, seed: Seed) -> PyResult<Bound<'_, PyAny>>
 /// walls) and ``occupancy_wall`` (the occupancy grid's).
 #[pyfunction]
 #[pyo3(signature = (
-    model, *, train_world="corridor", test_world="office", scans=300, step=0.15,
-    resolution=0.05, train_seed=Seed(0), test_seed=Seed(1), max_evaluations=300,
-    restarts=2, seed=Seed(0), parameters=None, judged_only=false, occlude_no_echo=true,
+    model, *, train_world="corridor", test_world="office", scans=Int(300), step=Float(0.15),
+    resolution=Float(0.05), train_seed=Seed(0), test_seed=Seed(1), max_evaluations=Int(300),
+    restarts=Int(2), seed=Seed(0), parameters=None, judged_only=false, occlude_no_echo=true,
     progress=crate::log::ProgressArg::Flag(false)
 ), text_signature = "(model, *, train_world='corridor', test_world='office', scans=300, step=0.15, resolution=0.05, train_seed=0, test_seed=1, max_evaluations=300, restarts=2, seed=0, parameters=None, judged_only=False, occlude_no_echo=True, progress=False)")]
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn run_learn<'py>(
     py: Python<'py>,
     model: &Bound<'py, PyAny>,
-    #[pyo3(from_py_with = crate::convert::arg)] train_world: &str,
-    #[pyo3(from_py_with = crate::convert::arg)] test_world: &str,
-    #[pyo3(from_py_with = crate::convert::arg)] scans: usize,
-    #[pyo3(from_py_with = crate::convert::arg)] step: f64,
-    #[pyo3(from_py_with = crate::convert::arg)] resolution: f64,
+    train_world: &str,
+    test_world: &str,
+    scans: Int<usize, 1, { experiments::MAX_DRIVE_SCANS as i128 }>,
+    step: Float,
+    resolution: Float,
     train_seed: Seed,
     test_seed: Seed,
-    #[pyo3(from_py_with = crate::convert::arg)] max_evaluations: usize,
-    #[pyo3(from_py_with = crate::convert::arg)] restarts: usize,
+    max_evaluations: Int<usize, 1, { MAX_EVALUATIONS as i128 }>,
+    restarts: Int<usize, 1, { MAX_RESTARTS as i128 }>,
     seed: Seed,
     parameters: Option<Bound<'py, PyAny>>,
-    #[pyo3(from_py_with = crate::convert::arg)] judged_only: bool,
-    #[pyo3(from_py_with = crate::convert::arg)] occlude_no_echo: bool,
+    judged_only: bool,
+    occlude_no_echo: bool,
     progress: crate::log::ProgressArg,
 ) -> PyResult<Bound<'py, PyDict>> {
     let config = experiments::LearnConfig {
         train_world: train_world.into(),
         test_world: test_world.into(),
         model: crate::sensor::any_model(model)?,
-        scans,
-        step_m: step,
-        resolution_m: resolution,
+        scans: scans.0,
+        step_m: step.0,
+        resolution_m: resolution.0,
         train_seed: train_seed.0,
         test_seed: test_seed.0,
         fit: covmap::learn::FitOptions {
             parameters: crate::learn::parameter_names(parameters.as_ref())?,
-            max_evaluations,
-            restarts,
+            max_evaluations: max_evaluations.0,
+            restarts: restarts.0,
             seed: seed.0,
             occlude_no_echo,
             ..covmap::learn::FitOptions::default()
         },
         judged_only,
     };
-    let steps = (max_evaluations, " evaluations");
+    let steps = (max_evaluations.0, " evaluations");
     let report = crate::log::with_progress(py, progress, steps, |show| {
         experiments::learn(&config, show)
     })?;

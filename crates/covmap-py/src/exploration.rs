@@ -14,75 +14,51 @@ use pyo3::prelude::*;
 use pyo3::sync::PyOnceLock;
 use pyo3::types::PyDict;
 
-use crate::convert::{self, Seed, cell_array, poses_array, rows_array};
+use crate::convert::{self, cell_array, poses_array, rows_array};
 use crate::coverage_map::PyCoverageMap;
 use crate::errors::{Exception, OrRaise};
 use crate::grid::PyGrid;
+use crate::numbers::{Bins, Float, Int, Seed};
 use crate::occupancy::PyOccupancyGrid;
 use crate::sensor::any_model;
 use crate::sim_sensor::{PyLaser, PySonarRing};
 use crate::strategy::PyStrategy;
 use crate::world::PyWorld;
 
-/// The keyword arguments of `explore` and `Exploration`, as Python gave them.
-struct Keywords<'a, 'py> {
-    start: Option<&'a Bound<'py, PyAny>>,
-    seed: Seed,
-    sensor: Option<&'a Bound<'py, PyAny>>,
-    model: Option<&'a Bound<'py, PyAny>>,
-    resolution: f64,
-    bins: i64,
-    epsilon: f64,
-    robot_radius_m: f64,
-    candidate_stride_m: f64,
-    scan_spacing_m: f64,
-    max_path_m: f64,
-    max_steps: i64,
-}
-
-impl Keywords<'_, '_> {
+impl Keywords<'_> {
     /// The simulator's options. Only the conversions (and the resolution,
     /// under its Python name) are checked here; the values are checked by
     /// the run before anything starts.
     fn options(&self, py: Python<'_>) -> PyResult<ExploreOptions> {
         let d = ExploreOptions::default();
-        let sensor = match self.sensor {
+        let sensor = match &self.sensor {
             None => d.sensor,
             Some(s) => sim_sensor(s)?,
         };
         // Named as Python names it (the simulator's option is `resolution_m`).
-        if !(self.resolution > 0.0 && self.resolution.is_finite()) {
+        let resolution = self.resolution.0;
+        if !(resolution > 0.0 && resolution.is_finite()) {
             return Err(Exception::InvalidParameter.err(
                 py,
                 format!(
-                    "invalid parameter `resolution` = {}: expected a positive, finite resolution (metres)",
-                    self.resolution
+                    "invalid parameter `resolution` = {resolution}: expected a positive, finite resolution (metres)"
                 ),
             ));
         }
-        let Ok(max_steps) = usize::try_from(self.max_steps) else {
-            return Err(Exception::InvalidParameter.err(
-                py,
-                format!(
-                    "invalid parameter `max_steps` = {}: expected at least one step",
-                    self.max_steps
-                ),
-            ));
-        };
         Ok(ExploreOptions {
-            start: self.start.map(convert::pose).transpose()?,
+            start: self.start.as_ref().map(convert::pose).transpose()?,
             seed: self.seed.0,
             sensor,
-            model: self.model.map(any_model).transpose()?,
-            resolution_m: self.resolution,
-            bins: convert::bins(py, self.bins)?,
+            model: self.model.as_ref().map(any_model).transpose()?,
+            resolution_m: resolution,
+            bins: self.bins.0,
             config: ExplorationConfig {
-                epsilon: self.epsilon,
-                robot_radius_m: self.robot_radius_m,
-                candidate_stride_m: self.candidate_stride_m,
-                scan_spacing_m: self.scan_spacing_m,
-                max_path_m: self.max_path_m,
-                max_steps,
+                epsilon: self.epsilon.0,
+                robot_radius_m: self.robot_radius_m.0,
+                candidate_stride_m: self.candidate_stride_m.0,
+                scan_spacing_m: self.scan_spacing_m.0,
+                max_path_m: self.max_path_m.0,
+                max_steps: self.max_steps.0,
                 ..d.config
             },
             ..d
@@ -131,40 +107,55 @@ pub(crate) fn defaults(py: Python<'_>) -> PyResult<Bound<'_, PyDict>> {
 /// The keyword arguments of a run after `(world, strategy)`, written once
 /// for `explore` and `Exploration` so that they cannot drift apart: hands
 /// `$callback!` the pyo3 signature, the text signature Python shows, the
-/// parameters and the expression that gathers them into [`Keywords`], then
-/// `$rest`. (The defaults are the simulator's, `_EXPLORE_DEFAULTS`, as a
-/// test of the package checks.)
+/// parameters (of a function with the lifetime `'py`) and the expression
+/// that gathers them into [`Keywords`], then `$rest`; `@list
+/// keywords_struct` declares [`Keywords`] from the same list. (The defaults
+/// are the simulator's, `_EXPLORE_DEFAULTS`, as a test of the package
+/// checks.)
 macro_rules! run_keywords {
     ($callback:ident! { $($rest:tt)* }) => {
+        run_keywords! { @list $callback! { $($rest)* } }
+    };
+    (@list $($then:tt)*) => {
+        run_keywords! { @expand [$($then)*] (
+            start: Option<Bound<'py, PyAny>>,
+            seed: Seed,
+            sensor: Option<Bound<'py, PyAny>>,
+            model: Option<Bound<'py, PyAny>>,
+            resolution: Float,
+            bins: Bins,
+            epsilon: Float,
+            robot_radius_m: Float,
+            candidate_stride_m: Float,
+            scan_spacing_m: Float,
+            max_path_m: Float,
+            max_steps: Int<usize, 1, { usize::MAX as i128 }>,
+        ) }
+    };
+    (@expand [keywords_struct] ($($name:ident: $ty:ty,)*)) => {
+        /// The keyword arguments of `explore` and `Exploration`, as Python
+        /// gave them.
+        struct Keywords<'py> {
+            $($name: $ty,)*
+        }
+    };
+    (@expand [$callback:ident! { $($rest:tt)* }] ($($name:ident: $ty:ty,)*)) => {
         $callback! {
             signature: (
                 world, strategy, *, start=None, seed=Seed(0), sensor=None, model=None,
-                resolution=0.05, bins=16, epsilon=0.65, robot_radius_m=0.25,
-                candidate_stride_m=0.5, scan_spacing_m=0.25, max_path_m=10000.0, max_steps=20000
+                resolution=Float(0.05), bins=Int(16), epsilon=Float(0.65),
+                robot_radius_m=Float(0.25), candidate_stride_m=Float(0.5),
+                scan_spacing_m=Float(0.25), max_path_m=Float(10000.0), max_steps=Int(20000)
             ),
             text: "(world, strategy, *, start=None, seed=0, sensor=None, model=None, resolution=0.05, bins=16, epsilon=0.65, robot_radius_m=0.25, candidate_stride_m=0.5, scan_spacing_m=0.25, max_path_m=10000.0, max_steps=20000)",
-            params: (
-                start: Option<&Bound<'_, PyAny>>,
-                seed: Seed,
-                sensor: Option<&Bound<'_, PyAny>>,
-                model: Option<&Bound<'_, PyAny>>,
-                #[pyo3(from_py_with = crate::convert::arg)] resolution: f64,
-                #[pyo3(from_py_with = crate::convert::arg)] bins: i64,
-                #[pyo3(from_py_with = crate::convert::arg)] epsilon: f64,
-                #[pyo3(from_py_with = crate::convert::arg)] robot_radius_m: f64,
-                #[pyo3(from_py_with = crate::convert::arg)] candidate_stride_m: f64,
-                #[pyo3(from_py_with = crate::convert::arg)] scan_spacing_m: f64,
-                #[pyo3(from_py_with = crate::convert::arg)] max_path_m: f64,
-                #[pyo3(from_py_with = crate::convert::arg)] max_steps: i64,
-            ),
-            keywords: (Keywords {
-                start, seed, sensor, model, resolution, bins, epsilon, robot_radius_m,
-                candidate_stride_m, scan_spacing_m, max_path_m, max_steps,
-            }),
+            params: ($($name: $ty,)*),
+            keywords: (Keywords { $($name),* }),
             $($rest)*
         }
     };
 }
+
+run_keywords! { @list keywords_struct }
 
 /// A run of `strategy` in `world` set up, nothing scanned yet; every option
 /// checked first. The world is copied (the run owns what it drives through).
@@ -204,7 +195,7 @@ macro_rules! explore_function {
         #[allow(clippy::too_many_arguments, reason = "one keyword argument per setting")]
         pub(crate) fn explore<'py>(
             py: Python<'py>,
-            #[pyo3(from_py_with = crate::convert::arg)] world: Bound<'py, PyWorld>,
+            world: Bound<'py, PyWorld>,
             strategy: &Bound<'py, PyAny>,
             $($param)*
         ) -> PyResult<Bound<'py, PyAny>> {
@@ -278,10 +269,10 @@ macro_rules! exploration_methods {
             #[new]
             #[pyo3(signature = ($($signature)*), text_signature = $text)]
             #[allow(clippy::too_many_arguments, reason = "one keyword argument per setting")]
-            fn new(
-                py: Python<'_>,
-                #[pyo3(from_py_with = crate::convert::arg)] world: Bound<'_, PyWorld>,
-                strategy: &Bound<'_, PyAny>,
+            fn new<'py>(
+                py: Python<'py>,
+                world: Bound<'py, PyWorld>,
+                strategy: &Bound<'py, PyAny>,
                 $($param)*
             ) -> PyResult<Self> {
                 let (run, strategy) = start_run(py, &world, strategy, &$keywords)?;

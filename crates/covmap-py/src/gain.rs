@@ -7,6 +7,7 @@ use pyo3::prelude::*;
 use crate::convert;
 use crate::coverage_map::PyCoverageMap;
 use crate::errors::OrRaise;
+use crate::numbers::Float;
 use crate::sensor::any_model;
 
 /// The expected information gain (nats) of scanning ``map`` from each of
@@ -30,17 +31,17 @@ use crate::sensor::any_model;
 )]
 pub(crate) fn expected_information_gain<'py>(
     py: Python<'py>,
-    #[pyo3(from_py_with = crate::convert::arg)] map: PyRef<'py, PyCoverageMap>,
+    map: PyRef<'py, PyCoverageMap>,
     poses: &Bound<'py, PyAny>,
     bearings: &Bound<'py, PyAny>,
     model: &Bound<'py, PyAny>,
-    #[pyo3(from_py_with = crate::convert::arg)] method: &str,
-    #[pyo3(from_py_with = crate::convert::arg)] range_step_m: Option<f64>,
-    #[pyo3(from_py_with = crate::convert::arg)] stop_coverage: &str,
+    method: &str,
+    range_step_m: Option<Float>,
+    stop_coverage: &str,
 ) -> PyResult<Bound<'py, PyArray1<f64>>> {
     let method = convert::gain_method(py, method)?;
     let options = GainOptions {
-        range_step_m,
+        range_step_m: range_step_m.map(|r| r.0),
         stop_coverage: convert::stop_coverage(py, stop_coverage)?,
     };
     let poses = convert::poses(poses, "poses")?;

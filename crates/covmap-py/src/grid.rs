@@ -2,12 +2,13 @@
 
 use std::hash::{DefaultHasher, Hash, Hasher};
 
-use covmap::{CovmapError, Grid};
+use covmap::Grid;
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyTuple};
 
 use crate::convert;
 use crate::errors::OrRaise;
+use crate::numbers::{Float, Int};
 
 /// A regular grid of square cells.
 ///
@@ -39,19 +40,11 @@ impl PyGrid {
     fn new(
         py: Python<'_>,
         origin: &Bound<'_, PyAny>,
-        #[pyo3(from_py_with = crate::convert::arg)] resolution: f64,
-        #[pyo3(from_py_with = crate::convert::arg)] shape: [i64; 2],
+        resolution: Float,
+        shape: convert::Shape,
     ) -> PyResult<Self> {
         let origin = convert::point(origin, "origin", false)?;
-        let [rows, cols] = shape.map(|n| usize::try_from(n).ok());
-        let (Some(rows), Some(cols)) = (rows, cols) else {
-            return Err(CovmapError::InvalidGrid(format!(
-                "shape must be two non-negative counts, got ({}, {})",
-                shape[0], shape[1]
-            )))
-            .or_raise(py);
-        };
-        Grid::new(origin, resolution, rows, cols)
+        Grid::new(origin, resolution.0, shape.0, shape.1)
             .map(Self)
             .or_raise(py)
     }
@@ -60,13 +53,10 @@ impl PyGrid {
     /// rounded up to whole cells of side ``resolution``.
     #[staticmethod]
     #[pyo3(signature = (bounds, *, resolution))]
-    fn covering(
-        py: Python<'_>,
-        #[pyo3(from_py_with = crate::convert::arg)] bounds: [f64; 4],
-        #[pyo3(from_py_with = crate::convert::arg)] resolution: f64,
-    ) -> PyResult<Self> {
-        let [x_min, y_min, x_max, y_max] = bounds;
-        Grid::covering(x_min, y_min, x_max, y_max, resolution)
+    fn covering(py: Python<'_>, bounds: &Bound<'_, PyAny>, resolution: Float) -> PyResult<Self> {
+        let [x_min, y_min, x_max, y_max] =
+            convert::fixed_numbers::<4>(bounds, "bounds", "(x_min, y_min, x_max, y_max)")?;
+        Grid::covering(x_min, y_min, x_max, y_max, resolution.0)
             .map(Self)
             .or_raise(py)
     }
@@ -106,30 +96,23 @@ impl PyGrid {
     /// Whether the world point lies in a cell of the grid: the rectangle with
     /// its upper edges excluded, up to rounding (a point on an upper edge may
     /// round into the last cell).
-    fn contains(
-        &self,
-        #[pyo3(from_py_with = crate::convert::arg)] x: f64,
-        #[pyo3(from_py_with = crate::convert::arg)] y: f64,
-    ) -> bool {
-        self.0.contains(x, y)
+    fn contains(&self, x: Float, y: Float) -> bool {
+        self.0.contains(x.0, y.0)
     }
     /// The ``(row, col)`` of the cell containing a world point, or ``None``
     /// outside the grid.
-    fn world_to_cell(
-        &self,
-        #[pyo3(from_py_with = crate::convert::arg)] x: f64,
-        #[pyo3(from_py_with = crate::convert::arg)] y: f64,
-    ) -> Option<(usize, usize)> {
-        self.0.world_to_cell(x, y).map(|c| (c.row, c.col))
+    fn world_to_cell(&self, x: Float, y: Float) -> Option<(usize, usize)> {
+        self.0.world_to_cell(x.0, y.0).map(|c| (c.row, c.col))
     }
     /// World position ``(x, y)`` of a cell's centre, metres (the cell need not
     /// lie inside the grid: a negative index counts on past the first row or
     /// column).
     fn cell_center(
         &self,
-        #[pyo3(from_py_with = crate::convert::arg)] row: i64,
-        #[pyo3(from_py_with = crate::convert::arg)] col: i64,
+        row: Int<i64, { i64::MIN as i128 }, { i64::MAX as i128 }>,
+        col: Int<i64, { i64::MIN as i128 }, { i64::MAX as i128 }>,
     ) -> (f64, f64) {
+        let (row, col) = (row.0, col.0);
         let ([ox, oy], r) = (self.0.origin_m(), self.0.resolution_m());
         (ox + (col as f64 + 0.5) * r, oy + (row as f64 + 0.5) * r)
     }

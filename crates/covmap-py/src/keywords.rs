@@ -89,9 +89,10 @@ macro_rules! keyword_class {
             #[allow(clippy::too_many_arguments, reason = "one keyword argument per setting")]
             fn new(
                 py: ::pyo3::Python<'_>,
-                $(#[pyo3(from_py_with = $crate::convert::arg)] $setting: Option<$keyword>),*
+                $($setting: Option<<$keyword as $crate::numbers::Setting>::Arg>),*
             ) -> ::pyo3::PyResult<Self> {
-                $build(py, $keywords { $($setting),* })
+                use $crate::numbers::Setting;
+                $build(py, $keywords { $($setting: $setting.map(<$keyword>::from_arg)),* })
             }
 
             $(

@@ -5,16 +5,18 @@ use covmap::Grid;
 use covmap::SensorModel;
 use covmap::exploration::AnySensorModel;
 use covmap::learn::{
-    FitData, FitEvaluation, FitOptions, Fittable, SensorFit, fit_sensor_model as fit,
+    FitData, FitEvaluation, FitOptions, Fittable, MAX_EVALUATIONS, MAX_RESTARTS, SensorFit,
+    fit_sensor_model as fit,
 };
 use pyo3::prelude::*;
 use pyo3::types::{PyBytes, PyDict, PyList};
 
-use crate::convert::{self, Seed};
+use crate::convert;
 use crate::coverage_map::PyCoverageMap;
 use crate::errors::{Exception, OrRaise};
 use crate::grid::PyGrid;
 use crate::log::{ProgressArg, PyLog, with_progress};
+use crate::numbers::{self, Bins, Int, Seed};
 use crate::sensor::{any_model, model_object};
 use crate::world::PyWorld;
 
@@ -56,9 +58,21 @@ pub(crate) fn parameter_names(obj: Option<&Bound<'_, PyAny>>) -> PyResult<Option
             ),
         )
     };
+    let name = |(i, item): (usize, &Bound<'_, PyAny>)| {
+        item.extract::<String>().map_err(|_| {
+            Exception::InvalidType.err(
+                py,
+                format!(
+                    "parameters[{i}] must be a parameter name (a str), got {}",
+                    numbers::quoted(item)
+                ),
+            )
+        })
+    };
     convert::items(obj, "parameters", MAX_NAMES, &not_names)?
         .iter()
-        .map(convert::arg::<String>)
+        .enumerate()
+        .map(name)
         .collect::<PyResult<Vec<_>>>()
         .map(Some)
 }
@@ -82,9 +96,23 @@ fn parameter_bounds(obj: Option<&Bound<'_, PyAny>>) -> PyResult<Vec<(String, [f6
             ),
         )
     };
+    let pair = |(i, item): (usize, &Bound<'_, PyAny>)| {
+        let (name, range) = item.extract::<(String, Bound<'_, PyAny>)>().map_err(|_| {
+            Exception::InvalidType.err(
+                py,
+                format!(
+                    "bounds[{i}] must be a pair (name, (low, high)), got {}",
+                    numbers::quoted(item)
+                ),
+            )
+        })?;
+        let range = convert::fixed_numbers::<2>(&range, &format!("bounds[{i}][1]"), "(low, high)")?;
+        Ok((name, range))
+    };
     convert::items(&pairs, "bounds", MAX_NAMES, &not_pairs)?
         .iter()
-        .map(|item| convert::arg::<(String, (f64, f64))>(item).map(|(n, (lo, hi))| (n, [lo, hi])))
+        .enumerate()
+        .map(pair)
         .collect()
 }
 
@@ -105,7 +133,7 @@ fn mask(cells: Option<&Bound<'_, PyAny>>, grid: &Grid) -> PyResult<Option<Vec<bo
 #[pyo3(signature = (map, truth, *, cells=None))]
 pub(crate) fn log_likelihood(
     py: Python<'_>,
-    #[pyo3(from_py_with = crate::convert::arg)] map: Bound<'_, PyCoverageMap>,
+    map: Bound<'_, PyCoverageMap>,
     truth: &Bound<'_, PyAny>,
     cells: Option<&Bound<'_, PyAny>>,
 ) -> PyResult<f64> {
@@ -141,25 +169,25 @@ pub(crate) fn log_likelihood(
 /// array errors) before any map is built.
 #[pyfunction]
 #[pyo3(signature = (
-    log, truth, model, *, grid=None, parameters=None, bounds=None, max_evaluations=300,
-    restarts=2, seed=Seed(0), bins=16, cells=None, occlude_no_echo=false,
+    log, truth, model, *, grid=None, parameters=None, bounds=None, max_evaluations=Int(300),
+    restarts=Int(2), seed=Seed(0), bins=Int(16), cells=None, occlude_no_echo=false,
     progress=ProgressArg::Flag(false)
 ), text_signature = "(log, truth, model, *, grid=None, parameters=None, bounds=None, max_evaluations=300, restarts=2, seed=0, bins=16, cells=None, occlude_no_echo=False, progress=False)")]
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn fit_sensor_model(
     py: Python<'_>,
-    #[pyo3(from_py_with = crate::convert::arg)] log: Bound<'_, PyLog>,
+    log: Bound<'_, PyLog>,
     truth: &Bound<'_, PyAny>,
     model: &Bound<'_, PyAny>,
-    #[pyo3(from_py_with = crate::convert::arg)] grid: Option<Bound<'_, PyGrid>>,
+    grid: Option<Bound<'_, PyGrid>>,
     parameters: Option<Bound<'_, PyAny>>,
     bounds: Option<Bound<'_, PyAny>>,
-    #[pyo3(from_py_with = crate::convert::arg)] max_evaluations: i64,
-    #[pyo3(from_py_with = crate::convert::arg)] restarts: i64,
+    max_evaluations: Int<usize, 1, { MAX_EVALUATIONS as i128 }>,
+    restarts: Int<usize, 1, { MAX_RESTARTS as i128 }>,
     seed: Seed,
-    #[pyo3(from_py_with = crate::convert::arg)] bins: i64,
+    bins: Bins,
     cells: Option<&Bound<'_, PyAny>>,
-    #[pyo3(from_py_with = crate::convert::arg)] occlude_no_echo: bool,
+    occlude_no_echo: bool,
     progress: ProgressArg,
 ) -> PyResult<PySensorFit> {
     let start = any_model(model)?;
@@ -176,18 +204,13 @@ pub(crate) fn fit_sensor_model(
             ));
         }
     };
-    let count = |name: &str, v: i64| -> PyResult<usize> {
-        usize::try_from(v).map_err(|_| {
-            Exception::InvalidValue.err(py, format!("{name} must be a non-negative count, got {v}"))
-        })
-    };
     let options = FitOptions {
         parameters: parameter_names(parameters.as_ref())?,
         bounds: parameter_bounds(bounds.as_ref())?,
-        max_evaluations: count("max_evaluations", max_evaluations)?,
-        restarts: count("restarts", restarts)?,
+        max_evaluations: max_evaluations.0,
+        restarts: restarts.0,
         seed: seed.0,
-        bins: convert::bins(py, bins)?,
+        bins: bins.0,
         occlude_no_echo,
         ..FitOptions::default()
     };
@@ -305,10 +328,7 @@ impl PySensorFit {
 
     /// Unpickling support: the fit saved by ``__reduce__`` (checked).
     #[staticmethod]
-    fn _from_state(
-        py: Python<'_>,
-        #[pyo3(from_py_with = crate::convert::arg)] state: Bound<'_, PyBytes>,
-    ) -> PyResult<Self> {
+    fn _from_state(py: Python<'_>, state: Bound<'_, PyBytes>) -> PyResult<Self> {
         let bad = |why: String| Exception::InvalidValue.err(py, format!("not a saved fit: {why}"));
         let saved: SavedFit = crate::pickling::restored(py, state.as_bytes(), "fit")?;
         saved.model.validate().or_raise(py)?;

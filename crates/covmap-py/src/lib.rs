@@ -5,7 +5,6 @@
 #![warn(missing_docs)]
 #![cfg_attr(not(test), deny(clippy::unwrap_used, clippy::expect_used))]
 
-mod construct;
 mod convert;
 mod coverage_map;
 mod errors;
@@ -17,6 +16,7 @@ mod grid;
 mod keywords;
 mod learn;
 mod log;
+mod numbers;
 mod occupancy;
 mod pickling;
 mod plan;
@@ -74,7 +74,14 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.setattr("_EXPLORE_DEFAULTS", exploration::defaults(m.py())?)?;
     // Not in `__all__`: a helper of the package (covmap.plot), not its API.
     m.setattr("write_atomic", wrap_pyfunction!(files::write_atomic, m)?)?;
-    // Last, over every class added above.
-    construct::guard(m)?;
+    m.setattr(
+        "check_write_target",
+        wrap_pyfunction!(files::check_write_target, m)?,
+    )?;
+    m.setattr(
+        "flow_collections",
+        wrap_pyfunction!(files::flow_collections, m)?,
+    )?;
+    m.setattr("MAX_FLOW_COLLECTIONS", covmap::sim::MAX_FLOW_COLLECTIONS)?;
     Ok(())
 }

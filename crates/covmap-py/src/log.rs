@@ -9,11 +9,13 @@ use covmap::{Bearings, CarmenLaser, CarmenOptions, Log, Pose, SonarTextOptions};
 use numpy::ndarray::Array2;
 use numpy::{IntoPyArray, PyArray1, PyArray2};
 
+use pyo3::exceptions::PyRuntimeError;
 use pyo3::prelude::*;
 use pyo3::types::{PyBytes, PySlice};
 
 use crate::convert;
 use crate::errors::{Exception, OrRaise};
+use crate::numbers::Float;
 
 /// A recorded drive: scan ``i`` taken at ``timestamps[i]`` from robot pose
 /// ``poses[i]`` (x, y metres, theta radians), reading ``ranges[i, k]``
@@ -64,6 +66,17 @@ fn scans(
     Ok((poses, ranges))
 }
 
+/// A sensor's mounting on the robot, `(x, y, theta)` (metres, radians):
+/// any sequence of three numbers, as [`convert::fixed_numbers`] reads it.
+struct SensorOffset([f64; 3]);
+
+impl<'a, 'py> FromPyObject<'a, 'py> for SensorOffset {
+    type Error = PyErr;
+    fn extract(obj: Borrowed<'a, 'py, PyAny>) -> PyResult<Self> {
+        convert::fixed_numbers::<3>(&obj, "sensor_offset", "(x, y, theta)").map(Self)
+    }
+}
+
 #[pymethods]
 impl PyLog {
     /// A log of ``poses`` ((N, 3)), ``ranges`` ((N, B), metres, float64 or
@@ -72,7 +85,7 @@ impl PyLog {
     /// ``sensor_offset`` to the robot's own pose.
     #[new]
     #[pyo3(
-        signature = (poses, ranges, bearings, *, max_range_m, timestamps=None, sensor_offset=(0.0, 0.0, 0.0)),
+        signature = (poses, ranges, bearings, *, max_range_m, timestamps=None, sensor_offset=SensorOffset([0.0; 3])),
         text_signature = "(poses, ranges, bearings, *, max_range_m, timestamps=None, sensor_offset=(0.0, 0.0, 0.0))"
     )]
     fn new(
@@ -80,9 +93,9 @@ impl PyLog {
         poses: &Bound<'_, PyAny>,
         ranges: &Bound<'_, PyAny>,
         bearings: &Bound<'_, PyAny>,
-        #[pyo3(from_py_with = crate::convert::arg)] max_range_m: f64,
+        max_range_m: Float,
         timestamps: Option<&Bound<'_, PyAny>>,
-        #[pyo3(from_py_with = crate::convert::arg)] sensor_offset: (f64, f64, f64),
+        sensor_offset: SensorOffset,
     ) -> PyResult<Self> {
         let (poses, ranges) = scans(py, poses, ranges)?;
         let n = poses.len();
@@ -91,9 +104,8 @@ impl PyLog {
             Some(t) => convert::readings(t, "timestamps", convert::MAX_VALUES)?,
             None => (0..n).map(|i| i as f64).collect(),
         };
-        let offset = Pose::from([sensor_offset.0, sensor_offset.1, sensor_offset.2]);
-        Log::new(poses, timestamps, ranges, bearings, max_range_m)
-            .and_then(|log| log.with_sensor_offset(offset))
+        Log::new(poses, timestamps, ranges, bearings, max_range_m.0)
+            .and_then(|log| log.with_sensor_offset(Pose::from(sensor_offset.0)))
             .map(Self)
             .or_raise(py)
     }
@@ -109,9 +121,9 @@ impl PyLog {
     #[pyo3(signature = (path, *, max_range_m=None, laser="front"))]
     fn from_carmen(
         py: Python<'_>,
-        #[pyo3(from_py_with = crate::convert::arg)] path: PathBuf,
-        #[pyo3(from_py_with = crate::convert::arg)] max_range_m: Option<f64>,
-        #[pyo3(from_py_with = crate::convert::arg)] laser: &str,
+        path: PathBuf,
+        max_range_m: Option<Float>,
+        laser: &str,
     ) -> PyResult<Self> {
         let laser = match laser {
             "front" => CarmenLaser::Front,
@@ -120,13 +132,14 @@ impl PyLog {
                 return Err(Exception::InvalidParameter.err(
                     py,
                     format!(
-                        "invalid parameter `laser` = {other:?}: expected \"front\" or \"rear\""
+                        "invalid parameter `laser` = {}: expected \"front\" or \"rear\"",
+                        covmap::quoted(other)
                     ),
                 ));
             }
         };
         let options = CarmenOptions {
-            max_range_m,
+            max_range_m: max_range_m.map(|m| m.0),
             laser,
             ..Default::default()
         };
@@ -141,24 +154,30 @@ impl PyLog {
     /// ``length_unit_m`` metres, the heading in ``angle_unit_rad`` radians;
     /// ``bearings_deg`` gives each column's sonar, degrees from the heading.
     #[staticmethod]
-    #[pyo3(signature = (poses_path, measurements_path, *, bearings_deg, length_unit_m=1.0, angle_unit_rad=1.0, max_range_m))]
+    #[pyo3(
+        signature = (
+            poses_path, measurements_path, *, bearings_deg, length_unit_m=Float(1.0),
+            angle_unit_rad=Float(1.0), max_range_m
+        ),
+        text_signature = "(poses_path, measurements_path, *, bearings_deg, length_unit_m=1.0, angle_unit_rad=1.0, max_range_m)"
+    )]
     fn from_sonar_text(
         py: Python<'_>,
-        #[pyo3(from_py_with = crate::convert::arg)] poses_path: PathBuf,
-        #[pyo3(from_py_with = crate::convert::arg)] measurements_path: PathBuf,
+        poses_path: PathBuf,
+        measurements_path: PathBuf,
         bearings_deg: &Bound<'_, PyAny>,
-        #[pyo3(from_py_with = crate::convert::arg)] length_unit_m: f64,
-        #[pyo3(from_py_with = crate::convert::arg)] angle_unit_rad: f64,
-        #[pyo3(from_py_with = crate::convert::arg)] max_range_m: f64,
+        length_unit_m: Float,
+        angle_unit_rad: Float,
+        max_range_m: Float,
     ) -> PyResult<Self> {
         let options = SonarTextOptions {
             bearings_rad: convert::readings(bearings_deg, "bearings_deg", covmap::sim::MAX_BEAMS)?
                 .into_iter()
                 .map(f64::to_radians)
                 .collect(),
-            length_unit_m,
-            angle_unit_rad,
-            max_range_m,
+            length_unit_m: length_unit_m.0,
+            angle_unit_rad: angle_unit_rad.0,
+            max_range_m: max_range_m.0,
         };
         py.detach(|| Log::from_sonar_text(&poses_path, &measurements_path, &options))
             .map(Self)
@@ -177,10 +196,10 @@ impl PyLog {
         py: Python<'_>,
         poses: &Bound<'_, PyAny>,
         ranges: &Bound<'_, PyAny>,
-        #[pyo3(from_py_with = crate::convert::arg)] angle_min: f64,
-        #[pyo3(from_py_with = crate::convert::arg)] angle_increment: f64,
-        #[pyo3(from_py_with = crate::convert::arg)] range_min: f64,
-        #[pyo3(from_py_with = crate::convert::arg)] range_max: f64,
+        angle_min: Float,
+        angle_increment: Float,
+        range_min: Float,
+        range_max: Float,
         timestamps: Option<&Bound<'_, PyAny>>,
     ) -> PyResult<Self> {
         let (poses, ranges) = scans(py, poses, ranges)?;
@@ -188,10 +207,10 @@ impl PyLog {
             .map(|t| convert::readings(t, "timestamps", convert::MAX_VALUES))
             .transpose()?;
         let fan = LaserScanFan {
-            angle_min_rad: angle_min,
-            angle_increment_rad: angle_increment,
-            range_min_m: range_min,
-            range_max_m: range_max,
+            angle_min_rad: angle_min.0,
+            angle_increment_rad: angle_increment.0,
+            range_min_m: range_min.0,
+            range_max_m: range_max.0,
         };
         Log::from_laser_scans(poses, &ranges, &fan, timestamps)
             .map(Self)
@@ -218,7 +237,7 @@ impl PyLog {
         odom_topic: Option<&str>,
         base_frame: Option<&str>,
         fixed_frame: Option<&str>,
-        max_range_m: Option<f64>,
+        max_range_m: Option<Float>,
     ) -> PyResult<Bound<'py, PyAny>> {
         // The reading is Python's (rosbags is a Python package).
         let kwargs = pyo3::types::PyDict::new(py);
@@ -226,7 +245,7 @@ impl PyLog {
         kwargs.set_item("odom_topic", odom_topic)?;
         kwargs.set_item("base_frame", base_frame)?;
         kwargs.set_item("fixed_frame", fixed_frame)?;
-        kwargs.set_item("max_range_m", max_range_m)?;
+        kwargs.set_item("max_range_m", max_range_m.map(|m| m.0))?;
         py.import("covmap._bag")?
             .getattr("read_bag")?
             .call((path,), Some(&kwargs))
@@ -283,12 +302,8 @@ impl PyLog {
     /// ``(x_min, y_min, x_max, y_max)`` covering every pose and every beam's
     /// end point, each beam cut at ``reach_m`` metres (no-echo beams end at
     /// the maximum range); ``None`` for an empty log.
-    fn extent(
-        &self,
-        py: Python<'_>,
-        #[pyo3(from_py_with = crate::convert::arg)] reach_m: f64,
-    ) -> PyResult<Option<(f64, f64, f64, f64)>> {
-        let bounds = self.0.extent(reach_m).or_raise(py)?;
+    fn extent(&self, py: Python<'_>, reach_m: Float) -> PyResult<Option<(f64, f64, f64, f64)>> {
+        let bounds = self.0.extent(reach_m.0).or_raise(py)?;
         Ok(bounds.map(|[a, b, c, d]| (a, b, c, d)))
     }
 
@@ -320,7 +335,15 @@ impl PyLog {
                 ),
             ));
         };
-        let indices = slice.indices(self.0.len() as isize)?;
+        // Python's own check of the slice raises a bare ValueError for step 0
+        // and a TypeError for bounds that are no integers.
+        let indices = slice.indices(self.0.len() as isize).map_err(|e| {
+            let said = e.value(py).to_string();
+            match e.is_instance_of::<pyo3::exceptions::PyTypeError>(py) {
+                true => Exception::InvalidType.err(py, format!("a log's slice: {said}")),
+                false => Exception::InvalidValue.err(py, format!("a log's slice: {said}")),
+            }
+        })?;
         if indices.step != 1 {
             return Err(Exception::InvalidValue.err(
                 py,
@@ -357,10 +380,7 @@ impl PyLog {
 
     /// Unpickling support: the log saved by ``__reduce__`` (validated).
     #[staticmethod]
-    fn _from_state(
-        py: Python<'_>,
-        #[pyo3(from_py_with = crate::convert::arg)] state: Bound<'_, PyBytes>,
-    ) -> PyResult<Self> {
+    fn _from_state(py: Python<'_>, state: Bound<'_, PyBytes>) -> PyResult<Self> {
         crate::pickling::restored(py, state.as_bytes(), "log").map(Self)
     }
 }
@@ -451,6 +471,10 @@ impl Progress {
 /// went in: with one, the scans go into a copy (`try_clone`) that replaces
 /// `map` only if nothing raised, so that an error leaves `map` as it was;
 /// without one, into `map` itself.
+///
+/// The map is borrowed for the whole call, so a progress callable that uses
+/// it (reads it, integrates into it, saves it) fails to borrow it: pyo3's
+/// `RuntimeError` of that borrow is raised as `MapBusyError`, which says so.
 pub(crate) fn integrate_log_shown<M: Send>(
     py: Python<'_>,
     map: &mut M,
@@ -466,9 +490,31 @@ pub(crate) fn integrate_log_shown<M: Send>(
     let mut copy = try_clone(map).or_raise(py)?;
     let updates = with_progress(py, progress, (scans, " scans"), |show| {
         integrate(&mut copy, &mut |done| show(done))
-    })?;
+    })
+    .map_err(|e| busy(py, e))?;
     *map = copy;
     Ok(updates)
+}
+
+/// `error`, raised by a progress callable of `integrate_log`, as
+/// `MapBusyError` if it is pyo3's failure to borrow a map (the map the call
+/// holds: the callable used it), else as it is.
+fn busy(py: Python<'_>, error: PyErr) -> PyErr {
+    let borrow_failed = error.get_type(py).is(py.get_type::<PyRuntimeError>())
+        && matches!(
+            error.value(py).to_string().as_str(),
+            "Already borrowed" | "Already mutably borrowed"
+        );
+    if !borrow_failed {
+        return error;
+    }
+    let busy = Exception::MapBusy.err(
+        py,
+        "the map is busy in this call: integrate_log's progress callback cannot use the map it \
+         integrates into (read it once integrate_log has returned); nothing was changed",
+    );
+    busy.set_cause(py, Some(error));
+    busy
 }
 
 /// Run `work` with the GIL released, showing progress over `total` steps

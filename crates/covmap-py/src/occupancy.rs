@@ -9,6 +9,7 @@ use pyo3::types::PyBytes;
 use crate::convert::{self, cell_array};
 use crate::errors::{Exception, OrRaise};
 use crate::grid::PyGrid;
+use crate::numbers::Float;
 use crate::scan::Scan;
 
 /// A standard log-odds occupancy grid (every cell at p = 0.5 to start), fed by
@@ -23,10 +24,7 @@ pub(crate) struct PyOccupancyGrid(pub(crate) OccupancyGrid);
 #[pymethods]
 impl PyOccupancyGrid {
     #[new]
-    fn new(
-        py: Python<'_>,
-        #[pyo3(from_py_with = crate::convert::arg)] grid: Bound<'_, PyGrid>,
-    ) -> PyResult<Self> {
+    fn new(py: Python<'_>, grid: Bound<'_, PyGrid>) -> PyResult<Self> {
         OccupancyGrid::try_new(grid.get().0).map(Self).or_raise(py)
     }
 
@@ -71,7 +69,7 @@ impl PyOccupancyGrid {
     fn integrate_log(
         &mut self,
         py: Python<'_>,
-        #[pyo3(from_py_with = crate::convert::arg)] log: Bound<'_, crate::log::PyLog>,
+        log: Bound<'_, crate::log::PyLog>,
         model: &Bound<'_, PyAny>,
         progress: crate::log::ProgressArg,
     ) -> PyResult<usize> {
@@ -128,14 +126,17 @@ impl PyOccupancyGrid {
     /// and the PGM of the same name beside it, from ``ros_occupancy()``;
     /// ``mode`` as ``CoverageMap.to_ros_map``. ``World.from_file(yaml_path)``
     /// reads the pair back.
-    #[pyo3(signature = (yaml_path, *, mode="trinary", occupied_thresh=0.65, free_thresh=0.196))]
+    #[pyo3(
+        signature = (yaml_path, *, mode="trinary", occupied_thresh=Float(0.65), free_thresh=Float(0.196)),
+        text_signature = "($self, yaml_path, *, mode='trinary', occupied_thresh=0.65, free_thresh=0.196)"
+    )]
     fn to_ros_map(
         &self,
         py: Python<'_>,
-        #[pyo3(from_py_with = crate::convert::arg)] yaml_path: std::path::PathBuf,
-        #[pyo3(from_py_with = crate::convert::arg)] mode: &str,
-        #[pyo3(from_py_with = crate::convert::arg)] occupied_thresh: f64,
-        #[pyo3(from_py_with = crate::convert::arg)] free_thresh: f64,
+        yaml_path: std::path::PathBuf,
+        mode: &str,
+        occupied_thresh: Float,
+        free_thresh: Float,
     ) -> PyResult<()> {
         let grid = *self.0.grid();
         let data = self.0.ros_occupancy();
@@ -145,8 +146,8 @@ impl PyOccupancyGrid {
             &grid,
             &data,
             mode,
-            occupied_thresh,
-            free_thresh,
+            occupied_thresh.0,
+            free_thresh.0,
         )
     }
 

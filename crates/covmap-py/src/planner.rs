@@ -129,13 +129,9 @@ keyword_class! {
             /// map of ``bins`` bins, nats: ``min_gain_nats``, or by default what
             /// making one cell at the prior certain is worth, ``ln(bins) - epsilon``,
             /// at least 1 nat.
-            #[pyo3(signature = (bins=16))]
-            fn least_gain_nats(
-                &self,
-                py: Python<'_>,
-                #[pyo3(from_py_with = crate::convert::arg)] bins: i64,
-            ) -> PyResult<f64> {
-                Ok(self.0.min_gain_nats(convert::bins(py, bins)?))
+            #[pyo3(signature = (bins=crate::numbers::Int(covmap::histogram::DEFAULT_BINS)), text_signature = "(self, bins=16)")]
+            fn least_gain_nats(&self, bins: crate::numbers::Bins) -> f64 {
+                self.0.min_gain_nats(bins.0)
             }
             /// Choose the next viewpoint for a robot at ``pose = (x, y, theta)`` on
             /// ``map``, scanning with beams at ``bearings`` through ``model``. Runs
@@ -143,7 +139,7 @@ keyword_class! {
             fn next_viewpoint(
                 &self,
                 py: Python<'_>,
-                #[pyo3(from_py_with = crate::convert::arg)] map: PyRef<'_, PyCoverageMap>,
+                map: PyRef<'_, PyCoverageMap>,
                 pose: &Bound<'_, PyAny>,
                 bearings: &Bound<'_, PyAny>,
                 model: &Bound<'_, PyAny>,
@@ -161,7 +157,7 @@ keyword_class! {
             fn status(
                 &self,
                 py: Python<'_>,
-                #[pyo3(from_py_with = crate::convert::arg)] map: PyRef<'_, PyCoverageMap>,
+                map: PyRef<'_, PyCoverageMap>,
                 pose: &Bound<'_, PyAny>,
             ) -> PyResult<PyExplorationStatus> {
                 let pose = convert::pose(pose)?;
@@ -175,7 +171,7 @@ keyword_class! {
             fn free_space<'py>(
                 &self,
                 py: Python<'py>,
-                #[pyo3(from_py_with = crate::convert::arg)] map: PyRef<'py, PyCoverageMap>,
+                map: PyRef<'py, PyCoverageMap>,
             ) -> PyResult<Bound<'py, PyArray2<bool>>> {
                 let (planner, map) = (&self.0, &map.0);
                 let free = py.detach(|| planner.free_space(map));
@@ -188,7 +184,7 @@ keyword_class! {
             fn path_costs<'py>(
                 &self,
                 py: Python<'py>,
-                #[pyo3(from_py_with = crate::convert::arg)] map: PyRef<'py, PyCoverageMap>,
+                map: PyRef<'py, PyCoverageMap>,
                 pose: &Bound<'py, PyAny>,
             ) -> PyResult<Bound<'py, PyArray2<f64>>> {
                 let pose = convert::pose(pose)?;

@@ -6,6 +6,7 @@ use pyo3::prelude::*;
 
 use crate::convert;
 use crate::errors::OrRaise;
+use crate::numbers::Float;
 use crate::world::PyWorld;
 
 /// A disc-shaped robot of radius ``radius_m`` (metres; the default matches
@@ -29,12 +30,9 @@ fn ends(start: &Bound<'_, PyAny>, goal: &Bound<'_, PyAny>) -> PyResult<([f64; 2]
 #[pymethods]
 impl PyRobot {
     #[new]
-    #[pyo3(signature = (*, radius_m=0.25))]
-    fn new(
-        py: Python<'_>,
-        #[pyo3(from_py_with = crate::convert::arg)] radius_m: f64,
-    ) -> PyResult<Self> {
-        Robot::new(radius_m).map(Self).or_raise(py)
+    #[pyo3(signature = (*, radius_m=Float(0.25)), text_signature = "(*, radius_m=0.25)")]
+    fn new(py: Python<'_>, radius_m: Float) -> PyResult<Self> {
+        Robot::new(radius_m.0).map(Self).or_raise(py)
     }
 
     /// The disc's radius, metres.
@@ -58,11 +56,7 @@ impl PyRobot {
 
     /// Whether the disc at ``pose`` overlaps or touches an obstacle of
     /// ``world``. A pose with a non-finite position collides.
-    fn collides(
-        &self,
-        #[pyo3(from_py_with = crate::convert::arg)] world: Bound<'_, PyWorld>,
-        pose: &Bound<'_, PyAny>,
-    ) -> PyResult<bool> {
+    fn collides(&self, world: Bound<'_, PyWorld>, pose: &Bound<'_, PyAny>) -> PyResult<bool> {
         let [x, y] = convert::point(pose, "pose", true)?;
         Ok(self
             .0
@@ -73,7 +67,7 @@ impl PyRobot {
     /// obstacle (either end in contact counts).
     fn move_collides(
         &self,
-        #[pyo3(from_py_with = crate::convert::arg)] world: Bound<'_, PyWorld>,
+        world: Bound<'_, PyWorld>,
         start: &Bound<'_, PyAny>,
         goal: &Bound<'_, PyAny>,
     ) -> PyResult<bool> {
@@ -87,7 +81,7 @@ impl PyRobot {
     /// raises ``InvalidValueError``.
     fn free_travel(
         &self,
-        #[pyo3(from_py_with = crate::convert::arg)] world: Bound<'_, PyWorld>,
+        world: Bound<'_, PyWorld>,
         start: &Bound<'_, PyAny>,
         goal: &Bound<'_, PyAny>,
     ) -> PyResult<f64> {
@@ -104,7 +98,7 @@ impl PyRobot {
     fn clearance<'py>(
         &self,
         py: Python<'py>,
-        #[pyo3(from_py_with = crate::convert::arg)] world: Bound<'py, PyWorld>,
+        world: Bound<'py, PyWorld>,
         points: &Bound<'py, PyAny>,
     ) -> PyResult<Bound<'py, PyArray1<f64>>> {
         let points = convert::rows::<2>(points, "points", "point (x, y)")?;

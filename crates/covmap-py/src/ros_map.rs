@@ -19,7 +19,10 @@ pub(crate) fn coverage_value(py: Python<'_>, name: &str) -> PyResult<CoverageVal
         "mean" => Ok(CoverageValue::Mean),
         other => Err(Exception::InvalidValue.err(
             py,
-            format!("source must be \"ml\" or \"mean\", got {other:?}"),
+            format!(
+                "source must be \"ml\" or \"mean\", got {}",
+                covmap::quoted(other)
+            ),
         )),
     }
 }
@@ -50,7 +53,10 @@ pub(crate) fn write(
         other => {
             return Err(Exception::InvalidValue.err(
                 py,
-                format!("mode must be \"trinary\" or \"scale\", got {other:?}"),
+                format!(
+                    "mode must be \"trinary\" or \"scale\", got {}",
+                    covmap::quoted(other)
+                ),
             ));
         }
     };

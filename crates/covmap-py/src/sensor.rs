@@ -11,20 +11,19 @@ use numpy::PyArray1;
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyTuple, PyType};
 
-use crate::convert;
 use crate::errors::{Exception, OrRaise};
 use crate::grid::hash_f64s;
 use crate::keywords::keyword_class;
+use crate::numbers::{Bins, Float, Int};
 
-/// `model.kernel(...)` as a float32 array, `bins` checked first.
+/// `model.kernel(...)` as a float32 array.
 fn kernel_array<'py, M: SensorModel + Sync>(
     py: Python<'py>,
     model: &M,
     (cell_distance, measured_distance): (f64, f64),
     resolution: f64,
-    bins: i64,
+    bins: usize,
 ) -> PyResult<Option<Bound<'py, PyArray1<f32>>>> {
-    let bins = convert::bins(py, bins)?;
     // Tabulating the kernels takes a millisecond or so: let other threads run.
     let k = py
         .detach(|| model.kernel(cell_distance, measured_distance, resolution, bins))
@@ -86,17 +85,20 @@ macro_rules! sensor_model_class {
                     /// ``resolution`` (metres) with ``bins`` bins: a float32 array of shape
                     /// ``(bins,)`` summing to 1, or ``None`` where the cell is not updated.
                     /// A NaN, infinite or negative distance raises ``InvalidParameterError``.
-                    #[pyo3(signature = (cell_distance, measured_distance, *, resolution=0.05, bins=16))]
+                    #[pyo3(
+                        signature = (cell_distance, measured_distance, *, resolution=Float(0.05), bins=Int(16)),
+                        text_signature = "($self, cell_distance, measured_distance, *, resolution=0.05, bins=16)"
+                    )]
                     fn kernel<'py>(
                         &self,
                         py: Python<'py>,
-                        #[pyo3(from_py_with = crate::convert::arg)] cell_distance: f64,
-                        #[pyo3(from_py_with = crate::convert::arg)] measured_distance: f64,
-                        #[pyo3(from_py_with = crate::convert::arg)] resolution: f64,
-                        #[pyo3(from_py_with = crate::convert::arg)] bins: i64,
+                        cell_distance: Float,
+                        measured_distance: Float,
+                        resolution: Float,
+                        bins: Bins,
                     ) -> PyResult<Option<Bound<'py, PyArray1<f32>>>> {
-                        let distances = (cell_distance, measured_distance);
-                        kernel_array(py, &self.0, distances, resolution, bins)
+                        let distances = (cell_distance.0, measured_distance.0);
+                        kernel_array(py, &self.0, distances, resolution.0, bins.0)
                     }
 
                     /// The parameters as a dict of keyword arguments.
@@ -111,11 +113,18 @@ macro_rules! sensor_model_class {
                     #[classmethod]
                     fn from_dict<'py>(
                         cls: &Bound<'py, PyType>,
-                        #[pyo3(from_py_with = crate::convert::arg)] d: Bound<'py, PyDict>,
+                        d: Bound<'py, PyDict>,
                     ) -> PyResult<Bound<'py, PyAny>> {
-                        // An unknown or non-string key: a covmap error, as any bad setting.
-                        cls.call((), Some(&d))
-                            .map_err(|e| crate::convert::as_covmap_error(d.as_any(), e, "a dict"))
+                        // An unknown or non-string key is a bad value of `d`:
+                        // a covmap error, as any bad setting.
+                        let py = cls.py();
+                        cls.call((), Some(&d)).map_err(|e| {
+                            match e.get_type(py).is(py.get_type::<pyo3::exceptions::PyTypeError>()) {
+                                true => Exception::InvalidType
+                                    .err(py, format!("d holds no model's parameters: {}", e.value(py))),
+                                false => e,
+                            }
+                        })
                     }
                     /// The names of the model's parameters, in the order of its
                     /// keyword arguments (the core's declaration of them).

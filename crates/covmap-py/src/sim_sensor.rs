@@ -3,13 +3,16 @@
 //! Both are a `RangeSensor` of the simulator: [`range_sensor_class!`] writes
 //! what they share (bearings, maximum range, simulating scans) once.
 
-use covmap::sim::{Laser, RangeSensor, SonarRing, World, sim_rng, simulate};
+use covmap::sim::{
+    Laser, MAX_BEAMS, MAX_RAYS_PER_CONE, RangeSensor, SonarRing, World, sim_rng, simulate,
+};
 use numpy::ndarray::Array2;
 use numpy::{IntoPyArray, PyArray1, PyArray2};
 use pyo3::prelude::*;
 
-use crate::convert::{self, Seed};
+use crate::convert;
 use crate::errors::{Exception, OrRaise};
+use crate::numbers::{Float, Int, Seed};
 use crate::sensor::PySonarModel;
 use crate::world::PyWorld;
 
@@ -61,16 +64,6 @@ fn checked<S: RangeSensor>(py: Python<'_>, sensor: S) -> PyResult<S> {
     Ok(sensor)
 }
 
-/// A count from a Python int: negative is an invalid parameter.
-fn count(py: Python<'_>, name: &'static str, value: i64) -> PyResult<usize> {
-    usize::try_from(value).map_err(|_| {
-        Exception::InvalidParameter.err(
-            py,
-            format!("invalid parameter `{name}` = {value}: expected a positive count"),
-        )
-    })
-}
-
 /// The `#[pymethods]` block of `$class`, a simulated range sensor: its own
 /// methods as given, then what every range sensor has (`bearings_rad` and its
 /// alias `bearings`, `max_range_m`, `simulate` and `simulate_path`).
@@ -104,7 +97,7 @@ macro_rules! range_sensor_class {
             /// ``SonarRing``, ``LaserModel()`` for a ``Laser``). The same seed gives
             /// the same readings.
             #[pyo3(signature = (world, pose, *, seed=Seed(0)), text_signature = "($self, world, pose, *, seed=0)")]
-            fn simulate<'py>(&self, py: Python<'py>, #[pyo3(from_py_with = crate::convert::arg)] world: Bound<'py, PyWorld>, pose: &Bound<'py, PyAny>, seed: Seed) -> PyResult<Readings<'py>> {
+            fn simulate<'py>(&self, py: Python<'py>, world: Bound<'py, PyWorld>, pose: &Bound<'py, PyAny>, seed: Seed) -> PyResult<Readings<'py>> {
                 scan_one(py, &self.0, &world, pose, seed.0)
             }
             /// One scan from each pose of ``poses`` (float64 ``(N, 3)``): the ranges
@@ -112,14 +105,14 @@ macro_rules! range_sensor_class {
             /// ``seed`` (scan 0 equals ``simulate(world, poses[0], seed=seed)``), so
             /// the result depends on the seed alone; scans run in parallel.
             #[pyo3(signature = (world, poses, *, seed=Seed(0)), text_signature = "($self, world, poses, *, seed=0)")]
-            fn simulate_path<'py>(&self, py: Python<'py>, #[pyo3(from_py_with = crate::convert::arg)] world: Bound<'py, PyWorld>, poses: &Bound<'py, PyAny>, seed: Seed) -> PyResult<Bound<'py, PyArray2<f64>>> {
+            fn simulate_path<'py>(&self, py: Python<'py>, world: Bound<'py, PyWorld>, poses: &Bound<'py, PyAny>, seed: Seed) -> PyResult<Bound<'py, PyArray2<f64>>> {
                 scan_many(py, &self.0, &world, poses, seed.0)
             }
             /// ``simulate_path``'s scans as a ``Log``: scan ``i`` from
             /// ``poses[i]`` at time ``i`` seconds, this sensor's bearings and
             /// maximum range, ready for ``CoverageMap.integrate_log``.
             #[pyo3(signature = (world, poses, *, seed=Seed(0)), text_signature = "($self, world, poses, *, seed=0)")]
-            fn record(&self, py: Python<'_>, #[pyo3(from_py_with = crate::convert::arg)] world: Bound<'_, PyWorld>, poses: &Bound<'_, PyAny>, seed: Seed) -> PyResult<crate::log::PyLog> {
+            fn record(&self, py: Python<'_>, world: Bound<'_, PyWorld>, poses: &Bound<'_, PyAny>, seed: Seed) -> PyResult<crate::log::PyLog> {
                 let poses = convert::poses(poses, "poses")?;
                 let world: &World = &world.get().0;
                 py.detach(|| covmap::sim::record(&self.0, world, &poses, seed.0))
@@ -163,38 +156,34 @@ range_sensor_class! {
         fn new(
             py: Python<'_>,
             bearings_rad: Option<&Bound<'_, PyAny>>,
-            #[pyo3(from_py_with = crate::convert::arg)] opening_angle_rad: Option<f64>,
-            #[pyo3(from_py_with = crate::convert::arg)] max_range_m: Option<f64>,
-            #[pyo3(from_py_with = crate::convert::arg)] min_range_m: Option<f64>,
-            #[pyo3(from_py_with = crate::convert::arg)] rays_per_cone: Option<i64>,
-            #[pyo3(from_py_with = crate::convert::arg)] noise_std_m: Option<f64>,
-            #[pyo3(from_py_with = crate::convert::arg)] noise_std_per_m: Option<f64>,
-            #[pyo3(from_py_with = crate::convert::arg)] outlier_probability: Option<f64>,
-            #[pyo3(from_py_with = crate::convert::arg)] multipath_probability: Option<f64>,
-            #[pyo3(from_py_with = crate::convert::arg)] critical_angle_wall_rad: Option<f64>,
-            #[pyo3(from_py_with = crate::convert::arg)] critical_angle_glass_rad: Option<f64>,
+            opening_angle_rad: Option<Float>,
+            max_range_m: Option<Float>,
+            min_range_m: Option<Float>,
+            rays_per_cone: Option<Int<usize, 1, { MAX_RAYS_PER_CONE as i128 }>>,
+            noise_std_m: Option<Float>,
+            noise_std_per_m: Option<Float>,
+            outlier_probability: Option<Float>,
+            multipath_probability: Option<Float>,
+            critical_angle_wall_rad: Option<Float>,
+            critical_angle_glass_rad: Option<Float>,
         ) -> PyResult<Self> {
             let d = SonarRing::default();
+            let or = |value: Option<Float>, default: f64| value.map_or(default, |v| v.0);
             let ring = SonarRing {
                 bearings_rad: match bearings_rad {
                     Some(b) => convert::readings(b, "bearings_rad", covmap::sim::MAX_BEAMS)?,
                     None => d.bearings_rad,
                 },
-                opening_angle_rad: opening_angle_rad.unwrap_or(d.opening_angle_rad),
-                max_range_m: max_range_m.unwrap_or(d.max_range_m),
-                min_range_m: min_range_m.unwrap_or(d.min_range_m),
-                rays_per_cone: match rays_per_cone {
-                    Some(n) => count(py, "rays_per_cone", n)?,
-                    None => d.rays_per_cone,
-                },
-                noise_std_m: noise_std_m.unwrap_or(d.noise_std_m),
-                noise_std_per_m: noise_std_per_m.unwrap_or(d.noise_std_per_m),
-                outlier_probability: outlier_probability.unwrap_or(d.outlier_probability),
-                multipath_probability: multipath_probability.unwrap_or(d.multipath_probability),
-                critical_angle_wall_rad: critical_angle_wall_rad
-                    .unwrap_or(d.critical_angle_wall_rad),
-                critical_angle_glass_rad: critical_angle_glass_rad
-                    .unwrap_or(d.critical_angle_glass_rad),
+                opening_angle_rad: or(opening_angle_rad, d.opening_angle_rad),
+                max_range_m: or(max_range_m, d.max_range_m),
+                min_range_m: or(min_range_m, d.min_range_m),
+                rays_per_cone: rays_per_cone.map_or(d.rays_per_cone, |n| n.0),
+                noise_std_m: or(noise_std_m, d.noise_std_m),
+                noise_std_per_m: or(noise_std_per_m, d.noise_std_per_m),
+                outlier_probability: or(outlier_probability, d.outlier_probability),
+                multipath_probability: or(multipath_probability, d.multipath_probability),
+                critical_angle_wall_rad: or(critical_angle_wall_rad, d.critical_angle_wall_rad),
+                critical_angle_glass_rad: or(critical_angle_glass_rad, d.critical_angle_glass_rad),
             };
             checked(py, ring).map(Self)
         }
@@ -223,9 +212,8 @@ range_sensor_class! {
         /// ``count`` sensors evenly spaced around the robot, the first straight
         /// ahead, with the default error model.
         #[staticmethod]
-        fn ring(py: Python<'_>, #[pyo3(from_py_with = crate::convert::arg)] count: i64) -> PyResult<Self> {
-            let n = self::count(py, "count", count)?;
-            checked(py, SonarRing::ring(n)).map(Self)
+        fn ring(py: Python<'_>, count: Int<usize, 1, { MAX_BEAMS as i128 }>) -> PyResult<Self> {
+            checked(py, SonarRing::ring(count.0)).map(Self)
         }
         /// The eight-sonar front array of the ``sonar-8ring`` data set: -90,
         /// -37.5, -22.5, -7.5, 7.5, 22.5, 37.5 and 90 degrees.
@@ -235,7 +223,7 @@ range_sensor_class! {
         }
         /// The same ring with the opening angle and maximum range of ``model``, so
         /// that the simulated cone is the one the map assumes.
-        fn with_model(&self, #[pyo3(from_py_with = crate::convert::arg)] model: Bound<'_, PySonarModel>) -> Self {
+        fn with_model(&self, model: Bound<'_, PySonarModel>) -> Self {
             Self(self.0.clone().with_model(&model.get().0))
         }
 
@@ -314,11 +302,11 @@ range_sensor_class! {
         #[pyo3(signature = (beams=None, fov_rad=None, *, bearings_rad=None, max_range_m=None, noise_std_m=None))]
         fn new(
             py: Python<'_>,
-            #[pyo3(from_py_with = crate::convert::arg)] beams: Option<i64>,
-            #[pyo3(from_py_with = crate::convert::arg)] fov_rad: Option<f64>,
+            beams: Option<Int<usize, 2, { MAX_BEAMS as i128 }>>,
+            fov_rad: Option<Float>,
             bearings_rad: Option<&Bound<'_, PyAny>>,
-            #[pyo3(from_py_with = crate::convert::arg)] max_range_m: Option<f64>,
-            #[pyo3(from_py_with = crate::convert::arg)] noise_std_m: Option<f64>,
+            max_range_m: Option<Float>,
+            noise_std_m: Option<Float>,
         ) -> PyResult<Self> {
             let mut laser = match bearings_rad {
                 Some(_) if beams.is_some() || fov_rad.is_some() => {
@@ -329,12 +317,12 @@ range_sensor_class! {
                 }
                 Some(b) => Laser::with_bearings(convert::readings(b, "bearings_rad", covmap::sim::MAX_BEAMS)?),
                 None => {
-                    let beams = count(py, "beams", beams.unwrap_or(361))?;
-                    Laser::new(beams, fov_rad.unwrap_or(std::f64::consts::PI)).or_raise(py)?
+                    let beams = beams.map_or(361, |b| b.0);
+                    Laser::new(beams, fov_rad.map_or(std::f64::consts::PI, |f| f.0)).or_raise(py)?
                 }
             };
-            laser.max_range_m = max_range_m.unwrap_or(laser.max_range_m);
-            laser.noise_std_m = noise_std_m.unwrap_or(laser.noise_std_m);
+            laser.max_range_m = max_range_m.map_or(laser.max_range_m, |m| m.0);
+            laser.noise_std_m = noise_std_m.map_or(laser.noise_std_m, |n| n.0);
             checked(py, laser).map(Self)
         }
 

@@ -4,8 +4,9 @@ use covmap::exploration::Strategy;
 use pyo3::prelude::*;
 use pyo3::types::PyTuple;
 
-use crate::errors::{Exception, OrRaise};
+use crate::errors::OrRaise;
 use crate::keywords::PyRepr;
+use crate::numbers::{Float, Int};
 
 /// How an exploring robot chooses where to go next (``explore``,
 /// ``Exploration``). Build one with a static method:
@@ -52,12 +53,9 @@ impl PyStrategy {
     /// in ``[0, 1]`` (0: the nearest candidate, 1: the most informative);
     /// another value, NaN included, raises ``InvalidParameterError``.
     #[staticmethod]
-    #[pyo3(signature = (alpha=0.5))]
-    fn coverage(
-        py: Python<'_>,
-        #[pyo3(from_py_with = crate::convert::arg)] alpha: f64,
-    ) -> PyResult<Self> {
-        Strategy::coverage(alpha).map(Self).or_raise(py)
+    #[pyo3(signature = (alpha=Float(0.5)), text_signature = "(alpha=0.5)")]
+    fn coverage(py: Python<'_>, alpha: Float) -> PyResult<Self> {
+        Strategy::coverage(alpha.0).map(Self).or_raise(py)
     }
 
     /// Extended scan counting to ``n`` (at least 1) interceptions, beams
@@ -65,19 +63,13 @@ impl PyStrategy {
     /// no discount) counted ``discount_beyond_m / d``; a bad value raises
     /// ``InvalidParameterError``.
     #[staticmethod]
-    #[pyo3(signature = (n=50, discount_beyond_m=None))]
+    #[pyo3(signature = (n=Int(50), discount_beyond_m=None), text_signature = "(n=50, discount_beyond_m=None)")]
     fn counting(
         py: Python<'_>,
-        #[pyo3(from_py_with = crate::convert::arg)] n: i64,
-        #[pyo3(from_py_with = crate::convert::arg)] discount_beyond_m: Option<f64>,
+        n: Int<u32, 1, { u32::MAX as i128 }>,
+        discount_beyond_m: Option<Float>,
     ) -> PyResult<Self> {
-        let Ok(n) = u32::try_from(n) else {
-            return Err(Exception::InvalidParameter.err(
-                py,
-                format!("invalid parameter `n` = {n}: expected a count from 1 to 2**32 - 1"),
-            ));
-        };
-        Strategy::counting(n, discount_beyond_m)
+        Strategy::counting(n.0, discount_beyond_m.map(|d| d.0))
             .map(Self)
             .or_raise(py)
     }

@@ -10,6 +10,7 @@ use pyo3::types::{PyList, PyTuple};
 use crate::convert::{self, cell_array, rows_array};
 use crate::errors::{Exception, OrRaise};
 use crate::grid::PyGrid;
+use crate::numbers::Float;
 
 /// A set of obstacle polygons in the plane (metres); everything outside them
 /// is free space, and overlapping polygons are their union.
@@ -28,7 +29,10 @@ fn material(py: Python<'_>, name: &str, index: usize) -> PyResult<Material> {
     Material::from_name(name).ok_or_else(|| {
         Exception::InvalidParameter.err(
             py,
-            format!("materials[{index}] must be \"wall\" or \"glass\", got {name:?}"),
+            format!(
+                "materials[{index}] must be \"wall\" or \"glass\", got {}",
+                covmap::quoted(name)
+            ),
         )
     })
 }
@@ -137,10 +141,7 @@ impl PyWorld {
     /// (the paper's Fig. 3), ``"office"``, ``"partial"`` (Fig. 1). An unknown
     /// name raises ``UnknownWorldError``.
     #[staticmethod]
-    fn builtin(
-        py: Python<'_>,
-        #[pyo3(from_py_with = crate::convert::arg)] name: &str,
-    ) -> PyResult<Self> {
+    fn builtin(py: Python<'_>, name: &str) -> PyResult<Self> {
         World::builtin(name).map(Self).or_raise(py)
     }
 
@@ -155,27 +156,54 @@ impl PyWorld {
     /// - ``.json``, ``.geojson``: GeoJSON polygons in metres (a feature's
     ///   ``properties.material`` is ``"wall"`` or ``"glass"``);
     /// - ``.map``: the ``LINES`` of an ARIA map, each a wall
-    ///   ``wall_thickness_m`` thick;
+    ///   ``wall_thickness_m`` thick (default 0.1 m);
     /// - ``.yaml``, ``.yml``: a ROS map_server YAML file and its image;
     /// - ``.pgm``, ``.png``: an occupancy image (dark = occupied) of
     ///   ``resolution`` metres per pixel, its lower-left corner at ``origin``
     ///   (default ``(0, 0)``); ``resolution`` is required.
     ///
-    /// A malformed file raises ``FileFormatError`` (a ``ValueError``) naming
-    /// the file and the place; a file that cannot be read raises
-    /// ``FileIOError`` (an ``OSError``).
+    /// An option the file's format does not use (``resolution`` for a
+    /// GeoJSON file, say) raises ``InvalidParameterError``: it would be
+    /// ignored. A malformed file raises ``FileFormatError`` (a
+    /// ``ValueError``) naming the file and the place; a file that cannot be
+    /// read raises ``FileIOError`` (an ``OSError``).
     #[staticmethod]
-    #[pyo3(signature = (path, *, wall_thickness_m=0.1, resolution=None, origin=None))]
+    #[pyo3(signature = (path, *, wall_thickness_m=None, resolution=None, origin=None))]
     fn from_file(
         py: Python<'_>,
-        #[pyo3(from_py_with = crate::convert::arg)] path: PathBuf,
-        #[pyo3(from_py_with = crate::convert::arg)] wall_thickness_m: f64,
-        #[pyo3(from_py_with = crate::convert::arg)] resolution: Option<f64>,
-        #[pyo3(from_py_with = crate::convert::arg)] origin: Option<(f64, f64)>,
+        path: PathBuf,
+        wall_thickness_m: Option<Float>,
+        resolution: Option<Float>,
+        origin: Option<&Bound<'_, PyAny>>,
     ) -> PyResult<Self> {
-        let origin = origin.unwrap_or((0.0, 0.0));
+        let origin = origin
+            .map(|o| convert::point(o, "origin", false))
+            .transpose()?;
         let ext = extension(&path);
         let image = matches!(ext.as_str(), "pgm" | "png");
+        let unused = [
+            (
+                "wall_thickness_m",
+                wall_thickness_m.is_some() && ext != "map",
+                "ARIA .map",
+            ),
+            (
+                "resolution",
+                resolution.is_some() && !image,
+                ".pgm/.png image",
+            ),
+            ("origin", origin.is_some() && !image, ".pgm/.png image"),
+        ];
+        if let Some((name, _, format)) = unused.iter().find(|(_, given, _)| *given) {
+            return Err(Exception::InvalidParameter.err(
+                py,
+                format!(
+                    "{}: {name} is an option of {format} worlds only; this file's format does not use it",
+                    path.display()
+                ),
+            ));
+        }
+        let resolution = resolution.map(|r| r.0);
         if image && resolution.is_none() {
             return Err(Exception::InvalidParameter.err(
                 py,
@@ -187,11 +215,11 @@ impl PyWorld {
         }
         let loaded = py.detach(|| match ext.as_str() {
             "json" | "geojson" => World::from_geojson_file(&path),
-            "map" => World::from_aria_map_file(&path, wall_thickness_m),
+            "map" => World::from_aria_map_file(&path, wall_thickness_m.map_or(0.1, |w| w.0)),
             "yaml" | "yml" => World::from_ros_map_yaml(&path),
             "pgm" | "png" => {
                 let options = ImageOptions {
-                    origin_m: [origin.0, origin.1],
+                    origin_m: origin.unwrap_or([0.0, 0.0]),
                     ..ImageOptions::new(resolution.unwrap_or(f64::NAN))
                 };
                 World::from_image_file(&path, &options)
@@ -216,10 +244,7 @@ impl PyWorld {
     }
     /// Unpickling support: the world of a GeoJSON text (``to_geojson``).
     #[staticmethod]
-    fn _from_geojson(
-        py: Python<'_>,
-        #[pyo3(from_py_with = crate::convert::arg)] text: &str,
-    ) -> PyResult<Self> {
+    fn _from_geojson(py: Python<'_>, text: &str) -> PyResult<Self> {
         World::from_geojson_str(text, "pickled world")
             .map(Self)
             .or_raise(py)
@@ -288,7 +313,7 @@ impl PyWorld {
     fn coverage<'py>(
         &self,
         py: Python<'py>,
-        #[pyo3(from_py_with = crate::convert::arg)] grid: Bound<'py, PyGrid>,
+        grid: Bound<'py, PyGrid>,
     ) -> PyResult<Bound<'py, PyArray2<f64>>> {
         let grid = grid.get().0;
         let world = &self.0;
@@ -311,8 +336,8 @@ impl PyWorld {
         py: Python<'py>,
         origins: &Bound<'py, PyAny>,
         angles: &Bound<'py, PyAny>,
-        #[pyo3(from_py_with = crate::convert::arg)] max_range_m: f64,
-        #[pyo3(from_py_with = crate::convert::arg)] return_incidence: bool,
+        max_range_m: Float,
+        return_incidence: bool,
     ) -> PyResult<Bound<'py, PyAny>> {
         let angles = convert::readings(angles, "angles", convert::MAX_VALUES)?;
         let single = match origins.cast::<numpy::PyUntypedArray>() {
@@ -333,7 +358,7 @@ impl PyWorld {
         };
         let world = &self.0;
         let hits = py
-            .detach(|| world.cast_batch(&origins, &angles, max_range_m))
+            .detach(|| world.cast_batch(&origins, &angles, max_range_m.0))
             .or_raise(py)?;
         let distances = PyArray1::from_iter(py, hits.iter().map(|h| h.distance_m));
         if return_incidence {
@@ -345,24 +370,16 @@ impl PyWorld {
     }
 
     /// Whether the point ``(x, y)`` lies inside an obstacle.
-    fn contains(
-        &self,
-        #[pyo3(from_py_with = crate::convert::arg)] x: f64,
-        #[pyo3(from_py_with = crate::convert::arg)] y: f64,
-    ) -> bool {
-        self.0.contains_point([x, y])
+    fn contains(&self, x: Float, y: Float) -> bool {
+        self.0.contains_point([x.0, y.0])
     }
     /// Distance from ``(x, y)`` to the nearest obstacle, metres: 0 inside
     /// one, infinite in an empty world. A coordinate that is not finite
     /// raises ``InvalidValueError``.
-    fn distance_to_obstacle(
-        &self,
-        py: Python<'_>,
-        #[pyo3(from_py_with = crate::convert::arg)] x: f64,
-        #[pyo3(from_py_with = crate::convert::arg)] y: f64,
-    ) -> PyResult<f64> {
-        convert::finite_points(py, &[[x, y]], "(x, y)")?;
-        Ok(self.0.distance_to_obstacle_m([x, y]))
+    fn distance_to_obstacle(&self, py: Python<'_>, x: Float, y: Float) -> PyResult<f64> {
+        let point = [x.0, y.0];
+        convert::finite_points(py, &[point], "(x, y)")?;
+        Ok(self.0.distance_to_obstacle_m(point))
     }
 
     fn __repr__(&self) -> String {

@@ -39,7 +39,7 @@ impl World {
             "partial" => vec![Polygon::rectangle([2.04, -1.0], [2.5, 1.0], Wall)?],
             _ => {
                 return Err(SimError::UnknownWorld {
-                    name: name.to_string(),
+                    name: covmap_core::quoted(name),
                     available: NAMES.join(", "),
                 });
             }

@@ -40,9 +40,10 @@ pub enum SimError {
         reason: String,
     },
     /// No built-in world has this name.
-    #[error("no built-in world named {name:?}; available: {available}")]
+    #[error("no built-in world named {name}; available: {available}")]
     UnknownWorld {
-        /// The requested name.
+        /// The requested name, quoted (at most
+        /// [`QUOTED_CHARS`](covmap_core::QUOTED_CHARS) characters of it).
         name: String,
         /// The names that exist, comma-separated.
         available: String,

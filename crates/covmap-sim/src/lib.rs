@@ -52,8 +52,10 @@ mod world;
 pub use error::{MAX_BEAMS, Result, SimError};
 pub use laser::Laser;
 pub use load::image::ImageOptions;
-pub use load::map_server::{RosMapMode, write_ros_map};
-pub use load::{MAX_FILE_BYTES, read_bytes, read_bytes_at_most, write_atomic};
+pub use load::map_server::{
+    MAX_FLOW_COLLECTIONS, RosMapMode, flow_collections, parse_ros_map_yaml, write_ros_map,
+};
+pub use load::{MAX_FILE_BYTES, check_write_target, read_bytes, read_bytes_at_most, write_atomic};
 pub use material::Material;
 pub use picture::write_map_png;
 pub use polygon::Polygon;
@@ -62,5 +64,5 @@ pub use rng::{SimRng, sim_rng, sim_rng_stream};
 pub use robot::Robot;
 pub use scan::Scan;
 pub use simulate::{Beam, RangeSensor, record, simulate};
-pub use sonar::SonarRing;
+pub use sonar::{MAX_RAYS_PER_CONE, SonarRing};
 pub use world::World;

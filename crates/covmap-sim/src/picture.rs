@@ -20,10 +20,10 @@ use crate::load::write_atomic;
 /// ```
 /// use covmap_core::Grid;
 /// let grid = Grid::new([0.0, 0.0], 0.1, 2, 3).unwrap();
-/// let path = std::env::temp_dir().join(format!("covmap-doc-{}.png", std::process::id()));
+/// # let dir = tempfile::tempdir().unwrap();
+/// # let path = dir.path().join("map.png");
 /// covmap_sim::write_map_png(&path, &grid, &[0.0, 0.5, 1.0, 1.0, 0.0, f64::NAN]).unwrap();
 /// assert!(std::fs::metadata(&path).unwrap().len() > 0);
-/// # std::fs::remove_file(&path).unwrap();
 /// ```
 pub fn write_map_png(path: impl AsRef<Path>, grid: &Grid, values: &[f64]) -> Result<()> {
     let path = path.as_ref();
@@ -86,8 +86,8 @@ mod tests {
         let grid = Grid::new([0.0, 0.0], 0.1, 4, 5).unwrap();
         let mut v = vec![0.0; 20];
         v[2 * 5 + 3] = 1.0; // row 2, col 3
-        let dir = std::env::temp_dir().join(format!("covmap-sim-picture-{}", std::process::id()));
-        std::fs::create_dir_all(&dir).unwrap();
+        let tmp = tempfile::tempdir().unwrap();
+        let dir = tmp.path();
         let path = dir.join("m.png");
         write_map_png(&path, &grid, &v).unwrap();
         let w = World::from_image_file(&path, &ImageOptions::new(0.1)).unwrap();
@@ -98,7 +98,6 @@ mod tests {
         }
         assert!(write_map_png(&path, &grid, &v[..3]).is_err());
         // No temporary file is left behind.
-        assert_eq!(std::fs::read_dir(&dir).unwrap().count(), 1);
-        std::fs::remove_dir_all(&dir).unwrap();
+        assert_eq!(std::fs::read_dir(dir).unwrap().count(), 1);
     }
 }

@@ -12,6 +12,9 @@ use crate::raycast::RayHit;
 use crate::simulate::{Beam, RangeSensor};
 use crate::world::World;
 
+/// The most rays a sonar cone is simulated by.
+pub const MAX_RAYS_PER_CONE: usize = 4096;
+
 /// A ring of sonars and how they err.
 ///
 /// Each sensor sits at the robot's centre (so readings are measured from the
@@ -239,7 +242,7 @@ impl RangeSensor for SonarRing {
         check_param(
             "rays_per_cone",
             self.rays_per_cone as f64,
-            (1..=4096).contains(&self.rays_per_cone),
+            (1..=MAX_RAYS_PER_CONE).contains(&self.rays_per_cone),
             "a ray count from 1 to 4096",
         )?;
         check_param(

@@ -2,8 +2,10 @@
 
 One module a command (``fig1``, ``fig2``, ``world``, ``fig3``, ``learn``,
 ``gain``, ``explore``, ``table1``, ``fig7``, ``sweep``, ``map``), each with its
-``NAME``, ``HELP`` and ``DESCRIPTION``, ``add_arguments(parser)`` and
-``run(args) -> exit status``; :func:`parser` gives each its subcommand.
+``NAME``, ``HELP`` and ``DESCRIPTION``, ``add_arguments(parser)``,
+``outputs(args)`` (the files it writes, checked before it runs: see
+:func:`covmap.cli._options.check_outputs`) and ``run(args) -> exit status``;
+:func:`parser` gives each its subcommand.
 """
 
 from __future__ import annotations
@@ -12,10 +14,9 @@ import argparse
 import sys
 from typing import TYPE_CHECKING
 
-from covmap._arguments import check_module
 from covmap._errors import CovmapError
 from covmap._native import __version__
-from covmap.cli import explore, fig1, fig2, fig3, fig7, gain, learn, map, sweep, table1, world
+from covmap.cli import _options, explore, fig1, fig2, fig3, fig7, gain, learn, map, sweep, table1, world
 
 if TYPE_CHECKING:
     from collections.abc import Sequence
@@ -34,7 +35,7 @@ def parser() -> argparse.ArgumentParser:
     for module in COMMANDS:
         command = commands.add_parser(module.NAME, help=module.HELP, description=module.DESCRIPTION)
         module.add_arguments(command)
-        command.set_defaults(func=module.run)
+        command.set_defaults(func=module.run, outputs=module.outputs)
     return p
 
 
@@ -42,12 +43,10 @@ def main(argv: Sequence[str] | None = None) -> int:
     """Run the command line; returns the exit status."""
     args = parser().parse_args(argv)
     try:
+        _options.check_outputs(args.outputs(args))
         status: int = args.func(args)
     except (CovmapError, OSError) as e:
         # Bad names, bad files: say what is wrong, without a traceback.
         print(f"covmap {args.command}: error: {e}", file=sys.stderr)
         return 2 if isinstance(e, ValueError) else 1
     return status
-
-
-check_module(__name__)  # calls with the wrong arguments raise InvalidTypeError

@@ -169,11 +169,23 @@ def add_dask(command: argparse.ArgumentParser, *, local: bool = True) -> None:
         )
 
 
+def check_outputs(paths: list[Path]) -> None:
+    """Refuse, before a command computes or writes anything, every file it
+    would write that it may not: a directory, a device, a FIFO, a socket or
+    a symlink where the file would go (``FileIOError``; covmap replaces only
+    regular files), so that no command writes some of its files and then
+    stops."""
+    from covmap._native import check_write_target
+
+    for path in paths:
+        check_write_target(path)
+
+
 @contextmanager
 def executor(args: argparse.Namespace) -> Iterator[Any]:
     """The executor :func:`add_dask`'s options ask for (``None``: the local
     cores), closed when the block ends."""
-    from covmap._sweep import dask_client
+    from covmap._executors import dask_client
 
     if args.dask is not None:
         with dask_client(args.dask) as client:

@@ -10,6 +10,7 @@ from covmap.experiments.exploration import MAX_FRAMES
 
 if TYPE_CHECKING:
     import argparse
+    from pathlib import Path
 
     from covmap._exploration import Step
     from covmap._native import Exploration
@@ -87,10 +88,18 @@ def strategy(args: argparse.Namespace) -> Strategy:
     return Strategy.frontier()
 
 
+def outputs(args: argparse.Namespace) -> list[Path]:
+    """The files the command writes: the map, the entropy and the
+    animation, named after the world and the strategy."""
+    from covmap.plot.exploration import exploration_paths
+
+    return exploration_paths(args.out, f"{args.world}-{args.strategy}")
+
+
 def run(args: argparse.Namespace) -> int:
     """Explore, print the summary and draw the run; 1 unless it ended by its
     strategy's rule (rather than at a limit)."""
-    from covmap.cli._progress import Progress
+    from covmap._progress import Progress
     from covmap.experiments import exploration
     from covmap.plot import plot_exploration
 

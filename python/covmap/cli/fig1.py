@@ -8,6 +8,7 @@ from covmap.cli import _options
 
 if TYPE_CHECKING:
     import argparse
+    from pathlib import Path
 
 NAME = "fig1"
 """The command's name: ``covmap fig1``."""
@@ -36,6 +37,11 @@ def add_arguments(command: argparse.ArgumentParser) -> None:
     )
 
 
+def outputs(args: argparse.Namespace) -> list[Path]:
+    """The file the command writes."""
+    return [args.out / "fig1.png"]
+
+
 def run(args: argparse.Namespace) -> int:
     """Run the experiment, print its table and write its figure; 1 unless
     the expected outcome held."""
@@ -45,7 +51,7 @@ def run(args: argparse.Namespace) -> int:
     runs = fig1.run_all(seed=args.seed, readings=args.readings)
     print(f"Fig. 1, laser, {args.readings} readings per fraction, seed {args.seed}")
     print(fig1.table(runs))
-    path = plot_fig1(runs, args.out / "fig1.png")
+    path = plot_fig1(runs, outputs(args)[0])
     print(f"wrote {path}")
     ok = all(r.ml_ok and r.occupancy_ok for r in runs)
     print("PASS" if ok else "FAIL: the expected outcome did not hold")

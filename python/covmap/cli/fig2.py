@@ -10,6 +10,7 @@ from covmap.cli import _options
 
 if TYPE_CHECKING:
     import argparse
+    from pathlib import Path
 
 NAME = "fig2"
 """The command's name: ``covmap fig2``."""
@@ -40,10 +41,13 @@ def add_arguments(command: argparse.ArgumentParser) -> None:
 def load_model(path: str) -> SonarModel | LaserModel:
     """The model a ``covmap learn`` JSON file holds: ``{"sensor": "sonar" |
     "laser", "model": {...}}``."""
-    from covmap._errors import InvalidValueError
-    from covmap._read import read_small_file
+    from covmap._errors import InvalidValueError, quoted
+    from covmap._read import read_small_file, too_deep
 
     data = read_small_file(path)
+    deep = too_deep(data, "json")
+    if deep is not None:
+        raise InvalidValueError(f"{path}: not a covmap learn model file ({deep})")
     try:
         saved = json.loads(data)
         kind, parameters = saved["sensor"], saved["model"]
@@ -52,9 +56,14 @@ def load_model(path: str) -> SonarModel | LaserModel:
     except RecursionError:
         raise InvalidValueError(f"{path}: not a covmap learn model file (nested too deeply)") from None
     if kind not in ("sonar", "laser") or not isinstance(parameters, dict):
-        raise InvalidValueError(f"{path}: sensor must be 'sonar' or 'laser', got {kind!r}")
+        raise InvalidValueError(f"{path}: sensor must be 'sonar' or 'laser', got {quoted(kind)}")
     cls = SonarModel if kind == "sonar" else LaserModel
     return cls.from_dict(parameters)
+
+
+def outputs(args: argparse.Namespace) -> list[Path]:
+    """The file the command writes."""
+    return [args.out / "fig2.png"]
 
 
 def run(args: argparse.Namespace) -> int:
@@ -68,6 +77,6 @@ def run(args: argparse.Namespace) -> int:
         models = [("default", default), ("learned", learned)]
     else:
         models = [("default", SonarModel())]
-    path = plot_fig2(models, args.distance, args.out / "fig2.png")
+    path = plot_fig2(models, args.distance, outputs(args)[0])
     print(f"wrote {path}")
     return 0

@@ -9,6 +9,7 @@ from covmap.cli import _options
 
 if TYPE_CHECKING:
     import argparse
+    from pathlib import Path
 
 NAME = "fig3"
 """The command's name: ``covmap fig3``."""
@@ -29,6 +30,13 @@ def add_arguments(command: argparse.ArgumentParser) -> None:
     """The command's arguments."""
     _options.add_out(command, NAME)
     _options.add_seed(command)
+
+
+def outputs(args: argparse.Namespace) -> list[Path]:
+    """The files the command writes."""
+    from covmap.plot.figures import fig3_paths
+
+    return fig3_paths(args.out)
 
 
 def run(args: argparse.Namespace) -> int:

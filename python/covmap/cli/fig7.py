@@ -8,6 +8,7 @@ from covmap.cli import _options
 
 if TYPE_CHECKING:
     import argparse
+    from pathlib import Path
 
 NAME = "fig7"
 """The command's name: ``covmap fig7``."""
@@ -92,10 +93,15 @@ def add_arguments(command: argparse.ArgumentParser) -> None:
     _options.add_run_limits(command, max_path_m=MAX_PATH_M)
 
 
+def outputs(args: argparse.Namespace) -> list[Path]:
+    """The files the command writes: the table and the figure."""
+    return [args.out / "fig7.csv", args.out / "fig7.png"]
+
+
 def run(args: argparse.Namespace) -> int:
     """Run the sweep, print its comparison, write its CSV and figure."""
     from covmap._sweep import RunSummary, SweepFailure
-    from covmap.cli._progress import Progress
+    from covmap._progress import Progress
     from covmap.experiments import fig7
     from covmap.plot import plot_fig7
 
@@ -125,6 +131,7 @@ def run(args: argparse.Namespace) -> int:
             **_options.run_limits(args),
         )
     print(fig7.report(f))
-    print(f"wrote {fig7.write_csv(f, args.out / 'fig7.csv')}")
-    print(f"wrote {plot_fig7(f, args.out / 'fig7.png')}")
+    csv_path, figure_path = outputs(args)
+    print(f"wrote {fig7.write_csv(f, csv_path)}")
+    print(f"wrote {plot_fig7(f, figure_path)}")
     return 0

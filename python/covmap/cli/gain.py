@@ -9,6 +9,7 @@ from covmap.cli import _options
 
 if TYPE_CHECKING:
     import argparse
+    from pathlib import Path
 
 NAME = "gain"
 """The command's name: ``covmap gain``."""
@@ -41,6 +42,11 @@ def add_arguments(command: argparse.ArgumentParser) -> None:
     )
 
 
+def outputs(args: argparse.Namespace) -> list[Path]:
+    """The file the command writes."""
+    return [args.out / "gain.png"]
+
+
 def run(args: argparse.Namespace) -> int:
     """Take the step, print the chosen viewpoint and draw the step."""
     from covmap.experiments import planning_step
@@ -50,6 +56,6 @@ def run(args: argparse.Namespace) -> int:
     step = planning_step.run(world, scans=args.scans, seed=args.seed, alpha=args.alpha)
     print(f"world {args.world}")
     print(planning_step.report(step))
-    path = plot_planning_step(step, args.out / "gain.png")
+    path = plot_planning_step(step, outputs(args)[0])
     print(f"wrote {path}")
     return 0

@@ -10,6 +10,7 @@ from covmap.cli import _options
 
 if TYPE_CHECKING:
     import argparse
+    from pathlib import Path
 
 NAME = "learn"
 """The command's name: ``covmap learn``."""
@@ -78,6 +79,11 @@ def table(result: dict[str, Any], sensor: str) -> str:
     return "\n".join(lines)
 
 
+def outputs(args: argparse.Namespace) -> list[Path]:
+    """The files the command writes: the model and the fit's trace."""
+    return [args.out / "model.json", args.out / "trace.csv"]
+
+
 def run(args: argparse.Namespace) -> int:
     """Fit, print the figures, save the model and the trace."""
     for name in (args.world, args.test_world):
@@ -104,13 +110,12 @@ def run(args: argparse.Namespace) -> int:
         "log_likelihood": fit.log_likelihood,
         "occlude_no_echo": not args.clear_no_echo,
     }
-    model_path = args.out / "model.json"
+    model_path, trace_path = outputs(args)
     write_atomic(model_path, (json.dumps(saved, indent=2) + "\n").encode())
     names = fit.parameters
     rows = [",".join(["evaluation", *names, "log_likelihood"])]
     for i, e in enumerate(fit.trace):
         rows.append(",".join([str(i), *(repr(e[n]) for n in names), repr(e["log_likelihood"])]))
-    trace_path = args.out / "trace.csv"
     write_atomic(trace_path, ("\n".join(rows) + "\n").encode())
     print(f"wrote {model_path}\nwrote {trace_path}")
     return 0

@@ -8,7 +8,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING
 
 from covmap.cli import _options
-from covmap.cli._progress import Progress
+from covmap._progress import Progress
 
 if TYPE_CHECKING:
     from covmap.experiments import mapping
@@ -86,6 +86,13 @@ def default_format(args: argparse.Namespace) -> mapping.Format:
     return "carmen"
 
 
+def outputs(args: argparse.Namespace) -> list[Path]:
+    """The files the command writes: the posterior, both map_server pairs
+    (YAML, then its PGM) and the pictures."""
+    names = ("coverage.npz", "map.yaml", "map.pgm", "occupancy.yaml", "occupancy.pgm", "maps.png")
+    return [args.out / name for name in names]
+
+
 def run(args: argparse.Namespace) -> int:
     """Map the log, write the files, print the summary."""
     from covmap.experiments import mapping
@@ -122,12 +129,11 @@ def run(args: argparse.Namespace) -> int:
     print(f"log {args.log} ({log_format})")
     print(mapping.summary(result))
     print(f"agreement    {mapping.agreement(result):.3f} of the cells both maps know")
-    written = [args.out / "coverage.npz", args.out / "map.yaml", args.out / "occupancy.yaml"]
-    result.coverage.save(written[0])
-    result.coverage.to_ros_map(written[1])
-    result.occupancy.to_ros_map(written[2])
-    written += [args.out / "map.pgm", args.out / "occupancy.pgm"]
-    written += plot_mapping(result, args.out / "maps.png")
-    for path in written:
+    coverage, map_yaml, _, occupancy_yaml, _, maps = outputs(args)
+    result.coverage.save(coverage)
+    result.coverage.to_ros_map(map_yaml)
+    result.occupancy.to_ros_map(occupancy_yaml)
+    plot_mapping(result, maps)
+    for path in outputs(args):
         print(f"wrote {path}")
     return 0

@@ -37,6 +37,11 @@ def add_arguments(command: argparse.ArgumentParser) -> None:
     _options.add_dask(command, local=False)
 
 
+def outputs(args: argparse.Namespace) -> list[Path]:
+    """The file the command writes."""
+    return [args.out]
+
+
 def run(args: argparse.Namespace) -> int:
     """Run the sweep, write its CSV."""
     from covmap._errors import SweepError

@@ -9,6 +9,7 @@ from covmap.cli import _options
 
 if TYPE_CHECKING:
     import argparse
+    from pathlib import Path
 
     from covmap._exploration import ExplorationResult
     from covmap.experiments.table1 import Method
@@ -43,9 +44,14 @@ def add_arguments(command: argparse.ArgumentParser) -> None:
     _options.add_run_limits(command)
 
 
+def outputs(args: argparse.Namespace) -> list[Path]:
+    """The files the command writes: the table and its chart."""
+    return [args.out / "table1.csv", args.out / "table1.png"]
+
+
 def run(args: argparse.Namespace) -> int:
     """Run the table, print it, write its CSV and chart."""
-    from covmap.cli._progress import Progress
+    from covmap._progress import Progress
     from covmap.experiments import table1
     from covmap.plot import plot_table1
 
@@ -61,6 +67,7 @@ def run(args: argparse.Namespace) -> int:
 
         t = table1.run(world, world_name=args.world, seeds=seeds, progress=show, **_options.run_limits(args))
     print(table1.table(t))
-    print(f"wrote {table1.write_csv(t, args.out / 'table1.csv')}")
-    print(f"wrote {plot_table1(t, args.out / 'table1.png')}")
+    csv_path, chart_path = outputs(args)
+    print(f"wrote {table1.write_csv(t, csv_path)}")
+    print(f"wrote {plot_table1(t, chart_path)}")
     return 0

@@ -40,7 +40,7 @@ def add_arguments(command: argparse.ArgumentParser) -> None:
     command.add_argument(
         "--wall-thickness",
         type=_options.wall_thickness,
-        default=0.1,
+        default=None,
         help="thickness of the walls of an ARIA .map file, metres, at most 100 (default 0.1)",
     )
     command.add_argument(
@@ -48,6 +48,20 @@ def add_arguments(command: argparse.ArgumentParser) -> None:
         type=_options.length,
         help="metres per pixel of a .pgm/.png world, from 1e-06 to 1000",
     )
+
+
+def _name(args: argparse.Namespace) -> str:
+    """The name of the world's files: a built-in world's, a file's stem."""
+    if args.name in World.builtin_names() or not Path(args.name).suffix:
+        return str(args.name)
+    return Path(args.name).stem
+
+
+def outputs(args: argparse.Namespace) -> list[Path]:
+    """The files the command writes: the obstacles and the coverage."""
+    from covmap.plot.figures import world_paths
+
+    return world_paths(_name(args), args.out)
 
 
 def _load_world(args: argparse.Namespace) -> tuple[World, str]:

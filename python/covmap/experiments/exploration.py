@@ -8,7 +8,6 @@ from typing import TYPE_CHECKING, Any, Callable
 
 import numpy as np
 
-from covmap._arguments import check_module
 from covmap._errors import InvalidParameterError
 from covmap._exploration import REAL_TIME_SPEED_M_S
 from covmap._native import Exploration
@@ -156,6 +155,3 @@ def summary(run_: ExploreRun, speed_m_s: float = REAL_TIME_SPEED_M_S) -> str:
     ]
     width = max(len(name) for name, _ in rows)
     return "\n".join(f"{name:<{width}}  {value}" for name, value in rows)
-
-
-check_module(__name__)  # calls with the wrong arguments raise InvalidTypeError

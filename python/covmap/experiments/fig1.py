@@ -16,7 +16,6 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from covmap._arguments import check_module
 from covmap._native import CoverageMap, Grid, LaserModel, OccupancyGrid
 
 if TYPE_CHECKING:
@@ -122,6 +121,3 @@ def table(runs: Sequence[Run]) -> str:
             f"{'yes' if r.ml_ok else 'NO':>15}  {'yes' if r.occupancy_ok else 'NO':>12}"
         )
     return "\n".join(lines)
-
-
-check_module(__name__)  # calls with the wrong arguments raise InvalidTypeError

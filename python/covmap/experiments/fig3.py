@@ -12,7 +12,6 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
-from covmap._arguments import check_module
 
 if TYPE_CHECKING:
     import numpy as np
@@ -93,6 +92,3 @@ def table(result: Fig3Result, seed: int) -> str:
         f"(uniform prior: {result.log_likelihood_prior:.1f})"
     )
     return "\n".join(lines)
-
-
-check_module(__name__)  # calls with the wrong arguments raise InvalidTypeError

@@ -18,7 +18,6 @@ import io
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any, Callable
 
-from covmap._arguments import check_module
 from covmap._native import DEFAULT_DISCOUNT_BEYOND_M, Strategy
 from covmap._sweep import RunSummary, SweepFailure, sweep
 from covmap.experiments.table1 import mean_and_spread
@@ -275,6 +274,3 @@ def write_csv(f: Fig7, path: Path) -> Path:
     path.parent.mkdir(parents=True, exist_ok=True)
     write_atomic(path, csv_text(f).encode())
     return path
-
-
-check_module(__name__)  # calls with the wrong arguments raise InvalidTypeError

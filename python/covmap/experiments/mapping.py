@@ -17,7 +17,6 @@ from typing import TYPE_CHECKING, Callable, Literal
 
 import numpy as np
 
-from covmap._arguments import check_module
 from covmap._native import CoverageMap, Grid, LaserModel, Log, OccupancyGrid, SonarModel
 
 if TYPE_CHECKING:
@@ -63,7 +62,12 @@ def read_log(
             max_range_m=max_range_m,
         )
     if measurements is None:
-        raise ValueError("a sonar-text log needs its measurements file (--measurements)")
+        from covmap._errors import InvalidParameterError
+
+        raise InvalidParameterError(
+            f"{path}: a sonar-text log is a poses file and its measurements file: give measurements "
+            "(covmap map POSES --format sonar-text --measurements FILE)"
+        )
     return Log.from_sonar_text(
         path,
         measurements,
@@ -146,6 +150,3 @@ def agreement(r: MappingRun) -> float:
     if not both.any():
         return math.nan
     return float(np.mean((a[both] >= 65) == (b[both] >= 65)))
-
-
-check_module(__name__)  # calls with the wrong arguments raise InvalidTypeError

@@ -14,7 +14,6 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from covmap._arguments import check_module
 from covmap._native import CoverageMap, Grid, Plan, Planner, Robot, SonarModel, SonarRing, World
 
 if TYPE_CHECKING:
@@ -129,6 +128,3 @@ def report(step: Step) -> str:
             f"cost {plan.cost:.3f} m, path of {len(plan.path)} cells"
         )
     return "\n".join(lines)
-
-
-check_module(__name__)  # calls with the wrong arguments raise InvalidTypeError

@@ -9,7 +9,6 @@ import math
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any, Callable
 
-from covmap._arguments import check_module
 from covmap._native import DEFAULT_DISCOUNT_BEYOND_M, Strategy, explore
 
 if TYPE_CHECKING:
@@ -260,6 +259,3 @@ def write_csv(t: Table1, path: Path) -> Path:
     path.parent.mkdir(parents=True, exist_ok=True)
     write_atomic(path, csv_text(t).encode())
     return path
-
-
-check_module(__name__)  # calls with the wrong arguments raise InvalidTypeError

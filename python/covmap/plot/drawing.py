@@ -10,7 +10,6 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from covmap._arguments import check_module
 from covmap._errors import ArrayShapeError
 
 if TYPE_CHECKING:
@@ -172,6 +171,3 @@ def plot_trajectory(
         theta = points[:, 2]
         ax.quiver(x, y, np.cos(theta), np.sin(theta), color=color, angles="xy", width=0.003)
     return ax
-
-
-check_module(__name__)  # calls with the wrong arguments raise InvalidTypeError

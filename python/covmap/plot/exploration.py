@@ -9,7 +9,6 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from covmap._arguments import check_module
 from covmap.plot.drawing import plot_map, plot_trajectory, plot_world, unknown_colormap
 from covmap.plot.figures import _figure_file
 
@@ -57,6 +56,12 @@ def _fit(ax: Axes, grid: Grid) -> None:
     ax.set_ylim(y0, y1)
 
 
+def exploration_paths(out: Path, name: str) -> list[Path]:
+    """The files :func:`plot_exploration` writes into ``out`` for a run
+    called ``name``: the map, the entropy and the animation."""
+    return [out / f"{name}-map.png", out / f"{name}-entropy.png", out / f"{name}.gif"]
+
+
 def plot_exploration(run: ExploreRun, out: Path, name: str | None = None) -> list[Path]:
     """Write the figures of a ``covmap explore`` run into ``out``, each
     atomically, files named ``<name>-...`` (default: world and strategy):
@@ -73,8 +78,9 @@ def plot_exploration(run: ExploreRun, out: Path, name: str | None = None) -> lis
     name = name or f"{run.world_name}-{r.strategy.name}"
     grid = r.grid
     title = f"{run.world_name}, {r.strategy!r}, seed {r.seed}"
+    map_path, entropy_path, animation_path = exploration_paths(out, name)
     written = []
-    path = out / f"{name}-map.png"
+    path = map_path
     with _figure_file(path, figsize=_size(grid), layout="constrained") as (_, ax):
         plot_map(r.map.ml(), grid, ax, observed=r.map.observed(), colorbar=True)
         _outline(run.world, ax)
@@ -87,7 +93,7 @@ def plot_exploration(run: ExploreRun, out: Path, name: str | None = None) -> lis
         ax.legend(loc="upper right", fontsize=7)
     written.append(path)
 
-    path = out / f"{name}-entropy.png"
+    path = entropy_path
     w, h = _size(grid)
     with _figure_file(path, 2, 1, figsize=(w, 2 * h - 0.5), layout="constrained") as (fig, (ent_ax, unc_ax)):
         plot_map(
@@ -115,7 +121,7 @@ def plot_exploration(run: ExploreRun, out: Path, name: str | None = None) -> lis
             _fit(ax, grid)
     written.append(path)
 
-    written.append(save_animation(run.frames, r, run.world, out / f"{name}.gif", title=title))
+    written.append(save_animation(run.frames, r, run.world, animation_path, title=title))
     return written
 
 
@@ -210,6 +216,3 @@ def plot_table1(t: Table1, path: Path) -> Path:
         ax.grid(alpha=0.3)
         ax.legend(fontsize=7)
     return path
-
-
-check_module(__name__)  # calls with the wrong arguments raise InvalidTypeError

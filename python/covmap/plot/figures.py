@@ -9,7 +9,6 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from covmap._arguments import check_module
 from covmap.plot.drawing import plot_map, plot_trajectory, plot_world, unknown_colormap
 from covmap.plot.saving import save_figure
 
@@ -125,12 +124,11 @@ def plot_fig3(result: Fig3Result, out: Path) -> list[Path]:
     the ground truth."""
     grid = result.grid
     written = []
-    for key, title in FIG3_MAPS:
+    for (key, title), path in zip(FIG3_MAPS, fig3_paths(out)):
         values = getattr(result, key)
         if key != "truth":
             values = np.ma.masked_where(~result.reached, values)
         rows, cols = grid.shape
-        path = out / f"fig3-{key}.png"
         with _figure_file(
             path, figsize=(max(6.0, cols / 28), max(2.5, rows / 28 + 1.0)), layout="constrained"
         ) as (_, ax):
@@ -139,6 +137,17 @@ def plot_fig3(result: Fig3Result, out: Path) -> list[Path]:
                 plot_trajectory(result.poses, ax, color="tab:red", linewidth=0.8)
         written.append(path)
     return written
+
+
+def fig3_paths(out: Path) -> list[Path]:
+    """The files :func:`plot_fig3` writes into ``out``, in its order."""
+    return [out / f"fig3-{key}.png" for key, _ in FIG3_MAPS]
+
+
+def world_paths(name: str, out: Path) -> list[Path]:
+    """The files :func:`plot_world_and_coverage` writes into ``out`` for a
+    world called ``name``: the obstacles and the coverage."""
+    return [out / f"{name}-{kind}.png" for kind in ("world", "coverage")]
 
 
 def plot_world_and_coverage(
@@ -151,8 +160,7 @@ def plot_world_and_coverage(
     scale = 8.0 / max(x1 - x0, y1 - y0)
     size = (max(4.0, (x1 - x0) * scale + 1.5), max(3.0, (y1 - y0) * scale + 1.0))
     written = []
-    for kind in ("world", "coverage"):
-        path = out / f"{name}-{kind}.png"
+    for kind, path in zip(("world", "coverage"), world_paths(name, out)):
         with _figure_file(path, figsize=size, layout="constrained") as (_, ax):
             if kind == "world":
                 plot_world(world, ax)
@@ -221,6 +229,3 @@ def plot_planning_step(step: Step, path: Path) -> Path:
             )
         gain_ax.legend(loc="upper right", fontsize=8)
     return path
-
-
-check_module(__name__)  # calls with the wrong arguments raise InvalidTypeError

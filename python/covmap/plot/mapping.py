@@ -7,7 +7,6 @@ from __future__ import annotations
 import math
 from typing import TYPE_CHECKING
 
-from covmap._arguments import check_module
 from covmap.plot.drawing import plot_map, plot_trajectory
 from covmap.plot.figures import _figure_file
 
@@ -36,6 +35,3 @@ def plot_mapping(run: MappingRun, path: Path) -> list[Path]:
             plot_map(values, grid, ax, observed=seen, title=title, vmin=vmin, vmax=vmax, colorbar=True)
             plot_trajectory(run.log.poses, ax)
     return [path]
-
-
-check_module(__name__)  # calls with the wrong arguments raise InvalidTypeError

@@ -6,7 +6,6 @@ import io
 from pathlib import Path
 from typing import TYPE_CHECKING
 
-from covmap._arguments import check_module
 from covmap._native import write_atomic
 
 if TYPE_CHECKING:
@@ -28,6 +27,3 @@ def save_figure(fig: Figure, path: str | os.PathLike[str], *, dpi: int = 100) ->
     # The simulator's writer, the one its GeoJSON files and pictures go through.
     write_atomic(path, png.getvalue())
     return path
-
-
-check_module(__name__)  # calls with the wrong arguments raise InvalidTypeError

@@ -7,7 +7,6 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from covmap._arguments import check_module
 from covmap.plot.figures import _figure_file
 
 if TYPE_CHECKING:
@@ -64,6 +63,3 @@ def plot_fig2(
             fig.colorbar(image, ax=ax, label="probability")
         fig.tight_layout()
     return path
-
-
-check_module(__name__)  # calls with the wrong arguments raise InvalidTypeError

@@ -4,7 +4,6 @@ from __future__ import annotations
 
 from typing import TYPE_CHECKING
 
-from covmap._arguments import check_module
 from covmap.plot.figures import _figure_file
 
 __all__ = ["plot_fig7"]
@@ -72,6 +71,3 @@ def plot_fig7(f: Fig7, path: Path) -> Path:
         ax.grid(alpha=0.3)
         ax.legend(fontsize=7)
     return path
-
-
-check_module(__name__)  # calls with the wrong arguments raise InvalidTypeError

@@ -3,8 +3,9 @@ address-space limit: ``python runner.py CASES.json LIMIT_BYTES``.
 
 Prints one JSON line per case: ``{"start": id}`` before it runs (so that a
 process that dies is known to have died in it), then its outcome: whether
-it raised, the exception's class, the names of its bases, its message, and
-whether a map of the namespace changed although the call raised.
+it raised, the exception's class, the names of its bases, its message, the
+argument pyo3 noted on it (``wrong_type.converted_argument``), and whether
+a map of the namespace changed although the call raised.
 """
 
 from __future__ import annotations
@@ -17,8 +18,10 @@ import traceback
 from typing import Any
 
 sys.path.insert(0, __file__.rsplit("/", 1)[0])
+sys.path.insert(0, __file__.rsplit("/", 2)[0])
 
 from corpus import SETUP  # noqa: E402
+from wrong_type import converted_argument  # noqa: E402
 
 
 def snapshot(namespace: dict[str, Any]) -> tuple[bytes, ...]:
@@ -49,6 +52,7 @@ def main() -> None:
                 bases=[c.__name__ for c in type(e).__mro__],
                 covmap=isinstance(e, covmap.CovmapError),
                 message=str(e)[:500],
+                argument=converted_argument(e),
                 changed=snapshot(namespace) != before,
             )
             if not isinstance(e, covmap.CovmapError):

@@ -67,6 +67,29 @@ impl Default for ExplorationConfig {
 }
 
 impl ExplorationConfig {
+    /// Errors unless `epsilon` is below `ln(bins)`, the entropy of the
+    /// uniform prior of a map of `bins` bins: at or above it every cell
+    /// would count as certain before the first scan, and the run would end
+    /// at once.
+    ///
+    /// # Errors
+    /// [`CovmapError::InvalidSetting`](crate::CovmapError::InvalidSetting)
+    /// naming `epsilon`, its value and the bound.
+    pub fn check_epsilon(&self, bins: usize) -> Result<()> {
+        let prior_nats = (bins as f64).ln();
+        if self.epsilon < prior_nats {
+            return Ok(());
+        }
+        Err(crate::CovmapError::InvalidSetting {
+            name: "epsilon",
+            reason: format!(
+                "{}: expected an entropy below ln({bins}) = {prior_nats:.4} nats, the prior's \
+                 (at or above it every cell is certain before the first scan)",
+                self.epsilon
+            ),
+        })
+    }
+
     /// Errors unless `scan_spacing_m` is at least a cell of `resolution_m`
     /// metres divided by [`MIN_SCANS_PER_CELL`] (a tenth of a cell): the
     /// robot would scan more often than a map of that grid can tell apart,
@@ -163,5 +186,25 @@ mod tests {
                 "{err}"
             );
         }
+    }
+
+    /// An epsilon at or above the prior's entropy would end every run at
+    /// once: refused, naming the bound; just below it is taken.
+    #[test]
+    fn an_epsilon_every_cell_starts_below_is_refused() {
+        let config = |epsilon| ExplorationConfig {
+            epsilon,
+            ..ExplorationConfig::default()
+        };
+        let ln16 = 16f64.ln();
+        for epsilon in [ln16, 3.0, 100.0] {
+            let err = config(epsilon).check_epsilon(16).unwrap_err().to_string();
+            assert!(
+                err.contains("`epsilon`") && err.contains("ln(16) = 2.7726"),
+                "{err}"
+            );
+        }
+        config(ln16 - 1e-9).check_epsilon(16).unwrap();
+        assert!(config(0.65).check_epsilon(2).is_ok() && config(0.7).check_epsilon(2).is_err());
     }
 }

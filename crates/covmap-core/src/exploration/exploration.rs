@@ -176,6 +176,8 @@ impl<S: ScanSource, M: Motion> Exploration<S, M> {
         } = setup;
         config.validate()?;
         config.check_scan_spacing(grid.resolution_m())?;
+        crate::histogram::check_bins(bins)?;
+        config.check_epsilon(bins)?;
         strategy.validate()?;
         model.validate()?;
         let start_cell = grid.index(check_pose(&grid, &start)?)?;

@@ -20,6 +20,9 @@ use crate::sensor::SensorModel;
 /// each is about a million; a fit of 13 parameters converges in hundreds).
 pub const MAX_EVALUATIONS: usize = 100_000;
 
+/// The most restarts a fit runs (each from its own seeded start).
+pub const MAX_RESTARTS: usize = 256;
+
 /// What a fit scores models on: a recorded drive, the grid its maps are
 /// built on, and the ground-truth coverage of that grid's cells (row-major),
 /// scored over every cell or those where `cells` is true.
@@ -245,10 +248,10 @@ impl<'a, M: Fittable> Search<'a, M> {
                 ),
             ));
         }
-        if !(1..=256).contains(&options.restarts) {
+        if !(1..=MAX_RESTARTS).contains(&options.restarts) {
             return Err(setting(
                 "restarts",
-                format!("{}: expected 1 to 256", options.restarts),
+                format!("{}: expected 1 to {MAX_RESTARTS}", options.restarts),
             ));
         }
         if !(options.tolerance >= 0.0 && options.tolerance.is_finite()) {
@@ -270,11 +273,18 @@ impl<'a, M: Fittable> Search<'a, M> {
                     let Some(p) = known.iter().find(|p| p.name == w.as_str()) else {
                         return Err(setting(
                             "parameters",
-                            format!("unknown parameter `{w}`: expected one of {}", known_names()),
+                            format!(
+                                "unknown parameter {}: expected one of {}",
+                                crate::quoted(w),
+                                known_names()
+                            ),
                         ));
                     };
                     if names.contains(&p.name) {
-                        return Err(setting("parameters", format!("`{w}` is named twice")));
+                        return Err(setting(
+                            "parameters",
+                            format!("{} is named twice", crate::quoted(w)),
+                        ));
                     }
                     names.push(p.name);
                 }
@@ -299,7 +309,8 @@ impl<'a, M: Fittable> Search<'a, M> {
                 return Err(setting(
                     "bounds",
                     format!(
-                        "bounds for `{name}`, which is not fitted (fitted: {})",
+                        "bounds for {}, which is not fitted (fitted: {})",
+                        crate::quoted(name),
                         names.join(", ")
                     ),
                 ));

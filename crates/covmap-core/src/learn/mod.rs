@@ -39,7 +39,8 @@ mod parameters;
 mod point;
 
 pub use fit::{
-    FitData, FitEvaluation, FitOptions, MAX_EVALUATIONS, SensorFit, fit_sensor_model, map_of_log,
+    FitData, FitEvaluation, FitOptions, MAX_EVALUATIONS, MAX_RESTARTS, SensorFit, fit_sensor_model,
+    map_of_log,
 };
 pub use likelihood::{cell_log_likelihoods, check_truth, log_likelihood};
 pub use parameters::{Fittable, Parameter};

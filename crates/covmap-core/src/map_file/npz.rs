@@ -3,6 +3,14 @@
 //! array. The reader takes any archive numpy writes with `np.savez` and
 //! refuses, with a reason, whatever it cannot check: compressed entries,
 //! zip64, a CRC-32 that does not match, lengths that run past the end.
+//!
+//! Its work is bounded by the file's size: every entry's name and headers
+//! are checked first (the names among those the caller knows, no name
+//! twice, each entry's local header and data within the archive), and
+//! entries whose bytes overlap are refused, before any CRC-32 is computed;
+//! so the CRCs read each byte of the file at most once. (An archive whose
+//! thousands of entries all point at the same bytes would otherwise cost
+//! entries times size.)
 
 /// One array: its `.npy` type (`<f4`, `<f8`, `<u4`), its shape and its
 /// bytes, little-endian, row-major.
@@ -177,9 +185,21 @@ fn u32_at(b: &[u8], at: usize) -> Result<u32, String> {
         .ok_or_else(|| format!("the archive ends at byte {} inside a record", b.len()))
 }
 
+/// One entry of a zip archive's central directory, its headers checked.
+struct Entry {
+    name: String,
+    crc: u32,
+    /// Where its local header starts.
+    local: usize,
+    /// Its data.
+    data: std::ops::Range<usize>,
+}
+
 /// The entries of a zip archive, in the order of its central directory,
-/// each checked against its CRC-32.
-pub(crate) fn unzip(b: &[u8]) -> Result<Vec<(String, &[u8])>, String> {
+/// each named in `known` (at most once) and checked against its CRC-32.
+/// Names and headers are checked for every entry before any CRC is
+/// computed, and entries whose bytes overlap are refused.
+pub(crate) fn unzip<'a>(b: &'a [u8], known: &[&str]) -> Result<Vec<(String, &'a [u8])>, String> {
     if b.is_empty() {
         return Err("the file is empty".into());
     }
@@ -195,7 +215,13 @@ pub(crate) fn unzip(b: &[u8]) -> Result<Vec<(String, &[u8])>, String> {
     if cd_offset.checked_add(cd_size) != Some(end) {
         return Err("the central directory does not end where the end record begins".into());
     }
-    let mut entries: Vec<(String, &[u8])> = Vec::with_capacity(count.min(16));
+    if count > known.len() {
+        return Err(format!(
+            "{count} entries, more than the {} a map file holds",
+            known.len()
+        ));
+    }
+    let mut entries: Vec<Entry> = Vec::with_capacity(count);
     let mut at = cd_offset;
     for _ in 0..count {
         if u32_at(b, at)? != CENTRAL {
@@ -212,6 +238,13 @@ pub(crate) fn unzip(b: &[u8]) -> Result<Vec<(String, &[u8])>, String> {
             .and_then(|n| std::str::from_utf8(n).ok())
             .ok_or("an entry's name runs past the end or is not text")?
             .to_string();
+        if !known.contains(&name.as_str()) {
+            let shown: String = name.chars().take(60).collect();
+            return Err(format!("unknown entry {shown}"));
+        }
+        if entries.iter().any(|e| e.name == name) {
+            return Err(format!("entry {name} appears twice"));
+        }
         if method != 0 || csize != usize_ {
             return Err(format!(
                 "entry {name} is compressed (covmap writes stored entries)"
@@ -223,28 +256,53 @@ pub(crate) fn unzip(b: &[u8]) -> Result<Vec<(String, &[u8])>, String> {
         let local_name = usize::from(u16_at(b, local + 26)?);
         let local_extra = usize::from(u16_at(b, local + 28)?);
         let start = local + 30 + local_name + local_extra;
-        let data = b
-            .get(start..start + csize as usize)
-            .filter(|_| start + csize as usize <= cd_offset)
-            .ok_or_else(|| format!("entry {name} runs past the archive's data"))?;
+        let data = start..start + csize as usize;
+        if data.end > cd_offset {
+            return Err(format!("entry {name} runs past the archive's data"));
+        }
         if b.get(local + 30..local + 30 + local_name) != Some(name.as_bytes()) {
             return Err(format!(
                 "entry {name}: its local header names another entry"
             ));
         }
-        if crc32fast::hash(data) != crc {
-            return Err(format!("entry {name}: CRC-32 mismatch, the bytes changed"));
-        }
-        if entries.iter().any(|(n, _)| *n == name) {
-            return Err(format!("entry {name} appears twice"));
-        }
-        entries.push((name, data));
+        entries.push(Entry {
+            name,
+            crc,
+            local,
+            data,
+        });
         at += 46 + name_len + skip;
     }
     if at != end {
         return Err("the central directory holds more than its entries".into());
     }
-    Ok(entries)
+    // Each entry's bytes, its local header to the end of its data, apart.
+    let mut spans: Vec<(usize, usize, &str)> = entries
+        .iter()
+        .map(|e| (e.local, e.data.end, e.name.as_str()))
+        .collect();
+    spans.sort_unstable();
+    let neighbours = spans.iter().zip(spans.iter().skip(1));
+    if let Some((a, b)) = neighbours.clone().find(|(a, b)| b.0 < a.1) {
+        return Err(format!(
+            "entries {} and {} overlap (bytes {} to {} and {} to {})",
+            a.2, b.2, a.0, a.1, b.0, b.1
+        ));
+    }
+    let mut checked = Vec::with_capacity(entries.len());
+    for e in entries {
+        let data = b
+            .get(e.data)
+            .ok_or_else(|| format!("entry {} runs past the end", e.name))?;
+        if crc32fast::hash(data) != e.crc {
+            return Err(format!(
+                "entry {}: CRC-32 mismatch, the bytes changed",
+                e.name
+            ));
+        }
+        checked.push((e.name, data));
+    }
+    Ok(checked)
 }
 
 #[cfg(test)]
@@ -262,7 +320,7 @@ mod tests {
             ("b.npy", npy("<u4", &[1, 1], &7u32.to_le_bytes())),
         ];
         let archive = zip(&entries).unwrap();
-        let back = unzip(&archive).unwrap();
+        let back = unzip(&archive, &["a.npy", "b.npy"]).unwrap();
         assert_eq!(back.len(), 2);
         let a = parse_npy(back[0].1).unwrap();
         assert_eq!(
@@ -284,7 +342,8 @@ mod tests {
         for i in 0..archive.len() {
             let mut bad = archive.clone();
             bad[i] ^= 0x10;
-            let ok = unzip(&bad).and_then(|e| parse_npy(e[0].1).map(|a| a.data.to_vec()));
+            let ok =
+                unzip(&bad, &["x.npy"]).and_then(|e| parse_npy(e[0].1).map(|a| a.data.to_vec()));
             // A flip may land where zip keeps nothing checked (the version a
             // tool needs, a date): the data then still read intact.
             if let Ok(read) = ok {
@@ -292,8 +351,75 @@ mod tests {
             }
         }
         for cut in 0..archive.len() {
-            assert!(unzip(&archive[..cut]).is_err(), "cut at {cut}");
+            assert!(unzip(&archive[..cut], &["x.npy"]).is_err(), "cut at {cut}");
         }
+    }
+
+    /// An archive of `entries` as `zip` writes it, but each local header
+    /// at the given offset of the data that precedes it: `(name, data,
+    /// offset)`, the offset `None` for the next free byte. Entries may so
+    /// overlap.
+    fn archive_with_offsets(entries: &[(&str, Vec<u8>, Option<usize>)]) -> Vec<u8> {
+        let mut out = Vec::new();
+        let mut central = Vec::new();
+        for (name, data, offset) in entries {
+            let offset = offset.unwrap_or(out.len());
+            let one = zip(&[(name, data.clone())]).unwrap();
+            let local_len = 30 + name.len() + data.len();
+            if offset == out.len() {
+                out.extend_from_slice(&one[..local_len]);
+            }
+            let mut entry = one[local_len..one.len() - 22].to_vec();
+            entry[42..46].copy_from_slice(&(offset as u32).to_le_bytes());
+            central.extend_from_slice(&entry);
+        }
+        let cd_offset = out.len() as u32;
+        out.extend_from_slice(&central);
+        out.extend_from_slice(&END.to_le_bytes());
+        let n = entries.len() as u16;
+        for v in [0u16, 0, n, n] {
+            out.extend_from_slice(&v.to_le_bytes());
+        }
+        out.extend_from_slice(&(central.len() as u32).to_le_bytes());
+        out.extend_from_slice(&cd_offset.to_le_bytes());
+        out.extend_from_slice(&0u16.to_le_bytes());
+        out
+    }
+
+    /// Entries whose bytes overlap (here one's local header and data lie
+    /// inside the other's data) are refused before any CRC is computed; an
+    /// unknown name, a name twice, or more entries than the names known,
+    /// before too: the errors are those, not the CRC mismatch that the
+    /// changed bytes also give.
+    #[test]
+    fn names_headers_and_overlaps_are_checked_before_contents() {
+        let inner_data: Vec<u8> = (0..40u8).collect();
+        let inner = zip(&[("b.npy", inner_data.clone())]).unwrap();
+        let outer_data = inner[..30 + 5 + inner_data.len()].to_vec();
+        let entries = [
+            ("a.npy", outer_data, None),
+            ("b.npy", inner_data, Some(30 + 5)),
+        ];
+        let overlapping = archive_with_offsets(&entries);
+        assert!(
+            unzip(&overlapping, &["a.npy", "b.npy"])
+                .unwrap_err()
+                .contains("overlap")
+        );
+        let mut changed = overlapping.clone();
+        changed[30 + 5 + 30 + 5 + 10] ^= 0xff; // inside both entries' data
+        let err = unzip(&changed, &["a.npy", "b.npy"]).unwrap_err();
+        assert!(err.contains("entries a.npy and b.npy overlap"), "{err}");
+        let err = unzip(&changed, &["a.npy"]).unwrap_err();
+        assert!(err.contains("more than the 1"), "{err}");
+        let err = unzip(&changed, &["a.npy", "c.npy"]).unwrap_err();
+        assert!(err.contains("unknown entry b.npy"), "{err}");
+        let same = [
+            ("a.npy", vec![1u8; 8], None),
+            ("a.npy", vec![1u8; 8], Some(0)),
+        ];
+        let err = unzip(&archive_with_offsets(&same), &["a.npy", "b.npy"]).unwrap_err();
+        assert!(err.contains("appears twice"), "{err}");
     }
 
     #[test]

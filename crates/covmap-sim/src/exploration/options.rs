@@ -73,6 +73,7 @@ impl ExploreOptions {
         check_bins(self.bins)?;
         self.config.validate()?;
         self.config.check_scan_spacing(self.resolution_m)?;
+        self.config.check_epsilon(self.bins)?;
         self.sensor.validate()?;
         self.model().validate()?;
         Ok(())

@@ -12,6 +12,16 @@
 //! value map_server refuses one naming its key. The image is read as
 //! [`super::image`] reads occupancy images.
 //!
+//! The YAML's nesting is bounded before it is parsed: the parser's time
+//! grows with the square of how deeply flow collections (`[...]`, `{...}`)
+//! nest (thousands of levels under an ignored key take seconds), so a file
+//! may hold at most [`MAX_FLOW_COLLECTIONS`] of them that hold something
+//! ([`flow_collections`]: the `[` and `{` not closed at once, quoted or
+//! not, which bound the depth without parsing). map_saver's files hold
+//! one, the origin. Nested block collections cost the parser time in
+//! proportion to the file's size (each level is a line indented further),
+//! so they need no bound of their own.
+//!
 //! # Writing
 //! Pixels as map_saver makes them: in `trinary` mode a cell at or above
 //! `occupied_thresh` (in percent, rounded) is black (0), one at or below
@@ -35,12 +45,36 @@ use super::{parse_error, read_text, write_atomic_all};
 use crate::error::{Result, SimError, check_param};
 use crate::world::World;
 
+/// The most flow collections (`[...]`, `{...}`) that hold something a
+/// map_server YAML file may hold ([`flow_collections`]): a bound on their
+/// nesting, whose depth the YAML parser's time grows with the square of.
+/// map_saver's files hold one (the origin).
+pub const MAX_FLOW_COLLECTIONS: usize = 64;
+
+/// How many flow collections that hold something `text` may open, at
+/// most: its `[` and `{` not followed at once by `]` or `}` (an empty `[]`
+/// nests nothing), wherever they are (a bracket in a quoted string counts
+/// too, so no parsing is needed). Flow collections nest at most one deeper
+/// than this count: each but the innermost of a nest holds the next.
+pub fn flow_collections(text: &str) -> usize {
+    let bytes = text.as_bytes();
+    bytes
+        .iter()
+        .enumerate()
+        .filter(|&(i, &b)| match b {
+            b'[' => bytes.get(i + 1) != Some(&b']'),
+            b'{' => bytes.get(i + 1) != Some(&b'}'),
+            _ => false,
+        })
+        .count()
+}
+
 impl World {
     /// A world from a ROS map_server YAML file and the image it names; see
     /// [the rules](crate::load::map_server).
     pub fn from_ros_map_yaml(path: impl AsRef<Path>) -> Result<World> {
         let path = path.as_ref();
-        let (image, options) = parse_ros_yaml(&read_text(path)?, path)?;
+        let (image, options) = parse_ros_map_yaml(&read_text(path)?, path)?;
         let image_path = path.parent().unwrap_or(Path::new("")).join(image);
         Self::from_image_file(image_path, &options)
     }
@@ -63,8 +97,26 @@ struct RosMapYaml {
     mode: Option<String>,
 }
 
-/// The image path and the options of a map_server YAML text.
-pub(super) fn parse_ros_yaml(text: &str, path: &Path) -> Result<(String, ImageOptions)> {
+/// The image path (relative to the YAML file) and the options of the
+/// map_server YAML `text`, read from `path` (which errors name); see [the
+/// rules](crate::load::map_server).
+///
+/// # Errors
+/// [`SimError::Parse`] naming `path` and the place: more than
+/// [`MAX_FLOW_COLLECTIONS`] flow collections, malformed YAML, a key of the
+/// wrong type or a value map_server refuses, a key missing.
+pub fn parse_ros_map_yaml(text: &str, path: &Path) -> Result<(String, ImageOptions)> {
+    let brackets = flow_collections(text);
+    if brackets > MAX_FLOW_COLLECTIONS {
+        return Err(parse_error(
+            path,
+            "whole file",
+            format!(
+                "{brackets} flow collections (`[` or `{{`), more than the {MAX_FLOW_COLLECTIONS} a \
+                 map_server YAML may hold (a bound on their nesting; map_saver writes one)"
+            ),
+        ));
+    }
     let yaml: RosMapYaml = serde_norway::from_str(text).map_err(|e| {
         let place = e.location().map_or_else(
             || "whole file".to_string(),
@@ -305,8 +357,8 @@ mod tests {
 
     #[test]
     fn the_pair_reads_back_as_the_occupied_cells() {
-        let dir = std::env::temp_dir().join(format!("covmap-ros-map-{}", std::process::id()));
-        std::fs::create_dir_all(&dir).unwrap();
+        let tmp = tempfile::tempdir().unwrap();
+        let dir = tmp.path();
         let grid = Grid::new([-1.0, 2.0], 0.5, 4, 6).unwrap();
         let occupancy: Vec<i8> = (0..24).map(|i| [100, 0, -1, 70, 30, 64][i % 6]).collect();
         for mode in [RosMapMode::Trinary, RosMapMode::Scale] {
@@ -335,15 +387,14 @@ mod tests {
         assert!(write_ros_map(&yaml, &grid, &[101; 24], RosMapMode::Trinary, 0.65, 0.2).is_err());
         assert!(write_ros_map(&yaml, &grid, &occupancy, RosMapMode::Trinary, 0.2, 0.65).is_err());
         assert!(!yaml.exists() && !yaml.with_extension("pgm").exists());
-        std::fs::remove_dir_all(&dir).unwrap();
     }
 
     /// A YAML path ending in `.pgm` would be its own image: it is refused,
     /// naming the path, and nothing is written.
     #[test]
     fn a_yaml_path_ending_in_pgm_is_refused_before_anything_is_written() {
-        let dir = std::env::temp_dir().join(format!("covmap-ros-self-{}", std::process::id()));
-        std::fs::create_dir_all(&dir).unwrap();
+        let tmp = tempfile::tempdir().unwrap();
+        let dir = tmp.path();
         let grid = Grid::new([0.0, 0.0], 0.5, 2, 3).unwrap();
         let occupancy = [100, 0, 0, 0, 0, 100];
         for name in ["x.pgm", "x.PGM"] {
@@ -355,31 +406,30 @@ mod tests {
                 err.to_string().contains(&path.display().to_string()),
                 "{err}"
             );
-            assert_eq!(std::fs::read_dir(&dir).unwrap().count(), 0, "{name}");
+            assert_eq!(std::fs::read_dir(dir).unwrap().count(), 0, "{name}");
         }
-        std::fs::remove_dir_all(&dir).unwrap();
     }
 
     /// A YAML path that is a directory is refused before the PGM is
     /// written: no new image beside it, the old pair unchanged.
     #[test]
     fn a_yaml_path_that_is_a_directory_leaves_no_new_image() {
-        let dir = std::env::temp_dir().join(format!("covmap-ros-dir-{}", std::process::id()));
+        let tmp = tempfile::tempdir().unwrap();
+        let dir = tmp.path();
         let yaml = dir.join("map.yaml");
         std::fs::create_dir_all(&yaml).unwrap();
         let grid = Grid::new([0.0, 0.0], 0.5, 2, 3).unwrap();
         let occupancy = [100, 0, 0, 0, 0, 100];
         let write = || write_ros_map(&yaml, &grid, &occupancy, RosMapMode::Trinary, 0.65, 0.196);
         assert!(write().is_err());
-        assert_eq!(std::fs::read_dir(&dir).unwrap().count(), 1);
+        assert_eq!(std::fs::read_dir(dir).unwrap().count(), 1);
         std::fs::write(yaml.with_extension("pgm"), b"old image").unwrap();
         assert!(write().is_err());
         assert_eq!(
             std::fs::read(yaml.with_extension("pgm")).unwrap(),
             b"old image"
         );
-        assert_eq!(std::fs::read_dir(&dir).unwrap().count(), 2);
-        std::fs::remove_dir_all(&dir).unwrap();
+        assert_eq!(std::fs::read_dir(dir).unwrap().count(), 2);
     }
 
     /// A bad `occupied_thresh` is reported as itself, not as the
@@ -387,7 +437,8 @@ mod tests {
     /// `free_thresh`.
     #[test]
     fn a_bad_occupied_thresh_is_named_as_itself() {
-        let dir = std::env::temp_dir().join(format!("covmap-ros-thresh-{}", std::process::id()));
+        let tmp = tempfile::tempdir().unwrap();
+        let dir = tmp.path();
         let yaml = dir.join("map.yaml");
         let grid = Grid::new([0.0, 0.0], 0.5, 2, 3).unwrap();
         let occupancy = [100, 0, 0, 0, 0, 100];
@@ -410,7 +461,45 @@ mod tests {
         }
         assert_eq!(name(0.2, 0.65), "free_thresh");
         assert_eq!(name(0.5, 0.5), "free_thresh");
-        assert!(!dir.exists());
+        assert_eq!(
+            std::fs::read_dir(dir).unwrap().count(),
+            0,
+            "a refused write left a file"
+        );
+    }
+
+    /// A YAML nested deeply under a key map_server ignores is refused before
+    /// it is parsed (it would take seconds), with a message naming the
+    /// bound; as many collections as the bound allows are parsed.
+    #[test]
+    fn deeply_nested_yaml_is_refused_before_it_is_parsed() {
+        let path = Path::new("map.yaml");
+        let valid = "image: map.pgm\nresolution: 0.05\norigin: [0.0, 0.0, 0.0]\n";
+        let deep = format!(
+            "ignored: {}{}\n{valid}",
+            "[".repeat(100_000),
+            "]".repeat(100_000)
+        );
+        let started = std::time::Instant::now();
+        let err = parse_ros_map_yaml(&deep, path).unwrap_err().to_string();
+        assert!(
+            err.contains("100000 flow collections") && err.contains("64"),
+            "{err}"
+        );
+        assert!(
+            started.elapsed().as_secs_f64() < 1.0,
+            "{:?}",
+            started.elapsed()
+        );
+        // The origin holds something; the innermost `[]` of the nest nothing.
+        let n = MAX_FLOW_COLLECTIONS;
+        let nested = format!("ignored: {}{}\n{valid}", "[".repeat(n), "]".repeat(n));
+        assert_eq!(parse_ros_map_yaml(&nested, path).unwrap().0, "map.pgm");
+        let empty = format!("a: []\nb: {{}}\n{nested}");
+        assert_eq!(parse_ros_map_yaml(&empty, path).unwrap().0, "map.pgm");
+        let one_more = format!("other: [1]\n{nested}");
+        assert!(parse_ros_map_yaml(&one_more, path).is_err());
+        assert_eq!(flow_collections("a: [[1], [], {}, \"[x\"]"), 3);
     }
 
     /// The YAML names its image so that YAML reads the name back whole,
@@ -418,8 +507,8 @@ mod tests {
     /// comment, `: ` a mapping, `- ` or `[` a sequence).
     #[test]
     fn image_names_that_plain_yaml_would_misread_are_read_back() {
-        let dir = std::env::temp_dir().join(format!("covmap-ros-names-{}", std::process::id()));
-        std::fs::create_dir_all(&dir).unwrap();
+        let tmp = tempfile::tempdir().unwrap();
+        let dir = tmp.path();
         let grid = Grid::new([0.0, 0.0], 0.5, 2, 3).unwrap();
         let occupancy = [100, 0, 0, 0, 0, 100];
         for name in ["map #1", "a: b", "- x", "[x]", "'q", "%d", "0x10", "~"] {
@@ -435,6 +524,5 @@ mod tests {
             text.starts_with("image: '- x.pgm'\nmode: trinary\n"),
             "{text}"
         );
-        std::fs::remove_dir_all(&dir).unwrap();
     }
 }

@@ -100,20 +100,96 @@ pub(crate) fn parse_error(
     }
 }
 
+/// Whether covmap may write `path`: nothing is there yet, or a regular file
+/// is (which a write replaces whole). Anything else is refused, since the
+/// rename that puts a new file in place would replace it by a regular file:
+/// a directory, a device (`/dev/null`), a FIFO, a socket, and a symlink,
+/// whatever it leads to. A symlink is not followed: covmap replaces only the
+/// files it sees at the paths it is given (following a link would replace a
+/// file anywhere the link leads, replacing the link would cut it), so write
+/// to the path the link leads to instead. A path that names no file
+/// (`dir/..`) is refused too.
+///
+/// # Errors
+/// [`SimError::Io`] naming the path and what is there (an `InvalidInput`
+/// error), or the error of reading the path's metadata.
+pub fn check_write_target(path: &Path) -> Result<()> {
+    let refuse = |reason: String| SimError::Io {
+        path: path.to_path_buf(),
+        source: std::io::Error::new(std::io::ErrorKind::InvalidInput, reason),
+    };
+    if path.file_name().is_none() {
+        return Err(refuse("the path names no file".into()));
+    }
+    let metadata = match std::fs::symlink_metadata(path) {
+        Ok(m) => m,
+        Err(e) if e.kind() == std::io::ErrorKind::NotFound => return Ok(()),
+        Err(source) => {
+            return Err(SimError::Io {
+                path: path.to_path_buf(),
+                source,
+            });
+        }
+    };
+    let kind = metadata.file_type();
+    if kind.is_file() {
+        return Ok(());
+    }
+    Err(refuse(format!(
+        "the path is {}, not a regular file: covmap replaces only regular files{}",
+        file_kind(&kind),
+        if kind.is_symlink() {
+            " (a symlink is not followed: write to the file it leads to)"
+        } else {
+            ""
+        }
+    )))
+}
+
+/// What a file type is, for a message: "a directory", "a FIFO"...
+fn file_kind(kind: &std::fs::FileType) -> &'static str {
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::FileTypeExt;
+        if kind.is_fifo() {
+            return "a FIFO";
+        }
+        if kind.is_char_device() {
+            return "a character device";
+        }
+        if kind.is_block_device() {
+            return "a block device";
+        }
+        if kind.is_socket() {
+            return "a socket";
+        }
+    }
+    if kind.is_dir() {
+        "a directory"
+    } else if kind.is_symlink() {
+        "a symlink"
+    } else {
+        "not a regular file"
+    }
+}
+
 /// Write `bytes` to `path` atomically: a temporary file in the same directory,
 /// then a rename, so a reader never sees half a file. Every call creates a
 /// temporary file of its own, with a short name (so that the longest valid
 /// file name still has room) that no existing file has: writes of one path
 /// from several threads or processes at once each land whole (the last
 /// rename wins), and a temporary file left over by a crash is stepped
-/// around, never reused. A path that is a directory is refused before
-/// anything is written.
+/// around, never reused. A path that is not a regular file or absent (a
+/// directory, a device, a FIFO, a symlink: see [`check_write_target`]) is
+/// refused before anything is written, and checked again just before the
+/// rename.
 pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<()> {
     write_atomic_all(&[(path, bytes)])
 }
 
 /// Write each `(path, bytes)` of `files` as [`write_atomic`] does, all or
-/// none as far as the file system allows: every file is written whole to a
+/// none as far as the file system allows: every path is checked first
+/// ([`check_write_target`]), every file is written whole to a
 /// temporary file beside its path first, and only when all are complete are
 /// they renamed into place, in order. If a rename fails, the files already
 /// renamed are put back as they were (the old file kept under a temporary
@@ -133,18 +209,7 @@ fn write_atomic_all_with(
         source,
     };
     for &(path, _) in files {
-        let refuse = |reason| {
-            io(
-                path,
-                std::io::Error::new(std::io::ErrorKind::InvalidInput, reason),
-            )
-        };
-        if path.file_name().is_none() {
-            return Err(refuse("the path names no file"));
-        }
-        if std::fs::symlink_metadata(path).is_ok_and(|m| m.is_dir()) {
-            return Err(refuse("the path is a directory"));
-        }
+        check_write_target(path)?;
     }
     let remove = |paths: &[PathBuf]| {
         for p in paths {
@@ -167,6 +232,12 @@ fn write_atomic_all_with(
         // The last file needs no way back: nothing after it can fail.
         let last = i + 1 == files.len();
         let step = (|| {
+            // Again: something may have been put there while the files were
+            // written.
+            check_write_target(path).map_err(|e| match e {
+                SimError::Io { source, .. } => source,
+                other => std::io::Error::other(other.to_string()),
+            })?;
             let old = if last { None } else { keep_old(path)? };
             if let Err(e) = rename(tmp, path) {
                 remove(old.as_slice());
@@ -288,8 +359,10 @@ mod tests {
     /// are refused before they are opened, with an error naming the path.
     #[test]
     fn files_that_are_not_regular_are_refused_before_they_are_opened() {
-        let dir = std::env::temp_dir();
-        for path in [Path::new("/dev/zero"), dir.as_path()] {
+        let tmp = tempfile::tempdir().unwrap();
+        let dir = tmp.path();
+        // /dev/zero is only read.
+        for path in [Path::new("/dev/zero"), dir] {
             if !path.exists() {
                 continue;
             }
@@ -297,22 +370,21 @@ mod tests {
             assert!(err.contains("not a regular file"), "{err}");
             assert!(err.contains(&path.display().to_string()), "{err}");
         }
-        let file = dir.join(format!("covmap-sim-read-{}.txt", std::process::id()));
+        let file = dir.join("read.txt");
         std::fs::write(&file, b"twelve bytes").unwrap();
         assert_eq!(read_bytes(&file).unwrap(), b"twelve bytes");
-        std::fs::remove_file(&file).unwrap();
     }
 
     /// A file up to the limit is read, one byte over it refused before it
     /// is read, naming the limit.
     #[test]
     fn a_file_over_the_limit_is_refused() {
-        let file = std::env::temp_dir().join(format!("covmap-sim-limit-{}", std::process::id()));
+        let tmp = tempfile::tempdir().unwrap();
+        let file = tmp.path().join("limit");
         std::fs::write(&file, b"twelve bytes").unwrap();
         assert_eq!(read_bytes_at_most(&file, 12).unwrap(), b"twelve bytes");
         let err = read_bytes_at_most(&file, 11).unwrap_err().to_string();
         assert!(err.contains("limit of 11 bytes"), "{err}");
-        std::fs::remove_file(&file).unwrap();
     }
 
     /// Every map file the core writes is within what a reader of map
@@ -330,9 +402,8 @@ mod tests {
     /// write succeeds and the file holds one of them whole.
     #[test]
     fn concurrent_writes_of_one_path_each_land_whole() {
-        let dir =
-            std::env::temp_dir().join(format!("covmap-sim-write-atomic-{}", std::process::id()));
-        std::fs::create_dir_all(&dir).unwrap();
+        let tmp = tempfile::tempdir().unwrap();
+        let dir = tmp.path();
         let path = dir.join("out.bin");
         for _ in 0..5 {
             std::thread::scope(|s| {
@@ -355,7 +426,7 @@ mod tests {
                 "a file mixed from two writes"
             );
         }
-        let left: Vec<_> = std::fs::read_dir(&dir)
+        let left: Vec<_> = std::fs::read_dir(dir)
             .unwrap()
             .map(|e| e.unwrap().file_name())
             .collect();
@@ -364,7 +435,6 @@ mod tests {
             [std::ffi::OsString::from("out.bin")],
             "temporary files left behind"
         );
-        std::fs::remove_dir_all(&dir).unwrap();
     }
 
     /// The longest valid file name can be written (the temporary name does
@@ -372,9 +442,8 @@ mod tests {
     /// left alone.
     #[test]
     fn long_names_and_leftovers_do_not_stop_a_write() {
-        let dir =
-            std::env::temp_dir().join(format!("covmap-sim-write-leftover-{}", std::process::id()));
-        std::fs::create_dir_all(&dir).unwrap();
+        let tmp = tempfile::tempdir().unwrap();
+        let dir = tmp.path();
         let long = dir.join("a".repeat(255));
         write_atomic(&long, b"long").unwrap();
         assert_eq!(std::fs::read(&long).unwrap(), b"long");
@@ -383,16 +452,79 @@ mod tests {
         write_atomic(&dir.join("out.json"), b"{}").unwrap();
         assert_eq!(std::fs::read(dir.join("out.json")).unwrap(), b"{}");
         assert_eq!(std::fs::read(&stale).unwrap(), b"left by a crash");
-        std::fs::remove_dir_all(&dir).unwrap();
+    }
+
+    /// A FIFO, a socket, a symlink (to a regular file or to nothing) or a
+    /// directory at a path is refused, naming what it is, and left as it
+    /// was; nothing is written beside it, not even the other file of a pair.
+    #[cfg(unix)]
+    #[test]
+    fn only_regular_files_are_replaced() {
+        use std::os::unix::fs::FileTypeExt;
+        let tmp = tempfile::tempdir().unwrap();
+        let dir = tmp.path();
+        let fifo = dir.join("fifo.png");
+        let status = std::process::Command::new("mkfifo")
+            .arg(&fifo)
+            .status()
+            .unwrap();
+        assert!(status.success());
+        let socket = dir.join("socket.png");
+        let _listener = std::os::unix::net::UnixListener::bind(&socket).unwrap();
+        let target = dir.join("target.png");
+        std::fs::write(&target, b"the link's file").unwrap();
+        let link = dir.join("link.png");
+        std::os::unix::fs::symlink(&target, &link).unwrap();
+        let dangling = dir.join("dangling.png");
+        std::os::unix::fs::symlink(dir.join("nothing"), &dangling).unwrap();
+        let sub = dir.join("sub.png");
+        std::fs::create_dir(&sub).unwrap();
+        let other = dir.join("other.pgm");
+        for (path, kind) in [
+            (&fifo, "a FIFO"),
+            (&socket, "a socket"),
+            (&link, "a symlink"),
+            (&dangling, "a symlink"),
+            (&sub, "a directory"),
+        ] {
+            let err = write_atomic(path, b"new").unwrap_err().to_string();
+            assert!(
+                err.contains(kind) && err.contains("not a regular file"),
+                "{err}"
+            );
+            assert!(err.contains(&path.display().to_string()), "{err}");
+            let err = write_atomic_all(&[(&other, b"new"), (path, b"new")]).unwrap_err();
+            assert!(err.to_string().contains(kind), "{err}");
+            assert!(!other.exists(), "the other file of the pair was written");
+        }
+        assert!(
+            std::fs::symlink_metadata(&fifo)
+                .unwrap()
+                .file_type()
+                .is_fifo()
+        );
+        assert!(
+            std::fs::symlink_metadata(&socket)
+                .unwrap()
+                .file_type()
+                .is_socket()
+        );
+        assert_eq!(std::fs::read_link(&link).unwrap(), target);
+        assert_eq!(std::fs::read(&target).unwrap(), b"the link's file");
+        assert!(sub.is_dir());
+        // A regular file, and a new one, are written.
+        write_atomic(&target, b"replaced").unwrap();
+        assert_eq!(std::fs::read(&target).unwrap(), b"replaced");
+        write_atomic(&other, b"new").unwrap();
+        assert_eq!(std::fs::read(&other).unwrap(), b"new");
     }
 
     /// A pair whose second file cannot be put in place leaves the first as
     /// it was (or absent, if it was), and no temporary file behind.
     #[test]
     fn a_pair_whose_second_rename_fails_leaves_both_files_as_they_were() {
-        let dir =
-            std::env::temp_dir().join(format!("covmap-sim-write-pair-{}", std::process::id()));
-        std::fs::create_dir_all(&dir).unwrap();
+        let tmp = tempfile::tempdir().unwrap();
+        let dir = tmp.path();
         let (first, second) = (dir.join("map.pgm"), dir.join("map.yaml"));
         let fail_second = |from: &Path, to: &Path| {
             if to.extension().is_some_and(|e| e == "yaml") {
@@ -403,7 +535,7 @@ mod tests {
         };
         let files: [(&Path, &[u8]); 2] = [(&first, b"new image"), (&second, b"new yaml")];
         let names = || {
-            let mut n: Vec<_> = std::fs::read_dir(&dir)
+            let mut n: Vec<_> = std::fs::read_dir(dir)
                 .unwrap()
                 .map(|e| e.unwrap().file_name().into_string().unwrap())
                 .collect();
@@ -430,6 +562,5 @@ mod tests {
         assert!(err.to_string().contains("is a directory"), "{err}");
         assert_eq!(std::fs::read(&first).unwrap(), b"new image");
         assert_eq!(names(), ["map.pgm", "map.yaml"]);
-        std::fs::remove_dir_all(&dir).unwrap();
     }
 }

@@ -8,4 +8,4 @@ pub mod carmen;
 pub mod sonar_text;
 mod source;
 
-pub use source::MAX_LINE_BYTES;
+pub use source::{MAX_GZIP_RATIO, MAX_LINE_BYTES};

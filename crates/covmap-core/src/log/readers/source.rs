@@ -1,9 +1,18 @@
 //! Text files line by line, plain or gzip (told apart by gzip's magic
 //! bytes, not by the file's name), each error naming the file and the line.
+//!
+//! A plain file's work is bounded by its size. A gzip stream's is bounded
+//! by what it holds too: it may inflate to at most [`MAX_GZIP_RATIO`] times
+//! the compressed bytes read so far, so that a small file of a few
+//! compressed gigabytes of one repeated line (deflate inflates a byte to up
+//! to 1032) is refused after a fraction of a second instead of being read
+//! for minutes.
 
+use std::cell::Cell;
 use std::fs::File;
 use std::io::{BufRead, BufReader, Read};
 use std::path::Path;
+use std::rc::Rc;
 
 use flate2::read::MultiGzDecoder;
 
@@ -13,6 +22,15 @@ use crate::error::{CovmapError, Result};
 /// (a CARMEN line of 1000 beams is some 10 kB), and a bound on what a file
 /// without line breaks can make the reader allocate.
 pub const MAX_LINE_BYTES: usize = 1 << 20;
+
+/// The most bytes a gzip log inflates to per compressed byte read: 100.
+/// Real logs of text numbers inflate 4 to 5 times (the CARMEN logs of the
+/// shared data: 3.9 to 4.6, `python/tools/gzip_ratios.py`), a stream of one
+/// repeated line over 300 times.
+/// The check is made as the stream is read, against the compressed bytes
+/// read so far (in blocks of 8 KiB, so that a file's first 800 kB inflate
+/// whatever their ratio).
+pub const MAX_GZIP_RATIO: u64 = 100;
 
 /// The lines of one text file, numbered from 1.
 pub(crate) struct Lines {
@@ -43,10 +61,19 @@ pub(crate) fn open(path: &Path) -> Result<Lines> {
 /// The lines `reader` yields, gunzipped if they start with gzip's magic
 /// bytes; `name` is the file's name in errors.
 pub(crate) fn lines<R: Read + 'static>(reader: R, name: &str) -> Result<Lines> {
-    let mut buffered = BufReader::new(reader);
+    let compressed = Rc::new(Cell::new(0u64));
+    let counted = Counted {
+        inner: reader,
+        count: Rc::clone(&compressed),
+    };
+    let mut buffered = BufReader::new(counted);
     let head = buffered.fill_buf().map_err(|e| CovmapError::io(name, &e))?;
     let reader: Box<dyn BufRead> = if head.starts_with(&[0x1f, 0x8b]) {
-        Box::new(BufReader::new(MultiGzDecoder::new(buffered)))
+        Box::new(BufReader::new(Bounded {
+            inner: MultiGzDecoder::new(buffered),
+            compressed,
+            inflated: 0,
+        }))
     } else {
         Box::new(buffered)
     };
@@ -56,6 +83,47 @@ pub(crate) fn lines<R: Read + 'static>(reader: R, name: &str) -> Result<Lines> {
         line: 0,
         buf: Vec::new(),
     })
+}
+
+/// A reader that counts the bytes read from it.
+struct Counted<R> {
+    inner: R,
+    count: Rc<Cell<u64>>,
+}
+
+impl<R: Read> Read for Counted<R> {
+    fn read(&mut self, buf: &mut [u8]) -> std::io::Result<usize> {
+        let n = self.inner.read(buf)?;
+        self.count.set(self.count.get().saturating_add(n as u64));
+        Ok(n)
+    }
+}
+
+/// A gzip stream's inflated bytes, refused past [`MAX_GZIP_RATIO`] times
+/// the compressed bytes read so far.
+struct Bounded<R> {
+    inner: R,
+    compressed: Rc<Cell<u64>>,
+    inflated: u64,
+}
+
+impl<R: Read> Read for Bounded<R> {
+    fn read(&mut self, buf: &mut [u8]) -> std::io::Result<usize> {
+        let n = self.inner.read(buf)?;
+        self.inflated = self.inflated.saturating_add(n as u64);
+        let compressed = self.compressed.get();
+        if self.inflated > compressed.saturating_mul(MAX_GZIP_RATIO) {
+            return Err(std::io::Error::new(
+                std::io::ErrorKind::InvalidData,
+                format!(
+                    "the gzip stream inflates {} bytes from {compressed}, more than {MAX_GZIP_RATIO} \
+                     times (a log inflates some 5 times): not a log covmap reads",
+                    self.inflated
+                ),
+            ));
+        }
+        Ok(n)
+    }
 }
 
 impl Lines {
@@ -222,6 +290,48 @@ mod tests {
             matches!(&err, CovmapError::Parse { file, line, .. } if file == "cut.gz" && *line > 1),
             "{err}"
         );
+    }
+
+    /// A small gzip file of one line repeated, inflating over 1000 times, is
+    /// refused early, naming the ratio; a real log's ratio passes.
+    #[test]
+    fn a_gzip_stream_inflating_beyond_the_ratio_is_refused_early() {
+        let mut e = flate2::write::GzEncoder::new(Vec::new(), flate2::Compression::best());
+        let comment = [b'#'; 1000];
+        for _ in 0..20_000 {
+            e.write_all(&comment).unwrap();
+            e.write_all(b"\n").unwrap();
+        }
+        let bomb = e.finish().unwrap();
+        assert!(
+            bomb.len() * 200 < 20_020_000,
+            "{} bytes: no bomb",
+            bomb.len()
+        );
+        let mut reader = lines(std::io::Cursor::new(bomb), "bomb.gz").unwrap();
+        let mut read = 0;
+        let err = loop {
+            match reader.next_line() {
+                Ok(Some(_)) => read += 1,
+                Ok(None) => panic!("the whole bomb was read"),
+                Err(e) => break e,
+            }
+        };
+        assert!(err.to_string().contains("more than 100 times"), "{err}");
+        // Its first 8 KiB block was read, and what it inflates to.
+        assert!(read < 2_000, "{read} lines read before the refusal");
+        let numbers: Vec<u8> = (0..20_000u32)
+            .flat_map(|i| {
+                format!(
+                    "FLASER 3 {}.{} 0.5 1 0 0 0 0 0 0 {i} h {i}\n",
+                    i % 7,
+                    i % 13
+                )
+                .into_bytes()
+            })
+            .collect();
+        let read = all(lines(std::io::Cursor::new(gzip(&numbers)), "log.gz").unwrap()).unwrap();
+        assert_eq!(read.len(), 20_000);
     }
 
     #[test]

@@ -1,7 +1,7 @@
 //! Tests of the image and map_server loaders.
 
 use super::*;
-use crate::load::map_server::parse_ros_yaml;
+use crate::load::map_server::parse_ros_map_yaml;
 use covmap_core::Grid;
 use image::codecs::png::PngEncoder;
 use image::{ExtendedColorType, ImageEncoder};
@@ -225,21 +225,22 @@ fn png_rgb_and_yaml() {
     }
 
     let yaml = "image: map.png\nresolution: 0.05 # metres\norigin: [1.0, -2.0, 0.0]\nnegate: 0\noccupied_thresh: 0.65\nfree_thresh: 0.196\n";
-    let (image, opts) = parse_ros_yaml(yaml, Path::new("m.yaml")).unwrap();
+    let (image, opts) = parse_ros_map_yaml(yaml, Path::new("m.yaml")).unwrap();
     assert_eq!(image, "map.png");
     assert_eq!(
         (opts.resolution_m, opts.origin_m, opts.yaw_rad, opts.negate),
         (0.05, [1.0, -2.0], 0.0, false)
     );
-    let e = parse_ros_yaml(
+    let e = parse_ros_map_yaml(
         "image: m.png\norigin: [1, 2]\nresolution: 1\n",
         Path::new("m.yaml"),
     )
     .unwrap_err();
     assert!(e.to_string().starts_with("m.yaml, line 2"), "{e}");
-    let e = parse_ros_yaml("image: m.png\norigin: [1, 2, 0]\n", Path::new("m.yaml")).unwrap_err();
+    let e =
+        parse_ros_map_yaml("image: m.png\norigin: [1, 2, 0]\n", Path::new("m.yaml")).unwrap_err();
     assert!(e.to_string().contains("missing key `resolution`"), "{e}");
-    let e = parse_ros_yaml("image: m.png\nresolution: abc\n", Path::new("m.yaml")).unwrap_err();
+    let e = parse_ros_map_yaml("image: m.png\nresolution: abc\n", Path::new("m.yaml")).unwrap_err();
     assert!(e.to_string().starts_with("m.yaml, line 2"), "{e}");
 }
 
@@ -320,7 +321,7 @@ fn yaml_values_map_server_refuses_name_their_line() {
         ),
         ("free_thresh: -0.1\n", "key `free_thresh`", "at least 0"),
     ] {
-        let e = parse_ros_yaml(&format!("{base}{extra}"), Path::new("m.yaml")).unwrap_err();
+        let e = parse_ros_map_yaml(&format!("{base}{extra}"), Path::new("m.yaml")).unwrap_err();
         let text = e.to_string();
         assert!(
             text.starts_with(&format!("m.yaml, {place}")),
@@ -329,7 +330,7 @@ fn yaml_values_map_server_refuses_name_their_line() {
         assert!(text.contains(says), "{extra}: {text}");
     }
     // Quoted values, flow mappings and unknown keys read as map_server reads them.
-    let (image, o) = parse_ros_yaml(
+    let (image, o) = parse_ros_map_yaml(
         "{image: \"a b.pgm\", resolution: 0.1, origin: [1, 2, 0.5], negate: true, unknown: 3}",
         Path::new("m.yaml"),
     )
@@ -338,7 +339,7 @@ fn yaml_values_map_server_refuses_name_their_line() {
         (image.as_str(), o.origin_m, o.yaw_rad, o.negate),
         ("a b.pgm", [1.0, 2.0], 0.5, true)
     );
-    let e = parse_ros_yaml("- a list\n", Path::new("m.yaml")).unwrap_err();
+    let e = parse_ros_map_yaml("- a list\n", Path::new("m.yaml")).unwrap_err();
     assert!(e.to_string().starts_with("m.yaml, line 1"), "{e}");
 }
 
