@@ -18,12 +18,22 @@
 //! make them certain or right.
 //!
 //! # The start
-//! Without a given start, the robot starts at the centre of a cell drawn
-//! uniformly from the cells of the largest connected free region whose
-//! centre keeps twice the robot's radius from every obstacle (a clearance
-//! well above the radius: room to turn and scan), facing a heading drawn
-//! uniformly from `[-pi, pi)`; both draws come from stream
+//! Without a given start, the robot starts in the *start region*: the
+//! largest connected region of cells where its disc fits ([`free_regions`])
+//! among those the world encloses (no cell of the region on the grid's
+//! border: a free region that reaches the margin around the world is its
+//! outside, as around a building, or leaks into it through a gap), or the
+//! largest region of all where the world encloses none (an open world, a
+//! single obstacle). It starts at the centre of a cell drawn uniformly from
+//! the cells of the start region whose centre keeps twice the robot's
+//! radius from every obstacle (a clearance well above the radius: room to
+//! turn and scan; every cell of the region where none does), facing a
+//! heading drawn uniformly from `[-pi, pi)`; both draws come from stream
 //! [`START_STREAM`] of the run's seed.
+//!
+//! On a world read from an occupancy image whose unknown pixels are
+//! obstacles ([`crate::load::image`]) the start region is thus the largest
+//! free region that the image's known free pixels enclose.
 
 use covmap_core::exploration::dilate;
 use covmap_core::planner::shortest_paths;
@@ -87,6 +97,27 @@ pub fn evaluation_cells(
         .collect())
 }
 
+/// The cells of the start region (see the module documentation), in
+/// increasing index order, given the [`clearances`] of the robot on `grid`:
+/// empty where the robot fits nowhere.
+pub fn start_region(grid: &Grid, clearance_m: &[f64]) -> Vec<usize> {
+    let free: Vec<bool> = clearance_m.iter().map(|&c| c >= 0.0).collect();
+    let regions = free_regions(grid, &free);
+    let largest = |enclosed: bool| {
+        regions
+            .iter()
+            .filter(|r| !enclosed || !touches_border(grid, r))
+            .fold(None::<&Vec<usize>>, |best, r| match best {
+                Some(b) if b.len() >= r.len() => Some(b),
+                _ => Some(r),
+            })
+    };
+    largest(true)
+        .or_else(|| largest(false))
+        .cloned()
+        .unwrap_or_default()
+}
+
 /// A start for a run seeded `seed` (see the module documentation).
 ///
 /// # Errors
@@ -97,15 +128,14 @@ pub fn choose_start(
     robot_radius_m: f64,
     seed: u64,
 ) -> Result<Pose> {
-    let free: Vec<bool> = clearance_m.iter().map(|&c| c >= 0.0).collect();
-    let largest = largest_region(grid, &free);
-    let mut roomy: Vec<usize> = largest
+    let region = start_region(grid, clearance_m);
+    let mut roomy: Vec<usize> = region
         .iter()
         .copied()
         .filter(|&i| clearance_m[i] >= robot_radius_m)
         .collect();
     if roomy.is_empty() {
-        roomy = largest;
+        roomy = region;
     }
     if roomy.is_empty() {
         let [x, y, ..] = grid.bounds_m();
@@ -163,13 +193,13 @@ fn cell_of(grid: &Grid, pose: &Pose) -> Result<covmap_core::Cell> {
     })
 }
 
-/// The cells of the largest 8-connected region of `free` cells (diagonal
-/// steps need both side cells free), in increasing index order; ties to
-/// the region with the lowest first cell.
-fn largest_region(grid: &Grid, free: &[bool]) -> Vec<usize> {
+/// The 8-connected regions of `free` cells (a diagonal step needs both
+/// side cells free, as the planner's paths do), each in increasing index
+/// order, the regions in the order of their first cell.
+pub fn free_regions(grid: &Grid, free: &[bool]) -> Vec<Vec<usize>> {
     let (rows, cols) = (grid.rows() as i64, grid.cols() as i64);
     let mut seen = vec![false; free.len()];
-    let mut best: Vec<usize> = Vec::new();
+    let mut regions = Vec::new();
     for first in 0..free.len() {
         if !free[first] || seen[first] {
             continue;
@@ -205,17 +235,54 @@ fn largest_region(grid: &Grid, free: &[bool]) -> Vec<usize> {
                 }
             }
         }
-        if region.len() > best.len() {
-            best = region;
-        }
+        region.sort_unstable();
+        regions.push(region);
     }
-    best.sort_unstable();
-    best
+    regions
+}
+
+/// Whether a cell of `region` lies on the grid's border (first or last row
+/// or column).
+fn touches_border(grid: &Grid, region: &[usize]) -> bool {
+    let (rows, cols) = grid.shape();
+    region.iter().any(|&i| {
+        let (row, col) = (i / cols, i % cols);
+        row == 0 || col == 0 || row + 1 == rows || col + 1 == cols
+    })
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// A small closed room beside a large open yard: the start lies in
+    /// the room (the region the world encloses), not in the larger region
+    /// around it that reaches the grid's border; a world that encloses
+    /// nothing starts in its largest region.
+    #[test]
+    fn the_start_lies_in_the_region_the_world_encloses() {
+        let mut walls = vec![
+            vec![[0.0, 0.0], [3.0, 0.0], [3.0, 0.1], [0.0, 0.1]],
+            vec![[0.0, 2.9], [3.0, 2.9], [3.0, 3.0], [0.0, 3.0]],
+            vec![[0.0, 0.0], [0.1, 0.0], [0.1, 3.0], [0.0, 3.0]],
+            vec![[2.9, 0.0], [3.0, 0.0], [3.0, 3.0], [2.9, 3.0]],
+        ];
+        // A post far away stretches the grid: the yard around the room is
+        // far larger than the room.
+        walls.push(vec![[20.0, 20.0], [20.1, 20.0], [20.1, 20.1], [20.0, 20.1]]);
+        let world = World::from_vertex_lists(walls.clone(), crate::Material::Wall).unwrap();
+        let grid = Grid::covering(-0.5, -0.5, 20.6, 20.6, 0.1).unwrap();
+        let robot = Robot::new(0.25).unwrap();
+        let clearance = clearances(&world, &grid, &robot);
+        for seed in 0..5 {
+            let start = choose_start(&grid, &clearance, 0.25, seed).unwrap();
+            assert!(start.x_m > 0.1 && start.x_m < 2.9 && start.y_m > 0.1 && start.y_m < 2.9);
+        }
+        let open = World::from_vertex_lists(walls[..3].to_vec(), crate::Material::Wall).unwrap();
+        let clearance = clearances(&open, &grid, &robot);
+        let region = start_region(&grid, &clearance);
+        assert!(region.len() > 40_000, "{}", region.len());
+    }
 
     #[test]
     fn the_start_lies_in_the_largest_region_with_room() {
