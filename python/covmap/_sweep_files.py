@@ -108,8 +108,8 @@ def read_specs(path: Path) -> list[dict[str, Any]]:
     a bare list of specs). A run (or the defaults) may give ``seeds``, a
     list of seeds, in place of ``seed``: one spec each, in that order.
     Strategies are written as names or tables (``strategy = { name =
-    "counting", n = 50, discount_beyond_m = 2.0 }``), worlds as built-in
-    names. A malformed file raises :class:`~covmap.FileFormatError` naming
+    "counting", n = 50, discount_beyond_m = 2.0 }``), worlds as building
+    names (built-in, ``generated:SEED[:AREA]``, a world file). A malformed file raises :class:`~covmap.FileFormatError` naming
     the file and the place; the specs themselves are checked by
     :func:`sweep`.
 

@@ -144,9 +144,18 @@ def test_explore_command_writes_its_pictures(tmp_path: Path) -> None:
     assert "at a limit" in result.stdout
     assert "step 4" in result.stderr or "4 step" in result.stderr  # the progress line or bar
     names = sorted(p.name for p in tmp_path.iterdir())
-    assert names == ["corridor-coverage-entropy.png", "corridor-coverage-map.png", "corridor-coverage.gif"]
+    assert names == [
+        "corridor-coverage-entropy.png",
+        "corridor-coverage-map.png",
+        "corridor-coverage-trajectory.csv",
+        "corridor-coverage.gif",
+        "corridor-coverage.npz",
+        "corridor-coverage.pgm",
+        "corridor-coverage.yaml",
+    ]
     for name in names[:2]:
         assert (tmp_path / name).read_bytes()[:8] == PNG_SIGNATURE
+    assert "frame" in result.stderr  # drawing the animation shows its progress
     from PIL import Image
 
     with Image.open(tmp_path / "corridor-coverage.gif") as gif:

@@ -40,6 +40,49 @@ fn extension(path: &std::path::Path) -> String {
         .unwrap_or_default()
 }
 
+/// A world from a file, by its extension (see `World.from_file`).
+pub(crate) fn load(
+    py: Python<'_>,
+    path: PathBuf,
+    wall_thickness_m: f64,
+    resolution: Option<f64>,
+    origin: Option<(f64, f64)>,
+) -> PyResult<World> {
+    let origin = origin.unwrap_or((0.0, 0.0));
+    let ext = extension(&path);
+    let image = matches!(ext.as_str(), "pgm" | "png");
+    if image && resolution.is_none() {
+        return Err(Exception::InvalidParameter.err(
+            py,
+            format!(
+                "{}: an occupancy image needs resolution= (metres per pixel)",
+                path.display()
+            ),
+        ));
+    }
+    let loaded = py.detach(|| match ext.as_str() {
+        "json" | "geojson" => World::from_geojson_file(&path),
+        "map" => World::from_aria_map_file(&path, wall_thickness_m),
+        "yaml" | "yml" => World::from_ros_map_yaml(&path),
+        "pgm" | "png" => {
+            let options = ImageOptions {
+                origin_m: [origin.0, origin.1],
+                ..ImageOptions::new(resolution.unwrap_or(f64::NAN))
+            };
+            World::from_image_file(&path, &options)
+        }
+        _ => Err(SimError::Parse {
+            path: path.clone(),
+            place: "file name".into(),
+            reason: format!(
+                "unknown extension {ext:?}: expected .json/.geojson (GeoJSON), .map (ARIA), \
+                     .yaml (ROS map_server) or .pgm/.png (occupancy image)"
+            ),
+        }),
+    });
+    loaded.or_raise(py)
+}
+
 #[pymethods]
 impl PyWorld {
     #[new]
@@ -161,6 +204,12 @@ impl PyWorld {
     ///   ``resolution`` metres per pixel, its lower-left corner at ``origin``
     ///   (default ``(0, 0)``); ``resolution`` is required.
     ///
+    /// In an image, the pixels that are not free (occupancy below the
+    /// YAML's ``free_thresh``, default 0.196) are obstacles: the occupied
+    /// ones and the unknown grey ones, so that a robot never drives in
+    /// space the map did not see; a map_server file in ``mode: scale``
+    /// makes obstacles of the occupied pixels only.
+    ///
     /// A malformed file raises ``FileFormatError`` (a ``ValueError``) naming
     /// the file and the place; a file that cannot be read raises
     /// ``FileIOError`` (an ``OSError``).
@@ -173,39 +222,7 @@ impl PyWorld {
         #[pyo3(from_py_with = crate::convert::arg)] resolution: Option<f64>,
         #[pyo3(from_py_with = crate::convert::arg)] origin: Option<(f64, f64)>,
     ) -> PyResult<Self> {
-        let origin = origin.unwrap_or((0.0, 0.0));
-        let ext = extension(&path);
-        let image = matches!(ext.as_str(), "pgm" | "png");
-        if image && resolution.is_none() {
-            return Err(Exception::InvalidParameter.err(
-                py,
-                format!(
-                    "{}: an occupancy image needs resolution= (metres per pixel)",
-                    path.display()
-                ),
-            ));
-        }
-        let loaded = py.detach(|| match ext.as_str() {
-            "json" | "geojson" => World::from_geojson_file(&path),
-            "map" => World::from_aria_map_file(&path, wall_thickness_m),
-            "yaml" | "yml" => World::from_ros_map_yaml(&path),
-            "pgm" | "png" => {
-                let options = ImageOptions {
-                    origin_m: [origin.0, origin.1],
-                    ..ImageOptions::new(resolution.unwrap_or(f64::NAN))
-                };
-                World::from_image_file(&path, &options)
-            }
-            _ => Err(SimError::Parse {
-                path: path.clone(),
-                place: "file name".into(),
-                reason: format!(
-                    "unknown extension {ext:?}: expected .json/.geojson (GeoJSON), .map (ARIA), \
-                     .yaml (ROS map_server) or .pgm/.png (occupancy image)"
-                ),
-            }),
-        });
-        loaded.map(Self).or_raise(py)
+        load(py, path, wall_thickness_m, resolution, origin).map(Self)
     }
 
     /// Pickle and copy support: rebuilt by ``World._from_geojson`` from

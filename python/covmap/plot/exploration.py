@@ -10,7 +10,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from covmap._arguments import check_module
-from covmap.plot.drawing import plot_map, plot_trajectory, plot_world, unknown_colormap
+from covmap.plot.drawing import plot_map, plot_trajectory, unknown_colormap
 from covmap.plot.figures import _figure_file
 
 __all__ = ["plot_exploration", "plot_table1", "save_animation"]
@@ -39,8 +39,14 @@ def _size(grid: Grid, width: float = 9.0) -> tuple[float, float]:
 
 
 def _outline(world: World, ax: Axes) -> None:
-    """The true obstacles' outlines, over a map."""
-    plot_world(world, ax, colors={"wall": "none", "glass": "none"}, edgecolor="tab:orange", linewidth=0.6, alpha=0.8)
+    """The true obstacles' outlines, over a map: every ring one line of a
+    single collection (one artist, however many polygons a plan holds)."""
+    from matplotlib.collections import LineCollection
+
+    rings = [np.vstack([ring, ring[:1]]) for ring in world.polygons]
+    rings += [np.vstack([hole, hole[:1]]) for holes in world.holes for hole in holes]
+    ax.add_collection(LineCollection(rings, colors="tab:orange", linewidths=0.6, alpha=0.8))
+    ax.set_aspect("equal")
 
 
 def _robot_path(trajectory: Any, ax: Axes, scanned: Any | None = None) -> None:
@@ -57,9 +63,10 @@ def _fit(ax: Axes, grid: Grid) -> None:
     ax.set_ylim(y0, y1)
 
 
-def plot_exploration(run: ExploreRun, out: Path, name: str | None = None) -> list[Path]:
+def plot_exploration(run: ExploreRun, out: Path, name: str | None = None, *, progress: bool = False) -> list[Path]:
     """Write the figures of a ``covmap explore`` run into ``out``, each
-    atomically, files named ``<name>-...`` (default: world and strategy):
+    atomically, files named ``<name>-...`` (default: world and strategy),
+    with a progress line on standard error if ``progress``:
 
     - ``-map.png``: the final ML map (unknown cells in
       :data:`~covmap.plot.drawing.UNKNOWN_COLOR`), the true obstacles'
@@ -115,50 +122,60 @@ def plot_exploration(run: ExploreRun, out: Path, name: str | None = None) -> lis
             _fit(ax, grid)
     written.append(path)
 
-    written.append(save_animation(run.frames, r, run.world, out / f"{name}.gif", title=title))
+    written.append(save_animation(run.frames, r, run.world, out / f"{name}.gif", title=title, progress=progress))
     return written
 
 
-def _frame(fig: Any, ax: Axes, snap: Snapshot, result: ExplorationResult, world: World, title: str) -> Any:
-    """Draw one snapshot into ``ax`` and return the rendered image (PIL)."""
-    from PIL import Image
-
-    ax.clear()
-    plot_map(snap.ml_coverage, result.grid, ax, cmap=unknown_colormap("Greys"))
-    _outline(world, ax)
-    if len(snap.trajectory):
-        _robot_path(snap.trajectory, ax)
-    _fit(ax, result.grid)
-    ax.set_title(
-        f"{title}: step {snap.step}, {snap.path_length_m:.1f} m, "
-        f"{100.0 * snap.uncertain_fraction:.1f} % uncertain",
-        fontsize=8,
-    )
-    fig.canvas.draw()
-    rgba = np.asarray(fig.canvas.buffer_rgba())
-    return Image.fromarray(rgba[:, :, :3].copy()).quantize(colors=64, method=Image.Quantize.MEDIANCUT)
-
-
 def save_animation(
-    frames: list[Snapshot], result: ExplorationResult, world: World, path: Path, *, title: str = ""
+    frames: list[Snapshot],
+    result: ExplorationResult,
+    world: World,
+    path: Path,
+    *,
+    title: str = "",
+    progress: bool = False,
 ) -> Path:
     """Write ``frames`` (snapshots of the run ``result`` in ``world``) as an
     animated GIF to ``path``, atomically: the ML map with unknown cells in
     :data:`~covmap.plot.drawing.UNKNOWN_COLOR`, the true outlines and the
-    path so far, one frame a snapshot, the last held longer. Drawn with the
-    Agg backend and encoded by Pillow (which matplotlib depends on) in memory,
+    path so far, one frame a snapshot, the last held longer; a progress
+    line on standard error with ``progress``. The figure is drawn once and
+    each frame changes only the map, the path and the title (the outlines
+    of a large plan are not drawn again for every frame). Drawn with the Agg
+    backend and encoded by Pillow (which matplotlib depends on) in memory,
     then written by the same atomic writer as the PNGs. Returns the path."""
     import matplotlib
 
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
+    from PIL import Image
 
     from covmap._native import write_atomic
+    from covmap.cli._progress import Progress
 
     w, h = _size(result.grid, 6.0)
     fig, ax = plt.subplots(figsize=(w, h), dpi=80, layout="constrained")
+    images = []
     try:
-        images = [_frame(fig, ax, snap, result, world, title) for snap in frames]
+        plot_map(frames[0].ml_coverage, result.grid, ax, cmap=unknown_colormap("Greys"))
+        picture = ax.get_images()[0]
+        _outline(world, ax)
+        (path_line,) = ax.plot([], [], color="tab:red", linewidth=0.8)
+        _fit(ax, result.grid)
+        heading = ax.set_title("", fontsize=8)
+        with Progress(len(frames), "frame") if progress else _Quiet() as shown:
+            for snap in frames:
+                picture.set_data(snap.ml_coverage)
+                path_line.set_data(snap.trajectory[:, 0], snap.trajectory[:, 1])
+                heading.set_text(
+                    f"{title}: step {snap.step}, {snap.path_length_m:.1f} m, "
+                    f"{100.0 * snap.uncertain_fraction:.1f} % uncertain"
+                )
+                fig.canvas.draw()
+                rgba = np.asarray(fig.canvas.buffer_rgba())
+                frame = Image.fromarray(rgba[:, :, :3].copy())
+                images.append(frame.quantize(colors=64, method=Image.Quantize.MEDIANCUT))
+                shown.update(f"drawing {path.name}")
     finally:
         plt.close(fig)
     durations = [GIF_FRAME_MS] * (len(images) - 1) + [GIF_LAST_FRAME_MS]
@@ -167,6 +184,19 @@ def save_animation(
     path.parent.mkdir(parents=True, exist_ok=True)
     write_atomic(path, gif.getvalue())
     return path
+
+
+class _Quiet:
+    """No progress display."""
+
+    def __enter__(self) -> _Quiet:
+        return self
+
+    def __exit__(self, *exc: object) -> None:
+        pass
+
+    def update(self, status: str) -> None:
+        """Nothing."""
 
 
 def plot_table1(t: Table1, path: Path) -> Path:

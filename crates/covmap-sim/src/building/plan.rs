@@ -8,8 +8,9 @@
 //! 1. the *start region*: the cells where the robot's disc
 //!    ([`ROBOT_RADIUS_M`]) fits, the region of them a seeded start is
 //!    drawn from ([`start_region`]: the largest the world encloses);
-//! 2. its *core*: the cells of the start region whose centre lies at least
-//!    half of [`PASSAGE_M`] from every obstacle. A doorway narrower than
+//! 2. its *core*: the enclosed cells of the start region ([`enclosed_cells`]:
+//!    not the outside of a building) whose centre lies at least half of
+//!    [`PASSAGE_M`] from every obstacle. A doorway narrower than
 //!    [`PASSAGE_M`] (every generated door, and the doors of real plans) has
 //!    no core cell, so it separates the cores of the rooms either side;
 //!    corridors and rooms wider than it keep a core;
@@ -17,6 +18,8 @@
 //!    cut) of at least [`MIN_CORE_M2`], in the order of their first cell,
 //!    named `"region 1"`, `"region 2"`, ...; a room's floor is its core
 //!    cells, merged into rectangles.
+//!
+//! [`enclosed_cells`]: crate::exploration::enclosed_cells
 //!
 //! A run entered a room when the robot's centre crossed a cell of its core:
 //! a robot that only looked in from the doorway did not. Every region
@@ -65,11 +68,11 @@ fn plan_rooms(world: &World) -> Result<Vec<Room>> {
     let grid = Grid::covering(x0 - m, y0 - m, x1 + m, y1 + m, RESOLUTION_M)?;
     let robot = Robot::new(ROBOT_RADIUS_M)?;
     let clearance = clearances(world, &grid, &robot);
-    let region = start_region(&grid, &clearance);
+    let (region, enclosed) = start_region(&grid, &clearance);
     let mut core = vec![false; grid.len()];
     let reach = 0.5 * PASSAGE_M - ROBOT_RADIUS_M;
     for &i in &region {
-        core[i] = clearance[i] >= reach;
+        core[i] = enclosed[i] && clearance[i] >= reach;
     }
     let cell_area = RESOLUTION_M * RESOLUTION_M;
     Ok(free_regions(&grid, &core)

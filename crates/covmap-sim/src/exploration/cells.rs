@@ -18,18 +18,25 @@
 //! make them certain or right.
 //!
 //! # The start
-//! Without a given start, the robot starts in the *start region*: the
-//! largest connected region of cells where its disc fits ([`free_regions`])
-//! among those the world encloses (no cell of the region on the grid's
-//! border: a free region that reaches the margin around the world is its
-//! outside, as around a building, or leaks into it through a gap), or the
-//! largest region of all where the world encloses none (an open world, a
-//! single obstacle). It starts at the centre of a cell drawn uniformly from
-//! the cells of the start region whose centre keeps twice the robot's
+//! Without a given start, the robot starts in the *start region*: of the
+//! connected regions of cells where its disc fits ([`free_regions`]), the
+//! one holding the most *enclosed* cells: cells from which, in each of the
+//! grid's eight directions (along the rows, the columns and both
+//! diagonals), a cell where the disc does not fit lies before the grid's
+//! border ([`enclosed_cells`]). The margin around a world, the outside of a
+//! building (connected to its inside through an outer door or a gap in a
+//! plan's walls), a map's free space beyond its walls are not enclosed; a
+//! building's rooms and corridors are (but for the cells that look out
+//! straight through an outer door). Where no region holds an enclosed cell
+//! (an open world, a single obstacle) the start region is the largest.
+//!
+//! The robot starts at the centre of a cell drawn uniformly from the
+//! enclosed cells of the start region whose centre keeps twice the robot's
 //! radius from every obstacle (a clearance well above the radius: room to
-//! turn and scan; every cell of the region where none does), facing a
-//! heading drawn uniformly from `[-pi, pi)`; both draws come from stream
-//! [`START_STREAM`] of the run's seed.
+//! turn and scan), or where none does from the start region's enclosed
+//! cells, or from all its cells; facing a heading drawn uniformly from
+//! `[-pi, pi)`; both draws come from stream [`START_STREAM`] of the run's
+//! seed.
 //!
 //! On a world read from an occupancy image whose unknown pixels are
 //! obstacles ([`crate::load::image`]) the start region is thus the largest
@@ -98,24 +105,75 @@ pub fn evaluation_cells(
 }
 
 /// The cells of the start region (see the module documentation), in
-/// increasing index order, given the [`clearances`] of the robot on `grid`:
-/// empty where the robot fits nowhere.
-pub fn start_region(grid: &Grid, clearance_m: &[f64]) -> Vec<usize> {
+/// increasing index order, given the [`clearances`] of the robot on `grid`,
+/// and which of all cells are enclosed ([`enclosed_cells`]): empty where
+/// the robot fits nowhere.
+pub fn start_region(grid: &Grid, clearance_m: &[f64]) -> (Vec<usize>, Vec<bool>) {
     let free: Vec<bool> = clearance_m.iter().map(|&c| c >= 0.0).collect();
+    let enclosed = enclosed_cells(grid, &free);
     let regions = free_regions(grid, &free);
-    let largest = |enclosed: bool| {
-        regions
-            .iter()
-            .filter(|r| !enclosed || !touches_border(grid, r))
-            .fold(None::<&Vec<usize>>, |best, r| match best {
-                Some(b) if b.len() >= r.len() => Some(b),
-                _ => Some(r),
-            })
+    let score = |r: &Vec<usize>| {
+        let inside = r.iter().filter(|&&i| enclosed[i]).count();
+        (inside, if inside == 0 { r.len() } else { 0 })
     };
-    largest(true)
-        .or_else(|| largest(false))
-        .cloned()
-        .unwrap_or_default()
+    // The most enclosed cells; without any, the most cells; ties to the
+    // region of the lowest first cell.
+    let best = regions
+        .iter()
+        .fold(None::<(&Vec<usize>, (usize, usize))>, |best, r| {
+            let s = score(r);
+            match best {
+                Some((_, b)) if b >= s => best,
+                _ => Some((r, s)),
+            }
+        });
+    (best.map(|(r, _)| r.clone()).unwrap_or_default(), enclosed)
+}
+
+/// Which cells are enclosed: from each, in each of the grid's eight
+/// directions, a cell that is not `free` lies before the grid's border.
+pub fn enclosed_cells(grid: &Grid, free: &[bool]) -> Vec<bool> {
+    let (rows, cols) = (grid.rows() as i64, grid.cols() as i64);
+    let mut enclosed = vec![true; free.len()];
+    let mut blocked = vec![false; free.len()];
+    for (dr, dc) in [
+        (0i64, 1i64),
+        (0, -1),
+        (1, 0),
+        (-1, 0),
+        (1, 1),
+        (1, -1),
+        (-1, 1),
+        (-1, -1),
+    ] {
+        // Walk each cell after the one it looks at (`blocked` of the cell
+        // one step in the direction is known first): rows and columns in
+        // the order opposite to the direction.
+        let row_order: Vec<i64> = if dr > 0 {
+            (0..rows).rev().collect()
+        } else {
+            (0..rows).collect()
+        };
+        let col_order: Vec<i64> = if dc > 0 {
+            (0..cols).rev().collect()
+        } else {
+            (0..cols).collect()
+        };
+        for &r in &row_order {
+            for &c in &col_order {
+                let (nr, nc) = (r + dr, c + dc);
+                let i = (r * cols + c) as usize;
+                blocked[i] = if nr < 0 || nc < 0 || nr >= rows || nc >= cols {
+                    false
+                } else {
+                    let n = (nr * cols + nc) as usize;
+                    !free[n] || blocked[n]
+                };
+                enclosed[i] &= blocked[i];
+            }
+        }
+    }
+    enclosed
 }
 
 /// A start for a run seeded `seed` (see the module documentation).
@@ -128,16 +186,18 @@ pub fn choose_start(
     robot_radius_m: f64,
     seed: u64,
 ) -> Result<Pose> {
-    let region = start_region(grid, clearance_m);
-    let mut roomy: Vec<usize> = region
+    let (region, enclosed) = start_region(grid, clearance_m);
+    let inside: Vec<usize> = region.iter().copied().filter(|&i| enclosed[i]).collect();
+    let roomy: Vec<usize> = inside
         .iter()
         .copied()
         .filter(|&i| clearance_m[i] >= robot_radius_m)
         .collect();
-    if roomy.is_empty() {
-        roomy = region;
-    }
-    if roomy.is_empty() {
+    let cells = [roomy, inside, region]
+        .into_iter()
+        .find(|c| !c.is_empty())
+        .unwrap_or_default();
+    if cells.is_empty() {
         let [x, y, ..] = grid.bounds_m();
         return Err(CovmapError::InvalidStart {
             x,
@@ -147,7 +207,7 @@ pub fn choose_start(
         .into());
     }
     let mut rng = sim_rng_stream(seed, START_STREAM);
-    let cell = roomy[rng.random_range(0..roomy.len())];
+    let cell = cells[rng.random_range(0..cells.len())];
     let heading = rng.random_range(-std::f64::consts::PI..std::f64::consts::PI);
     let [x, y] = grid.cell_center(grid.cell(cell));
     Ok(Pose::new(x, y, heading))
@@ -241,16 +301,6 @@ pub fn free_regions(grid: &Grid, free: &[bool]) -> Vec<Vec<usize>> {
     regions
 }
 
-/// Whether a cell of `region` lies on the grid's border (first or last row
-/// or column).
-fn touches_border(grid: &Grid, region: &[usize]) -> bool {
-    let (rows, cols) = grid.shape();
-    region.iter().any(|&i| {
-        let (row, col) = (i / cols, i % cols);
-        row == 0 || col == 0 || row + 1 == rows || col + 1 == cols
-    })
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -280,7 +330,7 @@ mod tests {
         }
         let open = World::from_vertex_lists(walls[..3].to_vec(), crate::Material::Wall).unwrap();
         let clearance = clearances(&open, &grid, &robot);
-        let region = start_region(&grid, &clearance);
+        let (region, _) = start_region(&grid, &clearance);
         assert!(region.len() > 40_000, "{}", region.len());
     }
 

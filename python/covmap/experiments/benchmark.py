@@ -1,0 +1,449 @@
+"""The exploration benchmark: strategies x sensors x buildings x seeds, every
+run through :func:`covmap.sweep` (the local cores or Dask), each run's
+figures (one CSV row a run) and a summary per strategy and sensor (median
+and spread over the runs).
+
+What a run reports (:class:`BenchmarkRun`): the share of the evaluation
+cells left uncertain, the rooms never entered (by the generator's room
+list; for a plan by the rule of :meth:`covmap.Building.from_world`), path
+length, scans, steps, contacts, how it ended, the maps' errors against the
+truth, wall time and the real-time factor (how many times faster than a
+robot driving the path at 0.5 m/s).
+
+Two configurations (:data:`CONFIGURATIONS`): ``"default"``, what a
+newcomer runs in a few minutes on two cores (four small development
+buildings, the four strategies, sonar), and ``"full"``, the baseline every
+strategy is judged against (24 test buildings of three sizes and the real
+plans, both sensors). Every random draw comes from the seeds: the same
+configuration gives the same figures (wall times aside) locally and on any
+number of Dask workers.
+"""
+
+from __future__ import annotations
+
+import csv
+import io
+import statistics
+from dataclasses import dataclass, field
+from typing import TYPE_CHECKING, Any, Callable
+
+from covmap._arguments import check_module
+from covmap._errors import InvalidParameterError, InvalidTypeError, InvalidValueError
+from covmap._native import DEFAULT_DISCOUNT_BEYOND_M, Laser, SonarRing, Strategy
+from covmap._sweep import RunSummary, SweepFailure, sweep
+from covmap.buildings import split_of
+
+if TYPE_CHECKING:
+    from collections.abc import Sequence
+    from pathlib import Path
+
+    from covmap._native import Building
+
+__all__ = [
+    "CONFIGURATIONS",
+    "CSV_FIELDS",
+    "MAX_RUNS",
+    "SENSORS",
+    "STRATEGIES",
+    "Benchmark",
+    "BenchmarkRun",
+    "Configuration",
+    "StrategySummary",
+    "csv_text",
+    "run",
+    "sensor_of",
+    "specs",
+    "summary_table",
+    "write_csv",
+]
+
+STRATEGIES: dict[str, Strategy] = {
+    "coverage": Strategy.coverage(0.5),
+    "counting n=1": Strategy.counting(1),
+    "counting n=50": Strategy.counting(50, DEFAULT_DISCOUNT_BEYOND_M),
+    "frontier": Strategy.frontier(),
+}
+"""The strategies of the benchmark by label: Table I's rows (coverage maps
+with alpha 0.5, scan counting to 1 and to 50 discounted beyond 2 m) and
+nearest frontiers."""
+
+SENSORS = ("sonar", "laser")
+"""The sensors by name: the 24-sonar ring and the 361-beam SICK laser."""
+
+
+MAX_RUNS = 1_000_000
+"""The most runs a benchmark may have."""
+
+
+def sensor_of(name: str) -> SonarRing | Laser:
+    """The simulated sensor of ``name`` (:data:`SENSORS`)."""
+    if not isinstance(name, str):
+        raise InvalidTypeError(f"a sensor is named by a str ({', '.join(SENSORS)}), got {type(name).__name__}")
+    if name == "sonar":
+        return SonarRing()
+    if name == "laser":
+        return Laser.sick_361()
+    raise InvalidParameterError(f"unknown sensor {name!r}: expected one of {', '.join(SENSORS)}")
+
+
+@dataclass(frozen=True)
+class Configuration:
+    """A benchmark configuration: which buildings, sensors and seeds, and
+    the runs' limits."""
+
+    buildings: str
+    """The building set (:func:`covmap.buildings.building_set`)."""
+    count: int
+    """Generated buildings in the set."""
+    plans: bool
+    """Whether the set's plans are in it."""
+    sensors: tuple[str, ...]
+    """The sensors."""
+    seeds: tuple[int, ...]
+    """The runs' seeds (the start and the sensor noise), one run each."""
+    limits: dict[str, Any] = field(default_factory=dict)
+    """``max_path_m`` and ``max_steps`` of every run."""
+
+
+MAX_PATH_M = 3000.0
+"""The full benchmark's path limit, metres: a run still going at 3 km ends
+as ``"limit"``. Counting to 50 drives 2.6 km in a 120 square-metre
+building and goes on for many kilometres in larger ones (20 m a square
+metre); coverage maps and frontiers end by their own rule well before it
+(BENCHMARKS.md). A step or path limit, never a wall-clock one: a run's end
+must not depend on the machine."""
+
+MAX_STEPS = 2000
+"""The full benchmark's step limit: the laser's coverage runs chase cells
+they cannot settle with short steps (BENCHMARKS.md)."""
+
+CONFIGURATIONS: dict[str, Configuration] = {
+    "default": Configuration("default", 4, False, ("sonar",), (0,), {"max_path_m": MAX_PATH_M}),
+    "full": Configuration(
+        "test", 24, True, ("sonar", "laser"), (0,), {"max_path_m": MAX_PATH_M, "max_steps": MAX_STEPS}
+    ),
+}
+"""The benchmark's configurations: ``"default"`` (four small development
+buildings, sonar) and ``"full"`` (24 test buildings and the real plans,
+sonar and laser)."""
+
+
+@dataclass(frozen=True)
+class BenchmarkRun:
+    """One run of the benchmark: where, how, and what it reported."""
+
+    building: str
+    """The building's name."""
+    split: str
+    """``"development"``, ``"test"`` or ``"-"`` (:func:`covmap.buildings.split_of`)."""
+    strategy: str
+    """The strategy's label (:data:`STRATEGIES`)."""
+    sensor: str
+    """The sensor's name."""
+    summary: RunSummary
+    """Everything the run reported."""
+
+    @property
+    def uncertain_fraction(self) -> float:
+        """The share of the evaluation cells uncertain at the end."""
+        return self.summary.high_entropy_fraction
+
+    @property
+    def rooms_never_entered(self) -> int:
+        """How many rooms and halls the robot never entered."""
+        return len(self.summary.rooms_never_entered)
+
+    @property
+    def real_time_factor(self) -> float:
+        """How many times faster than a robot driving the path at 0.5 m/s."""
+        return self.summary.real_time_factor()
+
+
+@dataclass(frozen=True)
+class Benchmark:
+    """The runs of a benchmark, in the order of its specs."""
+
+    runs: list[BenchmarkRun]
+    options: dict[str, Any]
+    """The keywords of :func:`covmap.explore` every run was given (limits,
+    resolution)."""
+
+    def summaries(self) -> list[StrategySummary]:
+        """A :class:`StrategySummary` per strategy and sensor, in the order
+        of :data:`STRATEGIES` and the sensors."""
+        keys: list[tuple[str, str]] = []
+        for r in self.runs:
+            if (r.strategy, r.sensor) not in keys:
+                keys.append((r.strategy, r.sensor))
+        order = list(STRATEGIES)
+        keys.sort(key=lambda k: (order.index(k[0]) if k[0] in order else len(order), SENSORS.index(k[1])))
+        return [
+            StrategySummary.of(s, n, [r for r in self.runs if (r.strategy, r.sensor) == (s, n)]) for s, n in keys
+        ]
+
+
+def _quartiles(values: Sequence[float]) -> tuple[float, float, float]:
+    """The median and the lower and upper quartiles (the median of one
+    value for all three)."""
+    if len(values) == 1:
+        return values[0], values[0], values[0]
+    q1, q2, q3 = statistics.quantiles(values, n=4, method="inclusive")
+    return q2, q1, q3
+
+
+@dataclass(frozen=True)
+class StrategySummary:
+    """One strategy with one sensor over a benchmark's runs: medians with
+    their interquartile range (the spread), and counts."""
+
+    strategy: str
+    sensor: str
+    runs: int
+    uncertain: tuple[float, float, float]
+    """The uncertain share: median, lower and upper quartile."""
+    path_m: tuple[float, float, float]
+    """Path length, metres: median and quartiles."""
+    rooms_never_entered: tuple[float, float, float]
+    """Rooms never entered: median and quartiles."""
+    real_time_factor: tuple[float, float, float]
+    """Real-time factor: median and quartiles."""
+    error_coverage_map: float
+    """The median of the coverage map's mean absolute error."""
+    at_most_one_percent: int
+    """Runs that left at most 1 % of their evaluation cells uncertain."""
+    every_room: int
+    """Runs that entered every room."""
+    terminations: dict[str, int]
+    """How many runs ended how."""
+
+    @classmethod
+    def of(cls, strategy: str, sensor: str, runs: Sequence[BenchmarkRun]) -> StrategySummary:
+        """The summary of ``runs``, all of ``strategy`` with ``sensor``."""
+        endings: dict[str, int] = {}
+        for r in runs:
+            endings[str(r.summary.termination)] = endings.get(str(r.summary.termination), 0) + 1
+        return cls(
+            strategy=strategy,
+            sensor=sensor,
+            runs=len(runs),
+            uncertain=_quartiles([r.uncertain_fraction for r in runs]),
+            path_m=_quartiles([r.summary.path_length_m for r in runs]),
+            rooms_never_entered=_quartiles([float(r.rooms_never_entered) for r in runs]),
+            real_time_factor=_quartiles([r.real_time_factor for r in runs]),
+            error_coverage_map=statistics.median(r.summary.coverage_error.coverage_map for r in runs),
+            at_most_one_percent=sum(r.uncertain_fraction <= 0.01 for r in runs),
+            every_room=sum(r.rooms_never_entered == 0 for r in runs),
+            terminations=endings,
+        )
+
+
+def specs(
+    buildings: Sequence[Building],
+    *,
+    strategies: Sequence[str] = tuple(STRATEGIES),
+    sensors: Sequence[str] = ("sonar",),
+    seeds: Sequence[int] = (0,),
+    **options: Any,
+) -> list[dict[str, Any]]:
+    """The sweep's specs: every building, with every sensor, strategy and
+    seed (``options``: further keywords of :func:`covmap.explore`, the same
+    for every run); the largest buildings first, so that the long runs
+    start first and the cores end together. At most :data:`MAX_RUNS` runs;
+    a building that is no :class:`~covmap.Building`, an unknown strategy or
+    sensor raise before any spec is made."""
+    from covmap._native import Building
+
+    sizes = []
+    for what, values in (("buildings", buildings), ("strategies", strategies), ("sensors", sensors), ("seeds", seeds)):
+        if isinstance(values, str) or not hasattr(values, "__len__"):
+            raise InvalidTypeError(f"{what} must be a list, got {type(values).__name__}")
+        sizes.append(len(values))
+    if sizes[0] * sizes[1] * sizes[2] * sizes[3] > MAX_RUNS:
+        raise InvalidValueError(f"{' x '.join(map(str, sizes))} runs: expected at most {MAX_RUNS}")
+    for b in buildings:
+        if not isinstance(b, Building):
+            raise InvalidTypeError(f"buildings must be Buildings (covmap.buildings.building), got {type(b).__name__}")
+    unknown = [s for s in strategies if not isinstance(s, str) or s not in STRATEGIES]
+    if unknown:
+        raise InvalidParameterError(f"unknown strategies {unknown}: expected some of {', '.join(STRATEGIES)}")
+    for name in sensors:
+        sensor_of(name)
+    def extent(b: Building) -> float:
+        x0, y0, x1, y1 = b.world.bounds
+        return (x1 - x0) * (y1 - y0)
+
+    order = sorted(range(len(buildings)), key=lambda i: -extent(buildings[i]))
+    return [
+        {
+            "world": buildings[i],
+            "strategy": STRATEGIES[strategy],
+            "seed": seed,
+            "sensor": sensor_of(sensor),
+            **options,
+        }
+        for i in order
+        for sensor in sensors
+        for strategy in strategies
+        for seed in seeds
+    ]
+
+
+def run(
+    buildings: Sequence[Building],
+    *,
+    strategies: Sequence[str] = tuple(STRATEGIES),
+    sensors: Sequence[str] = ("sonar",),
+    seeds: Sequence[int] = (0,),
+    executor: Any = None,
+    progress: bool | Callable[[int, RunSummary | SweepFailure], None] = True,
+    **options: Any,
+) -> Benchmark:
+    """Run the benchmark (:func:`specs`) with :func:`covmap.sweep` on
+    ``executor`` (``None``: the local cores; a ``dask.distributed.Client``;
+    see :func:`covmap.dask_client`), ``progress`` as :func:`covmap.sweep`
+    takes it. No buildings, strategies, sensors or seeds raise
+    :class:`~covmap.InvalidValueError` before anything runs: a benchmark
+    without runs says nothing. A run that raises ends in
+    :class:`~covmap.SweepError` once all have ended."""
+    for what, values in (("buildings", buildings), ("strategies", strategies), ("sensors", sensors), ("seeds", seeds)):
+        if not isinstance(values, str) and hasattr(values, "__len__") and len(values) == 0:
+            raise InvalidValueError(f"the benchmark needs at least one of its {what}, got none")
+    all_specs = specs(buildings, strategies=strategies, sensors=sensors, seeds=seeds, **options)
+    summaries = sweep(all_specs, executor=executor, progress=progress)
+    by_strategy = {s: label for label, s in STRATEGIES.items()}
+    runs = []
+    for spec, summary in zip(all_specs, summaries):
+        label = by_strategy.get(spec["strategy"], repr(spec["strategy"]))
+        sensor = "laser" if isinstance(spec["sensor"], Laser) else "sonar"
+        runs.append(BenchmarkRun(summary.world, split_of(summary.world), label, sensor, summary))
+    return Benchmark(runs, dict(options))
+
+
+CSV_FIELDS = (
+    "building",
+    "split",
+    "strategy",
+    "sensor",
+    "seed",
+    "termination",
+    "uncertain_fraction",
+    "rooms",
+    "rooms_never_entered",
+    "rooms_never_entered_names",
+    "path_length_m",
+    "scans",
+    "steps",
+    "contacts",
+    "error_coverage_map",
+    "error_occupancy",
+    "evaluation_area_m2",
+    "seconds",
+    "real_time_factor",
+)
+"""The columns of :func:`csv_text`, one row a run."""
+
+
+def csv_text(b: Benchmark) -> str:
+    """One CSV row a run, columns :data:`CSV_FIELDS`."""
+    out = io.StringIO()
+    writer = csv.writer(out, lineterminator="\n")
+    writer.writerow(CSV_FIELDS)
+    for r in b.runs:
+        s = r.summary
+        writer.writerow(
+            [
+                r.building,
+                r.split,
+                r.strategy,
+                r.sensor,
+                s.seed,
+                s.termination,
+                repr(s.high_entropy_fraction),
+                "" if s.rooms is None else s.rooms,
+                r.rooms_never_entered,
+                ";".join(s.rooms_never_entered),
+                repr(s.path_length_m),
+                s.scans,
+                s.steps,
+                s.contacts,
+                repr(s.coverage_error.coverage_map),
+                repr(s.coverage_error.occupancy),
+                f"{s.evaluation_area_m2:.2f}",
+                f"{s.seconds:.3f}",
+                f"{r.real_time_factor:.1f}",
+            ]
+        )
+    return out.getvalue()
+
+
+def write_csv(b: Benchmark, path: Path) -> Path:
+    """Write :func:`csv_text` to ``path`` atomically; returns the path."""
+    from covmap._native import write_atomic
+
+    path.parent.mkdir(parents=True, exist_ok=True)
+    write_atomic(path, csv_text(b).encode())
+    return path
+
+
+def _spread(q: tuple[float, float, float], scale: float, digits: int) -> str:
+    median, low, high = (v * scale for v in q)
+    return f"{median:.{digits}f} [{low:.{digits}f}, {high:.{digits}f}]"
+
+
+def summary_table(b: Benchmark) -> str:
+    """The summary per strategy and sensor as text: the median and the
+    interquartile range ``[lower, upper]`` of the uncertain share, the path
+    length, the rooms never entered and the real-time factor; how many runs
+    left at most 1 % uncertain and entered every room; how the runs
+    ended."""
+    header = (
+        "strategy",
+        "sensor",
+        "runs",
+        "uncertain [%]",
+        "path [m]",
+        "rooms missed",
+        "<= 1 %",
+        "all rooms",
+        "real time x",
+        "error",
+        "ended",
+    )
+    lines = [header]
+    for s in b.summaries():
+        lines.append(
+            (
+                s.strategy,
+                s.sensor,
+                str(s.runs),
+                _spread(s.uncertain, 100.0, 2),
+                _spread(s.path_m, 1.0, 0),
+                _spread(s.rooms_never_entered, 1.0, 0),
+                f"{s.at_most_one_percent}/{s.runs}",
+                f"{s.every_room}/{s.runs}",
+                _spread(s.real_time_factor, 1.0, 0),
+                f"{s.error_coverage_map:.4f}",
+                ", ".join(f"{k} {n}" for k, n in sorted(s.terminations.items())),
+            )
+        )
+    widths = [max(len(line[i]) for line in lines) for i in range(len(header))]
+    buildings = sorted({r.building for r in b.runs})
+    text = [
+        f"Benchmark: {len(b.runs)} runs on {len(buildings)} building{'s' if len(buildings) != 1 else ''}; "
+        "median [lower quartile, upper quartile] over the runs"
+    ]
+    if b.options:
+        text.append("options: " + ", ".join(f"{k}={v!r}" for k, v in sorted(b.options.items())))
+    for i, line in enumerate(lines):
+        text.append("  ".join(cell.ljust(w) for cell, w in zip(line, widths)).rstrip())
+        if i == 0:
+            text.append("  ".join("-" * w for w in widths))
+    text.append(
+        "uncertain: evaluation cells with entropy above epsilon at the end; rooms missed: rooms and halls the "
+        "robot never entered; real time x: how many times faster than driving the path at 0.5 m/s; error: the "
+        "coverage map's mean absolute error against the truth (median)"
+    )
+    return "\n".join(text)
+
+
+check_module(__name__)  # calls with the wrong arguments raise InvalidTypeError
