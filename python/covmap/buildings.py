@@ -196,8 +196,14 @@ def building_set(
     An unknown set raises :class:`~covmap.UnknownWorldError`, a count below
     1 or beyond the split's seeds :class:`~covmap.InvalidParameterError`:
     a split without buildings is refused."""
+    if not isinstance(name, str):
+        raise InvalidTypeError(f"a building set is named by a str ({', '.join(SETS)}), got {type(name).__name__}")
     if name not in SETS:
         raise UnknownWorldError(f"no building set named {name!r}; available: {', '.join(SETS)}")
+    if not isinstance(plans, bool):
+        raise InvalidTypeError(f"plans must be True or False, got {type(plans).__name__}")
+    if plans_dir is not None and not isinstance(plans_dir, (str, os.PathLike)):
+        raise InvalidTypeError(f"plans_dir must be a path, got {type(plans_dir).__name__}")
     default_count = DEFAULT_COUNT if name == "default" else 12
     count = default_count if count is None else count
     seeds = TEST_SEEDS if name == "test" else DEVELOPMENT_SEEDS
@@ -227,8 +233,12 @@ def buildings(references: Sequence[str], **options: Any) -> list[Building]:
     (:func:`building`); at most :data:`MAX_REFERENCES` of them."""
     if isinstance(references, str) or not hasattr(references, "__len__"):
         raise InvalidTypeError(f"references must be a list of names, got {type(references).__name__}")
-    if len(references) > MAX_REFERENCES:
-        raise InvalidParameterError(f"{len(references)} references: expected at most {MAX_REFERENCES}")
+    try:
+        too_many = len(references) > MAX_REFERENCES
+    except OverflowError:
+        too_many = True
+    if too_many:
+        raise InvalidParameterError(f"too many references: expected at most {MAX_REFERENCES}")
     found: list[Building] = []
     for reference in references:
         if not isinstance(reference, (str, Building, World)):

@@ -213,3 +213,25 @@ def test_explore_takes_a_world_file_and_saves_what_a_user_needs(tmp_path: Path) 
     assert lines[0] == "x_m,y_m,theta_rad,scanned"
     first = [float(v) for v in lines[1].split(",")]
     assert first[:3] == [x, y, 0.0] and len(lines) >= 3
+
+
+def test_per_sensor_limits_and_buildings(small: list[covmap.Building]) -> None:
+    """The full configuration's shape: the laser only in buildings up to
+    its extent, with its own step limit; the largest buildings first."""
+    large = covmap.buildings.building("generated:1002:550")
+    specs = benchmark.specs(
+        [*small, large],
+        strategies=["frontier"],
+        sensors=["sonar", "laser"],
+        sensor_options={"laser": {"max_steps": 150}},
+        max_extent_m2={"laser": 100.0},
+        max_path_m=3000.0,
+    )
+    worlds = [(s["world"].name, type(s["sensor"]).__name__, s.get("max_steps")) for s in specs]
+    assert worlds[0] == ("generated:1002:550", "SonarRing", None)
+    assert ("generated:1002:550", "Laser", 150) not in worlds
+    assert sorted(w for w in worlds if w[1] == "Laser") == [("generated:1:60", "Laser", 150), ("generated:2:60", "Laser", 150)]
+    assert all(s["max_path_m"] == 3000.0 for s in specs)
+    full = benchmark.CONFIGURATIONS["full"]
+    assert full.sensor_options["laser"]["max_steps"] == benchmark.LASER_MAX_STEPS
+    assert full.max_extent_m2 == {"laser": benchmark.LASER_MAX_EXTENT_M2}

@@ -20,12 +20,13 @@ DESCRIPTION = (
     "Explore buildings with each strategy (coverage maps, scan counting to 1 and to 50, nearest frontier) "
     "and sensor, once per seed, every run in parallel (one a local core, or on Dask), with a progress bar. "
     "Prints a summary per strategy and sensor (median and interquartile range of the evaluation cells left "
-    "uncertain, the path length, the rooms never entered and the real-time factor; runs at most 1 %% "
+    "uncertain, the path length, the rooms never entered and the real-time factor; runs at most 1 % "
     "uncertain, runs that entered every room; how the runs ended) and writes benchmark.csv (one row a run) "
     "and benchmark.png. The default: four small development buildings, the four strategies, sonar, seed 0 "
     "(a few minutes on two cores). --full: 24 test buildings of 120, 250 and 550 square metres and the "
-    "real plans (AMROffice, the Stata basement, Willow; from --plans), sonar and laser, with the full "
-    "benchmark's limits; best on a Dask cluster (--dask). --buildings picks other buildings: sets "
+    "real plans (AMROffice, the Stata basement, Willow; from --plans) with sonar, the eight small ones with "
+    "the laser too (at most 150 steps a laser run); runs on a Dask cluster when given one (--dask). Every "
+    "run stops at 3000 m (--max-path-m, --max-steps: other limits for every run). --buildings picks other buildings: sets "
     "(default, development, test) or buildings by name (corridor, office, generated:SEED[:AREA], a world "
     "file), separated by commas."
 )
@@ -106,8 +107,14 @@ def run(args: argparse.Namespace) -> int:
     for name in sensors:
         benchmark.sensor_of(name)
     chosen = buildings(references, count=count, plans=config.plans or args.buildings is not None, plans_dir=args.plans)
-    limits = {**config.limits, **_options.run_limits(args)}
-    total = len(chosen) * len(args.strategies) * len(sensors) * args.seeds
+    # The configuration's limits per sensor; --max-steps and --max-path-m
+    # over all of them.
+    given = _options.run_limits(args)
+    sensor_options = {name: {**config.sensor_options.get(name, {"max_path_m": benchmark.MAX_PATH_M}), **given} for name in sensors}
+    max_extent = config.max_extent_m2 if args.full else {}
+    total = len(
+        benchmark.specs(chosen, strategies=args.strategies, sensors=sensors, seeds=[0], max_extent_m2=max_extent)
+    ) * args.seeds
     with Progress(total, "run") as progress, _options.executor(args) as executor:
 
         def show(index: int, outcome: RunSummary | SweepFailure) -> None:
@@ -124,10 +131,11 @@ def run(args: argparse.Namespace) -> int:
             strategies=args.strategies,
             sensors=sensors,
             seeds=list(range(args.seeds)),
+            sensor_options=sensor_options,
+            max_extent_m2=max_extent,
             executor=executor,
             progress=show,
             resolution=args.resolution,
-            **limits,
         )
     print(benchmark.summary_table(b))
     print(f"wrote {benchmark.write_csv(b, args.out / 'benchmark.csv')}")

@@ -14,7 +14,7 @@ Two configurations (:data:`CONFIGURATIONS`): ``"default"``, what a
 newcomer runs in a few minutes on two cores (four small development
 buildings, the four strategies, sonar), and ``"full"``, the baseline every
 strategy is judged against (24 test buildings of three sizes and the real
-plans, both sensors). Every random draw comes from the seeds: the same
+plans with sonar, the eight small ones with the laser too). Every random draw comes from the seeds: the same
 configuration gives the same figures (wall times aside) locally and on any
 number of Dask workers.
 """
@@ -23,6 +23,7 @@ from __future__ import annotations
 
 import csv
 import io
+import math
 import statistics
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any, Callable
@@ -34,7 +35,7 @@ from covmap._sweep import RunSummary, SweepFailure, sweep
 from covmap.buildings import split_of
 
 if TYPE_CHECKING:
-    from collections.abc import Sequence
+    from collections.abc import Mapping, Sequence
     from pathlib import Path
 
     from covmap._native import Building
@@ -42,6 +43,9 @@ if TYPE_CHECKING:
 __all__ = [
     "CONFIGURATIONS",
     "CSV_FIELDS",
+    "LASER_MAX_EXTENT_M2",
+    "LASER_MAX_STEPS",
+    "MAX_PATH_M",
     "MAX_RUNS",
     "SENSORS",
     "STRATEGIES",
@@ -75,6 +79,17 @@ MAX_RUNS = 1_000_000
 """The most runs a benchmark may have."""
 
 
+def _length(values: Any, what: str) -> int:
+    """How many ``values`` hold: a list (not a str) of at most
+    :data:`MAX_RUNS`, else a typed error naming ``what``."""
+    if isinstance(values, str) or not hasattr(values, "__len__"):
+        raise InvalidTypeError(f"{what} must be a list, got {type(values).__name__}")
+    try:
+        return len(values)
+    except OverflowError:
+        raise InvalidValueError(f"{what}: more than {MAX_RUNS}") from None
+
+
 def sensor_of(name: str) -> SonarRing | Laser:
     """The simulated sensor of ``name`` (:data:`SENSORS`)."""
     if not isinstance(name, str):
@@ -101,31 +116,50 @@ class Configuration:
     """The sensors."""
     seeds: tuple[int, ...]
     """The runs' seeds (the start and the sensor noise), one run each."""
-    limits: dict[str, Any] = field(default_factory=dict)
-    """``max_path_m`` and ``max_steps`` of every run."""
+    sensor_options: dict[str, dict[str, Any]] = field(default_factory=dict)
+    """Per sensor, the keywords of :func:`covmap.explore` its runs are
+    given (their limits)."""
+    max_extent_m2: dict[str, float] = field(default_factory=dict)
+    """Per sensor, the largest building it runs in (the area of the
+    world's bounding box, square metres); every building where none is
+    given."""
 
 
 MAX_PATH_M = 3000.0
-"""The full benchmark's path limit, metres: a run still going at 3 km ends
-as ``"limit"``. Counting to 50 drives 2.6 km in a 120 square-metre
-building and goes on for many kilometres in larger ones (20 m a square
-metre); coverage maps and frontiers end by their own rule well before it
+"""The benchmark's path limit, metres: a run still going at 3 km ends as
+``"limit"``. Counting to 50 drives 2.6 km in a 120 square-metre building
+and goes on for many kilometres in larger ones (20 m a square metre);
+coverage maps and frontiers end by their own rule well before it
 (BENCHMARKS.md). A step or path limit, never a wall-clock one: a run's end
 must not depend on the machine."""
 
-MAX_STEPS = 2000
-"""The full benchmark's step limit: the laser's coverage runs chase cells
-they cannot settle with short steps (BENCHMARKS.md)."""
+LASER_MAX_STEPS = 150
+"""The full benchmark's step limit of the laser's runs. The coverage
+strategy plans each step of the 361-beam laser for 1 s (a 120 square-metre
+building) to 10 s (550 square metres) on one core: a run to its own end
+takes some 320 steps and 6 minutes in a small building, hours in a large
+one (BENCHMARKS.md)."""
+
+LASER_MAX_EXTENT_M2 = 200.0
+"""The largest building the full benchmark runs the laser in (bounding box,
+square metres): the small ones, for the reason of :data:`LASER_MAX_STEPS`."""
 
 CONFIGURATIONS: dict[str, Configuration] = {
-    "default": Configuration("default", 4, False, ("sonar",), (0,), {"max_path_m": MAX_PATH_M}),
+    "default": Configuration("default", 4, False, ("sonar",), (0,), {"sonar": {"max_path_m": MAX_PATH_M}}),
     "full": Configuration(
-        "test", 24, True, ("sonar", "laser"), (0,), {"max_path_m": MAX_PATH_M, "max_steps": MAX_STEPS}
+        "test",
+        24,
+        True,
+        ("sonar", "laser"),
+        (0,),
+        {"sonar": {"max_path_m": MAX_PATH_M}, "laser": {"max_path_m": MAX_PATH_M, "max_steps": LASER_MAX_STEPS}},
+        {"laser": LASER_MAX_EXTENT_M2},
     ),
 }
 """The benchmark's configurations: ``"default"`` (four small development
-buildings, sonar) and ``"full"`` (24 test buildings and the real plans,
-sonar and laser)."""
+buildings, sonar) and ``"full"`` (24 test buildings and the real plans with
+sonar; the laser in the eight small ones, at most
+:data:`LASER_MAX_STEPS` steps)."""
 
 
 @dataclass(frozen=True)
@@ -167,6 +201,8 @@ class Benchmark:
     options: dict[str, Any]
     """The keywords of :func:`covmap.explore` every run was given (limits,
     resolution)."""
+    sensor_options: dict[str, dict[str, Any]] = field(default_factory=dict)
+    """Per sensor, the further keywords its runs were given."""
 
     def summaries(self) -> list[StrategySummary]:
         """A :class:`StrategySummary` per strategy and sensor, in the order
@@ -243,21 +279,25 @@ def specs(
     strategies: Sequence[str] = tuple(STRATEGIES),
     sensors: Sequence[str] = ("sonar",),
     seeds: Sequence[int] = (0,),
+    sensor_options: Mapping[str, Mapping[str, Any]] | None = None,
+    max_extent_m2: Mapping[str, float] | None = None,
     **options: Any,
 ) -> list[dict[str, Any]]:
     """The sweep's specs: every building, with every sensor, strategy and
     seed (``options``: further keywords of :func:`covmap.explore`, the same
-    for every run); the largest buildings first, so that the long runs
-    start first and the cores end together. At most :data:`MAX_RUNS` runs;
+    for every run; ``sensor_options``: per sensor, more of them, for its
+    runs; ``max_extent_m2``: per sensor, the largest building it runs in,
+    by the area of the world's bounding box); the largest buildings first,
+    so that the long runs start first and the cores end together. At most
+    :data:`MAX_RUNS` runs;
     a building that is no :class:`~covmap.Building`, an unknown strategy or
     sensor raise before any spec is made."""
     from covmap._native import Building
 
-    sizes = []
-    for what, values in (("buildings", buildings), ("strategies", strategies), ("sensors", sensors), ("seeds", seeds)):
-        if isinstance(values, str) or not hasattr(values, "__len__"):
-            raise InvalidTypeError(f"{what} must be a list, got {type(values).__name__}")
-        sizes.append(len(values))
+    sizes = [
+        _length(values, what)
+        for what, values in (("buildings", buildings), ("strategies", strategies), ("sensors", sensors), ("seeds", seeds))
+    ]
     if sizes[0] * sizes[1] * sizes[2] * sizes[3] > MAX_RUNS:
         raise InvalidValueError(f"{' x '.join(map(str, sizes))} runs: expected at most {MAX_RUNS}")
     for b in buildings:
@@ -272,6 +312,8 @@ def specs(
         x0, y0, x1, y1 = b.world.bounds
         return (x1 - x0) * (y1 - y0)
 
+    per_sensor = {} if sensor_options is None else {k: dict(v) for k, v in sensor_options.items()}
+    largest = {} if max_extent_m2 is None else dict(max_extent_m2)
     order = sorted(range(len(buildings)), key=lambda i: -extent(buildings[i]))
     return [
         {
@@ -280,9 +322,11 @@ def specs(
             "seed": seed,
             "sensor": sensor_of(sensor),
             **options,
+            **per_sensor.get(sensor, {}),
         }
         for i in order
         for sensor in sensors
+        if extent(buildings[i]) <= largest.get(sensor, math.inf)
         for strategy in strategies
         for seed in seeds
     ]
@@ -294,6 +338,8 @@ def run(
     strategies: Sequence[str] = tuple(STRATEGIES),
     sensors: Sequence[str] = ("sonar",),
     seeds: Sequence[int] = (0,),
+    sensor_options: Mapping[str, Mapping[str, Any]] | None = None,
+    max_extent_m2: Mapping[str, float] | None = None,
     executor: Any = None,
     progress: bool | Callable[[int, RunSummary | SweepFailure], None] = True,
     **options: Any,
@@ -306,9 +352,17 @@ def run(
     without runs says nothing. A run that raises ends in
     :class:`~covmap.SweepError` once all have ended."""
     for what, values in (("buildings", buildings), ("strategies", strategies), ("sensors", sensors), ("seeds", seeds)):
-        if not isinstance(values, str) and hasattr(values, "__len__") and len(values) == 0:
+        if _length(values, what) == 0:
             raise InvalidValueError(f"the benchmark needs at least one of its {what}, got none")
-    all_specs = specs(buildings, strategies=strategies, sensors=sensors, seeds=seeds, **options)
+    all_specs = specs(
+        buildings,
+        strategies=strategies,
+        sensors=sensors,
+        seeds=seeds,
+        sensor_options=sensor_options,
+        max_extent_m2=max_extent_m2,
+        **options,
+    )
     summaries = sweep(all_specs, executor=executor, progress=progress)
     by_strategy = {s: label for label, s in STRATEGIES.items()}
     runs = []
@@ -316,7 +370,8 @@ def run(
         label = by_strategy.get(spec["strategy"], repr(spec["strategy"]))
         sensor = "laser" if isinstance(spec["sensor"], Laser) else "sonar"
         runs.append(BenchmarkRun(summary.world, split_of(summary.world), label, sensor, summary))
-    return Benchmark(runs, dict(options))
+    per_sensor = {} if sensor_options is None else {k: dict(v) for k, v in sensor_options.items()}
+    return Benchmark(runs, dict(options), per_sensor)
 
 
 CSV_FIELDS = (
@@ -434,6 +489,9 @@ def summary_table(b: Benchmark) -> str:
     ]
     if b.options:
         text.append("options: " + ", ".join(f"{k}={v!r}" for k, v in sorted(b.options.items())))
+    for sensor, options in sorted(b.sensor_options.items()):
+        if options:
+            text.append(f"{sensor}: " + ", ".join(f"{k}={v!r}" for k, v in sorted(options.items())))
     for i, line in enumerate(lines):
         text.append("  ".join(cell.ljust(w) for cell, w in zip(line, widths)).rstrip())
         if i == 0:

@@ -64,9 +64,21 @@ const DIRECTIONS: [[f64; 2]; 7] = [
     [8.0 / 17.0, 15.0 / 17.0],
 ];
 
+/// What an item is.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(super) enum ItemKind {
+    /// A desk, cabinet, table or round thing in a room or hall.
+    Furniture,
+    /// A pillar in a hall or against a corridor's wall.
+    Pillar,
+    /// A slanted wall across a room's back corner.
+    SlantedWall,
+}
+
 /// An item placed, and the region it stands in.
 pub(super) struct Item {
     pub(super) region: usize,
+    pub(super) kind: ItemKind,
     pub(super) polygon: Polygon,
 }
 
@@ -147,7 +159,11 @@ pub(super) fn furnish(
                 if !region.side_door && rng.random_bool(P_SLANT) {
                     let (polygon, b) = slanted_wall(rng, &f, region.door_side.opposite(), t)?;
                     boxes[i].push(b);
-                    items.push(Item { region: i, polygon });
+                    items.push(Item {
+                        region: i,
+                        kind: ItemKind::SlantedWall,
+                        polygon,
+                    });
                 }
             }
             RoomKind::Hall => {
@@ -166,7 +182,11 @@ pub(super) fn furnish(
                                 rectangle(b)?
                             };
                             boxes[i].push(b);
-                            items.push(Item { region: i, polygon });
+                            items.push(Item {
+                                region: i,
+                                kind: ItemKind::Pillar,
+                                polygon,
+                            });
                         }
                         x += sx;
                     }
@@ -190,7 +210,11 @@ pub(super) fn furnish(
                 };
                 if clear(&b) && boxes[i].iter().all(|o| gap(o, &b) >= GAP_M) {
                     boxes[i].push(b);
-                    items.push(Item { region: i, polygon });
+                    items.push(Item {
+                        region: i,
+                        kind: ItemKind::Furniture,
+                        polygon,
+                    });
                     break;
                 }
             }
@@ -387,6 +411,7 @@ fn corridor_pillars(
                     let rect = pillar(&line, side, &f, [u, u + width], depth);
                     items.push(Item {
                         region: i,
+                        kind: ItemKind::Pillar,
                         polygon: rectangle(rect)?,
                     });
                 }

@@ -22,7 +22,7 @@
 use rand::RngExt;
 
 use super::building::{Building, Door, Room};
-use super::furniture::{self, floor};
+use super::furniture::{self, ItemKind, floor};
 use super::layout::{self, Plan};
 use super::options::BuildingOptions;
 use super::validity::unreachable_rooms;
@@ -104,6 +104,68 @@ fn rooms(plan: &Plan, placement: &Placement) -> Vec<Room> {
         .collect()
 }
 
+/// A generated building in its parts, placed: walls (and glass), the items
+/// with their regions and kinds, rooms, doors.
+struct Parts {
+    name: String,
+    walls: Vec<Polygon>,
+    items: Vec<(usize, ItemKind, Polygon)>,
+    rooms: Vec<Room>,
+    doors: Vec<Door>,
+}
+
+impl Parts {
+    /// The parts of the building of `seed` (`options` checked).
+    fn new(seed: u64, options: &BuildingOptions) -> Result<Self> {
+        let mut rng = sim_rng(seed);
+        let plan = layout::plan(&mut rng, options);
+        let walls = walls::walls(&plan)?;
+        let items = furniture::furnish(&mut rng, &plan, &walls, options.clutter)?;
+        let placement = Placement {
+            mirror: rng.random_bool(0.5),
+            transpose: rng.random_bool(0.5),
+            width_m: plan.regions.iter().map(|r| r.rect[2]).fold(0.0, f64::max),
+        };
+        Ok(Self {
+            name: name(seed, options),
+            walls: walls
+                .polygons
+                .iter()
+                .map(|p| placement.polygon(p))
+                .collect::<Result<Vec<_>>>()?,
+            items: items
+                .iter()
+                .map(|i| Ok((i.region, i.kind, placement.polygon(&i.polygon)?)))
+                .collect::<Result<Vec<_>>>()?,
+            rooms: rooms(&plan, &placement),
+            doors: walls.doors.iter().map(|d| placement.door(d)).collect(),
+        })
+    }
+
+    /// The middle of the first corridor's floor: where the validity check
+    /// starts.
+    fn start_m(&self) -> [f64; 2] {
+        let corridor = self.rooms[0].floor_m[0];
+        [
+            0.5 * (corridor[0] + corridor[2]),
+            0.5 * (corridor[1] + corridor[3]),
+        ]
+    }
+
+    /// The world of the walls and the items `kept`.
+    fn world(&self, kept: impl Fn(usize, ItemKind) -> bool) -> World {
+        let mut polygons = self.walls.clone();
+        polygons.extend(
+            self.items
+                .iter()
+                .enumerate()
+                .filter(|(i, (_, kind, _))| kept(*i, *kind))
+                .map(|(_, (_, _, p))| p.clone()),
+        );
+        World::new(polygons)
+    }
+}
+
 impl Building {
     /// The building of `seed` (see [the module](crate::building::generate)):
     /// named `"generated:SEED"`, or `"generated:SEED:AREA"` when
@@ -114,49 +176,17 @@ impl Building {
     /// range ([`BuildingOptions::validate`]), before anything is drawn.
     pub fn generate(seed: u64, options: &BuildingOptions) -> Result<Building> {
         options.validate()?;
-        let mut rng = sim_rng(seed);
-        let plan = layout::plan(&mut rng, options);
-        let walls = walls::walls(&plan)?;
-        let items = furniture::furnish(&mut rng, &plan, &walls, options.clutter)?;
-        let placement = Placement {
-            mirror: rng.random_bool(0.5),
-            transpose: rng.random_bool(0.5),
-            width_m: plan.regions.iter().map(|r| r.rect[2]).fold(0.0, f64::max),
-        };
-        let rooms = rooms(&plan, &placement);
-        let doors: Vec<Door> = walls.doors.iter().map(|d| placement.door(d)).collect();
-        let walls = walls
-            .polygons
-            .iter()
-            .map(|p| placement.polygon(p))
-            .collect::<Result<Vec<_>>>()?;
-        let items = items
-            .iter()
-            .map(|i| Ok((i.region, placement.polygon(&i.polygon)?)))
-            .collect::<Result<Vec<_>>>()?;
-        let corridor = rooms[0].floor_m[0];
-        let from = [
-            0.5 * (corridor[0] + corridor[2]),
-            0.5 * (corridor[1] + corridor[3]),
-        ];
-        let name = name(seed, options);
-        let mut kept = vec![true; items.len()];
+        let parts = Parts::new(seed, options)?;
+        let from = parts.start_m();
+        let mut kept = vec![true; parts.items.len()];
         loop {
-            let mut polygons = walls.clone();
-            polygons.extend(
-                items
-                    .iter()
-                    .zip(&kept)
-                    .filter(|(_, k)| **k)
-                    .map(|((_, p), _)| p.clone()),
-            );
-            let world = World::new(polygons);
-            let cut_off = unreachable_rooms(&world, &rooms, from)?;
+            let world = parts.world(|i, _| kept[i]);
+            let cut_off = unreachable_rooms(&world, &parts.rooms, from)?;
             if cut_off.is_empty() {
-                return Building::new(name, world, rooms, doors);
+                return Building::new(parts.name, world, parts.rooms, parts.doors);
             }
             let before = kept.clone();
-            for (k, (region, _)) in kept.iter_mut().zip(&items) {
+            for (k, (region, _, _)) in kept.iter_mut().zip(&parts.items) {
                 if cut_off.contains(region) {
                     *k = false;
                 }
@@ -165,10 +195,12 @@ impl Building {
                 if kept.iter().any(|&k| k) {
                     kept.fill(false);
                 } else {
-                    let names: Vec<&str> =
-                        cut_off.iter().map(|&r| rooms[r].name.as_str()).collect();
+                    let names: Vec<&str> = cut_off
+                        .iter()
+                        .map(|&r| parts.rooms[r].name.as_str())
+                        .collect();
                     return Err(SimError::UnreachableRooms {
-                        building: name,
+                        building: parts.name,
                         rooms: names.join(", "),
                     });
                 }
@@ -282,6 +314,50 @@ mod tests {
         ];
         let cut_off = unreachable_rooms(b.world(), b.rooms(), from).unwrap();
         assert!(cut_off.is_empty(), "{name}: rooms {cut_off:?} cut off");
+    }
+
+    /// Furniture and pillars never cut off a part of a room: every cell
+    /// of a room's floor where the robot's disc fits, and which it reaches
+    /// from the first corridor with walls and slanted walls alone (not the
+    /// pocket behind a slanted wall), it still reaches with everything
+    /// placed; over seeds and sizes, the rooms as full as the options let
+    /// them be.
+    #[test]
+    fn furniture_never_cuts_off_a_part_of_a_room() {
+        use crate::building::validity::{cells_in, reach};
+        for seed in 0..24u64 {
+            let o = BuildingOptions {
+                area_m2: [120.0, 250.0, 550.0][seed as usize % 3],
+                clutter: 1.0,
+                ..BuildingOptions::default()
+            };
+            let parts = Parts::new(seed, &o).unwrap();
+            let bare = reach(
+                &parts.world(|_, kind| kind == ItemKind::SlantedWall),
+                parts.start_m(),
+            )
+            .unwrap();
+            let full = reach(&parts.world(|_, _| true), parts.start_m()).unwrap();
+            assert_eq!(bare.grid, full.grid);
+            for room in &parts.rooms {
+                for floor in &room.floor_m {
+                    for i in cells_in(&full.grid, floor) {
+                        if full.free[i] && bare.reached[i] {
+                            assert!(
+                                full.reached[i],
+                                "{}: {} cut off at {:?}",
+                                parts.name,
+                                room.name,
+                                full.grid.cell_center(full.grid.cell(i))
+                            );
+                        }
+                    }
+                }
+            }
+            // The building returned keeps every item.
+            let b = Building::generate(seed, &o).unwrap();
+            assert_eq!(b.world().len(), parts.walls.len() + parts.items.len());
+        }
     }
 
     #[test]

@@ -117,7 +117,8 @@ pub(super) struct Region {
     pub(super) door_side: Side,
     /// Whether its wall on `door_side` is glass.
     pub(super) glass: bool,
-    /// Whether it has a door on a side other than `door_side`.
+    /// Whether it has a door on a side other than `door_side` (a second
+    /// door to a neighbour, or the door to the room behind it).
     pub(super) side_door: bool,
 }
 
@@ -320,6 +321,8 @@ pub(super) fn plan(rng: &mut SimRng, options: &BuildingOptions) -> Plan {
                     regions: [block.corridor, front],
                 });
                 if let Some(split) = split {
+                    // The room in front has a second door, on its back side.
+                    regions[front].side_door = true;
                     let back = regions.len();
                     regions.push(room(block.slab(column, [split, depth_m]), block.side));
                     let door = door_span(rng, column, half, options.door_width_m);

@@ -20,13 +20,21 @@ use crate::world::World;
 /// The cell size of the check, metres: the exploration's default.
 pub const RESOLUTION_M: f64 = 0.05;
 
-/// The indices of the rooms of `rooms` that a disc of [`ROBOT_RADIUS_M`]
-/// starting at `from_m` in `world` cannot reach (see the module
-/// documentation); all of them when it cannot stand at `from_m`.
+/// Where a disc of [`ROBOT_RADIUS_M`] starting at a point can go: the
+/// grid of the check, the cells where it fits, and those of them it
+/// reaches.
+pub(crate) struct Reach {
+    pub(crate) grid: Grid,
+    pub(crate) free: Vec<bool>,
+    pub(crate) reached: Vec<bool>,
+}
+
+/// Where a disc starting at `from_m` in `world` can go (see the module
+/// documentation); nothing when it cannot stand at `from_m`.
 ///
 /// # Errors
 /// As [`Grid::covering`] for a world too large to rasterise.
-pub fn unreachable_rooms(world: &World, rooms: &[Room], from_m: [f64; 2]) -> Result<Vec<usize>> {
+pub(crate) fn reach(world: &World, from_m: [f64; 2]) -> Result<Reach> {
     let robot = Robot::new(ROBOT_RADIUS_M)?;
     let [x0, y0, x1, y1] = world.bounds_m();
     let m = 0.5;
@@ -51,13 +59,33 @@ pub fn unreachable_rooms(world: &World, rooms: &[Room], from_m: [f64; 2]) -> Res
             }
         }
     }
+    Ok(Reach {
+        grid,
+        free,
+        reached,
+    })
+}
+
+/// The indices of the rooms of `rooms` that a disc of [`ROBOT_RADIUS_M`]
+/// starting at `from_m` in `world` cannot reach (see the module
+/// documentation); all of them when it cannot stand at `from_m`.
+///
+/// # Errors
+/// As [`Grid::covering`] for a world too large to rasterise.
+pub fn unreachable_rooms(world: &World, rooms: &[Room], from_m: [f64; 2]) -> Result<Vec<usize>> {
+    let Reach { grid, reached, .. } = reach(world, from_m)?;
     Ok((0..rooms.len())
-        .filter(|&r| !rooms[r].floor_m.iter().any(|f| reaches(&grid, &reached, f)))
+        .filter(|&r| {
+            !rooms[r]
+                .floor_m
+                .iter()
+                .any(|f| cells_in(&grid, f).any(|i| reached[i]))
+        })
         .collect())
 }
 
-/// Whether a reached cell's centre lies in `floor`.
-fn reaches(grid: &Grid, reached: &[bool], floor: &[f64; 4]) -> bool {
+/// The cells whose centre lies in `floor`.
+pub(crate) fn cells_in<'a>(grid: &'a Grid, floor: &[f64; 4]) -> impl Iterator<Item = usize> + 'a {
     let [gx0, gy0] = grid.origin_m();
     let r = grid.resolution_m();
     let (rows, cols) = grid.shape();
@@ -66,19 +94,16 @@ fn reaches(grid: &Grid, reached: &[bool], floor: &[f64; 4]) -> bool {
     let range = |lo: f64, hi: f64, origin: f64, n: usize| {
         let first = ((lo - origin) / r - 0.5).ceil().max(0.0) as usize;
         let last = ((hi - origin) / r - 0.5).floor();
-        let last = if last < 0.0 {
-            None
+        let end = if last < 0.0 {
+            0
         } else {
-            Some((last as usize).min(n - 1))
+            (last as usize + 1).min(n)
         };
-        (first, last)
+        first..end.max(first)
     };
-    let (c0, c1) = range(floor[0], floor[2], gx0, cols);
-    let (r0, r1) = range(floor[1], floor[3], gy0, rows);
-    let (Some(c1), Some(r1)) = (c1, r1) else {
-        return false;
-    };
-    (r0..=r1).any(|row| (c0..=c1).any(|col| reached[row * cols + col]))
+    let cs = range(floor[0], floor[2], gx0, cols);
+    let rs = range(floor[1], floor[3], gy0, rows);
+    rs.flat_map(move |row| cs.clone().map(move |col| row * cols + col))
 }
 
 #[cfg(test)]
