@@ -156,7 +156,7 @@ impl Building {
     ) -> Result<Self> {
         for (index, room) in rooms.iter().enumerate() {
             for r in &room.floor_m {
-                if !r.iter().all(|v| v.is_finite()) || !(r[0] < r[2] && r[1] < r[3]) {
+                if !(r.iter().all(|v| v.is_finite()) && r[0] < r[2] && r[1] < r[3]) {
                     return Err(SimError::InvalidValue {
                         what: "room floor rectangle (finite, non-empty)",
                         index,

@@ -25,6 +25,7 @@ pub const RESOLUTION_M: f64 = 0.05;
 /// reaches.
 pub(crate) struct Reach {
     pub(crate) grid: Grid,
+    #[cfg_attr(not(test), allow(dead_code, reason = "read by the generator's tests"))]
     pub(crate) free: Vec<bool>,
     pub(crate) reached: Vec<bool>,
 }

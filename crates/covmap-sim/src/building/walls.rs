@@ -66,7 +66,7 @@ fn cut(spans: &[[f64; 2]], [a, b]: [f64; 2]) -> Vec<[f64; 2]> {
 }
 
 /// The line's entry in `lines`, added if new.
-fn line_entry<'a>(lines: &'a mut Vec<(Line, Vec<[f64; 2]>)>, line: Line) -> &'a mut Vec<[f64; 2]> {
+fn line_entry(lines: &mut Vec<(Line, Vec<[f64; 2]>)>, line: Line) -> &mut Vec<[f64; 2]> {
     let at = match lines.iter().position(|(l, _)| l.same(&line)) {
         Some(at) => at,
         None => {
