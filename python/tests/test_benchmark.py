@@ -233,5 +233,5 @@ def test_per_sensor_limits_and_buildings(small: list[covmap.Building]) -> None:
     assert sorted(w for w in worlds if w[1] == "Laser") == [("generated:1:60", "Laser", 150), ("generated:2:60", "Laser", 150)]
     assert all(s["max_path_m"] == 3000.0 for s in specs)
     full = benchmark.CONFIGURATIONS["full"]
-    assert full.sensor_options["laser"]["max_steps"] == benchmark.LASER_MAX_STEPS
+    assert full.sensor_options["laser"]["max_path_m"] == benchmark.LASER_MAX_PATH_M
     assert full.max_extent_m2 == {"laser": benchmark.LASER_MAX_EXTENT_M2}

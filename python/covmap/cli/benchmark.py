@@ -25,7 +25,7 @@ DESCRIPTION = (
     "and benchmark.png. The default: four small development buildings, the four strategies, sonar, seed 0 "
     "(a few minutes on two cores). --full: 24 test buildings of 120, 250 and 550 square metres and the "
     "real plans (AMROffice, the Stata basement, Willow; from --plans) with sonar, the eight small ones with "
-    "the laser too (at most 150 steps a laser run); runs on a Dask cluster when given one (--dask). Every "
+    "the laser too (at most 300 m a laser run); runs on a Dask cluster when given one (--dask). Every "
     "run stops at 3000 m (--max-path-m, --max-steps: other limits for every run). --buildings picks other buildings: sets "
     "(default, development, test) or buildings by name (corridor, office, generated:SEED[:AREA], a world "
     "file), separated by commas."

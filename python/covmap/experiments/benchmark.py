@@ -44,7 +44,7 @@ __all__ = [
     "CONFIGURATIONS",
     "CSV_FIELDS",
     "LASER_MAX_EXTENT_M2",
-    "LASER_MAX_STEPS",
+    "LASER_MAX_PATH_M",
     "MAX_PATH_M",
     "MAX_RUNS",
     "SENSORS",
@@ -133,16 +133,17 @@ coverage maps and frontiers end by their own rule well before it
 (BENCHMARKS.md). A step or path limit, never a wall-clock one: a run's end
 must not depend on the machine."""
 
-LASER_MAX_STEPS = 150
-"""The full benchmark's step limit of the laser's runs. The coverage
-strategy plans each step of the 361-beam laser for 1 s (a 120 square-metre
-building) to 10 s (550 square metres) on one core: a run to its own end
-takes some 320 steps and 6 minutes in a small building, hours in a large
-one (BENCHMARKS.md)."""
+LASER_MAX_PATH_M = 300.0
+"""The full benchmark's path limit of the laser's runs, metres. The
+coverage strategy plans each step of the 361-beam laser for about 1 s (a
+120 square-metre building) to 10 s (550 square metres) on one core: a run
+to its own end takes some 320 steps, 455 m and 6 minutes in a small
+building, hours in a large one; counting to 50 drives 1.4 km in 2700 steps
+(BENCHMARKS.md)."""
 
 LASER_MAX_EXTENT_M2 = 200.0
 """The largest building the full benchmark runs the laser in (bounding box,
-square metres): the small ones, for the reason of :data:`LASER_MAX_STEPS`."""
+square metres): the small ones, for the reason of :data:`LASER_MAX_PATH_M`."""
 
 CONFIGURATIONS: dict[str, Configuration] = {
     "default": Configuration("default", 4, False, ("sonar",), (0,), {"sonar": {"max_path_m": MAX_PATH_M}}),
@@ -152,14 +153,14 @@ CONFIGURATIONS: dict[str, Configuration] = {
         True,
         ("sonar", "laser"),
         (0,),
-        {"sonar": {"max_path_m": MAX_PATH_M}, "laser": {"max_path_m": MAX_PATH_M, "max_steps": LASER_MAX_STEPS}},
+        {"sonar": {"max_path_m": MAX_PATH_M}, "laser": {"max_path_m": LASER_MAX_PATH_M}},
         {"laser": LASER_MAX_EXTENT_M2},
     ),
 }
 """The benchmark's configurations: ``"default"`` (four small development
 buildings, sonar) and ``"full"`` (24 test buildings and the real plans with
 sonar; the laser in the eight small ones, at most
-:data:`LASER_MAX_STEPS` steps)."""
+:data:`LASER_MAX_PATH_M` a run)."""
 
 
 @dataclass(frozen=True)
