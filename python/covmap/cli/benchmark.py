@@ -3,6 +3,7 @@ buildings x seeds."""
 
 from __future__ import annotations
 
+from pathlib import Path
 from typing import TYPE_CHECKING
 
 from covmap.cli import _options
@@ -21,14 +22,16 @@ DESCRIPTION = (
     "and sensor, once per seed, every run in parallel (one a local core, or on Dask), with a progress bar. "
     "Prints a summary per strategy and sensor (median and interquartile range of the evaluation cells left "
     "uncertain, the path length, the rooms never entered and the real-time factor; runs at most 1 % "
-    "uncertain, runs that entered every room; how the runs ended) and writes benchmark.csv (one row a run) "
+    "uncertain, runs that entered every room; how the runs ended) and the real-time factor by building "
+    "size, and writes benchmark.csv (one row a run) "
     "and benchmark.png. The default: four small development buildings, the four strategies, sonar, seed 0 "
     "(a few minutes on two cores). --full: 24 test buildings of 120, 250 and 550 square metres and the "
     "real plans (AMROffice, the Stata basement, Willow; from --plans) with sonar, the eight small ones with "
     "the laser too (at most 300 m a laser run); runs on a Dask cluster when given one (--dask). Every "
     "run stops at 3000 m (--max-path-m, --max-steps: other limits for every run). --buildings picks other buildings: sets "
     "(default, development, test) or buildings by name (corridor, office, generated:SEED[:AREA], a world "
-    "file), separated by commas."
+    "file), separated by commas. --report CSV prints the summary of an earlier run's benchmark.csv and "
+    "draws its figure, running nothing."
 )
 """What ``covmap benchmark --help`` says the command does."""
 
@@ -38,6 +41,12 @@ def add_arguments(command: argparse.ArgumentParser) -> None:
     from covmap.buildings import DEFAULT_PLANS_DIR
     from covmap.experiments.benchmark import STRATEGIES
 
+    command.add_argument(
+        "--report",
+        type=Path,
+        metavar="CSV",
+        help="run nothing: print the summary of an earlier run's benchmark.csv and draw its figure into --out",
+    )
     command.add_argument(
         "--full",
         action="store_true",
@@ -100,6 +109,12 @@ def run(args: argparse.Namespace) -> int:
     from covmap.experiments import benchmark
     from covmap.plot import plot_benchmark
 
+    if args.report is not None:
+        b = benchmark.read_csv(args.report)
+        print(benchmark.summary_table(b))
+        print(benchmark.speed_table(b))
+        print(f"wrote {plot_benchmark(b, args.out / 'benchmark.png')}")
+        return 0
     config = benchmark.CONFIGURATIONS["full" if args.full else "default"]
     references = args.buildings if args.buildings is not None else [config.buildings]
     count = args.count if args.count is not None else config.count
@@ -138,6 +153,7 @@ def run(args: argparse.Namespace) -> int:
             resolution=args.resolution,
         )
     print(benchmark.summary_table(b))
+    print(benchmark.speed_table(b))
     print(f"wrote {benchmark.write_csv(b, args.out / 'benchmark.csv')}")
     print(f"wrote {plot_benchmark(b, args.out / 'benchmark.png')}")
     return 0

@@ -31,6 +31,7 @@ from typing import TYPE_CHECKING, Any, Callable
 from covmap._arguments import check_module
 from covmap._errors import InvalidParameterError, InvalidTypeError, InvalidValueError
 from covmap._native import DEFAULT_DISCOUNT_BEYOND_M, Laser, SonarRing, Strategy
+from covmap._exploration import REAL_TIME_SPEED_M_S, real_time_factor
 from covmap._sweep import RunSummary, SweepFailure, sweep
 from covmap.buildings import split_of
 
@@ -48,15 +49,18 @@ __all__ = [
     "MAX_PATH_M",
     "MAX_RUNS",
     "SENSORS",
+    "SIZE_CLASSES_M2",
     "STRATEGIES",
     "Benchmark",
     "BenchmarkRun",
     "Configuration",
     "StrategySummary",
     "csv_text",
+    "read_csv",
     "run",
     "sensor_of",
     "specs",
+    "speed_table",
     "summary_table",
     "write_csv",
 ]
@@ -165,7 +169,9 @@ sonar; the laser in the eight small ones, at most
 
 @dataclass(frozen=True)
 class BenchmarkRun:
-    """One run of the benchmark: where, how, and what it reported."""
+    """One run of the benchmark: where, how, and its figures (a row of the
+    CSV, :func:`read_csv` reads it back). Two runs compare equal when their
+    outcomes are the same (the wall time aside)."""
 
     building: str
     """The building's name."""
@@ -175,23 +181,65 @@ class BenchmarkRun:
     """The strategy's label (:data:`STRATEGIES`)."""
     sensor: str
     """The sensor's name."""
-    summary: RunSummary
-    """Everything the run reported."""
+    seed: int
+    """The run's seed."""
+    termination: str
+    """How it ended (:attr:`covmap.ExplorationResult.termination`)."""
+    uncertain_fraction: float
+    """The share of the evaluation cells uncertain at the end."""
+    rooms: int | None
+    """The rooms and halls it is judged on (``None``: no room list)."""
+    rooms_never_entered: tuple[str, ...]
+    """The names of those it never entered."""
+    path_length_m: float
+    """Distance driven, metres."""
+    scans: int
+    """Scans taken."""
+    steps: int
+    """Steps taken."""
+    contacts: int
+    """Contacts with obstacles the map did not show."""
+    error_coverage_map: float
+    """The coverage map's mean absolute error against the truth."""
+    error_occupancy: float
+    """The occupancy grid's."""
+    evaluation_area_m2: float
+    """The area of the evaluation cells, square metres."""
+    seconds: float = field(compare=False)
+    """Wall time, seconds."""
+
+    @classmethod
+    def of(cls, strategy: str, sensor: str, s: RunSummary) -> BenchmarkRun:
+        """The figures of the sweep's run ``s`` of ``strategy`` with ``sensor``."""
+        return cls(
+            building=s.world,
+            split=split_of(s.world),
+            strategy=strategy,
+            sensor=sensor,
+            seed=s.seed,
+            termination=str(s.termination),
+            uncertain_fraction=s.high_entropy_fraction,
+            rooms=s.rooms,
+            rooms_never_entered=s.rooms_never_entered,
+            path_length_m=s.path_length_m,
+            scans=s.scans,
+            steps=s.steps,
+            contacts=s.contacts,
+            error_coverage_map=s.coverage_error.coverage_map,
+            error_occupancy=s.coverage_error.occupancy,
+            evaluation_area_m2=s.evaluation_area_m2,
+            seconds=s.seconds,
+        )
 
     @property
-    def uncertain_fraction(self) -> float:
-        """The share of the evaluation cells uncertain at the end."""
-        return self.summary.high_entropy_fraction
-
-    @property
-    def rooms_never_entered(self) -> int:
+    def rooms_missed(self) -> int:
         """How many rooms and halls the robot never entered."""
-        return len(self.summary.rooms_never_entered)
+        return len(self.rooms_never_entered)
 
     @property
     def real_time_factor(self) -> float:
         """How many times faster than a robot driving the path at 0.5 m/s."""
-        return self.summary.real_time_factor()
+        return real_time_factor(self.path_length_m, self.seconds, REAL_TIME_SPEED_M_S)
 
 
 @dataclass(frozen=True)
@@ -258,18 +306,18 @@ class StrategySummary:
         """The summary of ``runs``, all of ``strategy`` with ``sensor``."""
         endings: dict[str, int] = {}
         for r in runs:
-            endings[str(r.summary.termination)] = endings.get(str(r.summary.termination), 0) + 1
+            endings[r.termination] = endings.get(r.termination, 0) + 1
         return cls(
             strategy=strategy,
             sensor=sensor,
             runs=len(runs),
             uncertain=_quartiles([r.uncertain_fraction for r in runs]),
-            path_m=_quartiles([r.summary.path_length_m for r in runs]),
-            rooms_never_entered=_quartiles([float(r.rooms_never_entered) for r in runs]),
+            path_m=_quartiles([r.path_length_m for r in runs]),
+            rooms_never_entered=_quartiles([float(r.rooms_missed) for r in runs]),
             real_time_factor=_quartiles([r.real_time_factor for r in runs]),
-            error_coverage_map=statistics.median(r.summary.coverage_error.coverage_map for r in runs),
+            error_coverage_map=statistics.median(r.error_coverage_map for r in runs),
             at_most_one_percent=sum(r.uncertain_fraction <= 0.01 for r in runs),
-            every_room=sum(r.rooms_never_entered == 0 for r in runs),
+            every_room=sum(r.rooms_missed == 0 for r in runs),
             terminations=endings,
         )
 
@@ -370,7 +418,7 @@ def run(
     for spec, summary in zip(all_specs, summaries):
         label = by_strategy.get(spec["strategy"], repr(spec["strategy"]))
         sensor = "laser" if isinstance(spec["sensor"], Laser) else "sonar"
-        runs.append(BenchmarkRun(summary.world, split_of(summary.world), label, sensor, summary))
+        runs.append(BenchmarkRun.of(label, sensor, summary))
     per_sensor = {} if sensor_options is None else {k: dict(v) for k, v in sensor_options.items()}
     return Benchmark(runs, dict(options), per_sensor)
 
@@ -405,31 +453,86 @@ def csv_text(b: Benchmark) -> str:
     writer = csv.writer(out, lineterminator="\n")
     writer.writerow(CSV_FIELDS)
     for r in b.runs:
-        s = r.summary
         writer.writerow(
             [
                 r.building,
                 r.split,
                 r.strategy,
                 r.sensor,
-                s.seed,
-                s.termination,
-                repr(s.high_entropy_fraction),
-                "" if s.rooms is None else s.rooms,
-                r.rooms_never_entered,
-                ";".join(s.rooms_never_entered),
-                repr(s.path_length_m),
-                s.scans,
-                s.steps,
-                s.contacts,
-                repr(s.coverage_error.coverage_map),
-                repr(s.coverage_error.occupancy),
-                f"{s.evaluation_area_m2:.2f}",
-                f"{s.seconds:.3f}",
+                r.seed,
+                r.termination,
+                repr(r.uncertain_fraction),
+                "" if r.rooms is None else r.rooms,
+                r.rooms_missed,
+                ";".join(r.rooms_never_entered),
+                repr(r.path_length_m),
+                r.scans,
+                r.steps,
+                r.contacts,
+                repr(r.error_coverage_map),
+                repr(r.error_occupancy),
+                repr(r.evaluation_area_m2),
+                repr(r.seconds),
                 f"{r.real_time_factor:.1f}",
             ]
         )
     return out.getvalue()
+
+
+def read_csv(path: Path) -> Benchmark:
+    """The benchmark whose runs :func:`write_csv` wrote to ``path`` (its
+    options are not in the file): the views and the figure of an earlier
+    run, without running it again. A file that is not such a CSV raises
+    :class:`~covmap.FileFormatError` naming the file and the row."""
+    from covmap._errors import FileFormatError
+    from covmap._read import read_small_file
+
+    def bad(place: str, reason: str) -> FileFormatError:
+        error = FileFormatError(f"{path}: {place}: {reason}")
+        error.filename, error.place, error.reason = str(path), place, reason
+        return error
+
+    try:
+        text = read_small_file(path).decode("utf-8")
+    except UnicodeDecodeError as e:
+        raise bad("content", str(e)) from None
+    rows = list(csv.reader(io.StringIO(text)))
+    if not rows or tuple(rows[0]) != CSV_FIELDS:
+        raise bad("header", f"expected the columns {', '.join(CSV_FIELDS)}")
+    runs = []
+    for number, row in enumerate(rows[1:], start=2):
+        if len(row) != len(CSV_FIELDS):
+            raise bad(f"row {number}", f"expected {len(CSV_FIELDS)} values, got {len(row)}")
+        v = dict(zip(CSV_FIELDS, row))
+        try:
+            runs.append(
+                BenchmarkRun(
+                    building=v["building"],
+                    split=v["split"],
+                    strategy=v["strategy"],
+                    sensor=v["sensor"],
+                    seed=int(v["seed"]),
+                    termination=v["termination"],
+                    uncertain_fraction=float(v["uncertain_fraction"]),
+                    rooms=int(v["rooms"]) if v["rooms"] else None,
+                    rooms_never_entered=tuple(v["rooms_never_entered_names"].split(";"))
+                    if v["rooms_never_entered_names"]
+                    else (),
+                    path_length_m=float(v["path_length_m"]),
+                    scans=int(v["scans"]),
+                    steps=int(v["steps"]),
+                    contacts=int(v["contacts"]),
+                    error_coverage_map=float(v["error_coverage_map"]),
+                    error_occupancy=float(v["error_occupancy"]),
+                    evaluation_area_m2=float(v["evaluation_area_m2"]),
+                    seconds=float(v["seconds"]),
+                )
+            )
+        except ValueError as e:
+            raise bad(f"row {number}", str(e)) from None
+        if runs[-1].sensor not in SENSORS:
+            raise bad(f"row {number}", f"unknown sensor {runs[-1].sensor!r}")
+    return Benchmark(runs, {})
 
 
 def write_csv(b: Benchmark, path: Path) -> Path:
@@ -502,6 +605,40 @@ def summary_table(b: Benchmark) -> str:
         "robot never entered; real time x: how many times faster than driving the path at 0.5 m/s; error: the "
         "coverage map's mean absolute error against the truth (median)"
     )
+    return "\n".join(text)
+
+
+SIZE_CLASSES_M2 = ((0.0, 200.0), (200.0, 400.0), (400.0, 700.0), (700.0, math.inf))
+"""The classes of building sizes of :func:`speed_table`, by the area of a
+run's evaluation cells (what it could observe), square metres: the
+AMROffice plan's is 559, the built-in corridor's 106."""
+
+
+def speed_table(b: Benchmark) -> str:
+    """The real-time factor by strategy, sensor and building size
+    (:data:`SIZE_CLASSES_M2`): the median over the runs of each class, and
+    how many runs it holds."""
+    def label(low: float, high: float) -> str:
+        return f"{low:.0f}+ m^2" if math.isinf(high) else f"{low:.0f}-{high:.0f} m^2"
+
+    header = ("strategy", "sensor", *(label(lo, hi) for lo, hi in SIZE_CLASSES_M2))
+    lines = [header]
+    for s in b.summaries():
+        runs = [r for r in b.runs if (r.strategy, r.sensor) == (s.strategy, s.sensor)]
+        cells = []
+        for low, high in SIZE_CLASSES_M2:
+            factors = [r.real_time_factor for r in runs if low <= r.evaluation_area_m2 < high]
+            cells.append(f"{statistics.median(factors):.0f}x ({len(factors)})" if factors else "-")
+        lines.append((s.strategy, s.sensor, *cells))
+    widths = [max(len(line[i]) for line in lines) for i in range(len(header))]
+    text = [
+        "Real-time factor (driving the path at 0.5 m/s over the run's wall time): the median by the size of "
+        "the run's evaluation cells (runs)"
+    ]
+    for i, line in enumerate(lines):
+        text.append("  ".join(cell.ljust(w) for cell, w in zip(line, widths)).rstrip())
+        if i == 0:
+            text.append("  ".join("-" * w for w in widths))
     return "\n".join(text)
 
 

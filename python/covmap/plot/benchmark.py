@@ -36,7 +36,7 @@ def plot_benchmark(b: Benchmark, path: Path) -> Path:
     with _figure_file(path, 1, 3, figsize=(15.0, 4.8), layout="constrained") as (fig, (unc, dist, scatter)):
         for ax, values, name in (
             (unc, [[100.0 * r.uncertain_fraction for r in group] for group in runs], "uncertain [%]"),
-            (dist, [[r.summary.path_length_m for r in group] for group in runs], "path length [m]"),
+            (dist, [[r.path_length_m for r in group] for group in runs], "path length [m]"),
         ):
             boxes = ax.boxplot(values, patch_artist=True, widths=0.6)
             ax.set_xticks(range(1, len(labels) + 1), labels, fontsize=7)
@@ -51,9 +51,9 @@ def plot_benchmark(b: Benchmark, path: Path) -> Path:
         unc.set_title("evaluation cells uncertain at the end", fontsize=9)
         dist.set_title("path length", fontsize=9)
         for (strategy, sensor), group in zip(keys, runs):
-            missed = [r.rooms_never_entered > 0 for r in group]
+            missed = [r.rooms_missed > 0 for r in group]
             scatter.scatter(
-                [r.summary.path_length_m for r in group],
+                [r.path_length_m for r in group],
                 [100.0 * r.uncertain_fraction for r in group],
                 s=[40 if m else 14 for m in missed],
                 facecolors=color[strategy] if sensor == "sonar" else "none",
