@@ -6,6 +6,7 @@ from __future__ import annotations
 
 import csv
 import io
+import os
 from pathlib import Path
 
 import numpy as np
@@ -261,3 +262,24 @@ def test_per_sensor_limits_and_buildings(small: list[covmap.Building]) -> None:
     full = benchmark.CONFIGURATIONS["full"]
     assert full.sensor_options["laser"]["max_path_m"] == benchmark.LASER_MAX_PATH_M
     assert full.max_extent_m2 == {"laser": benchmark.LASER_MAX_EXTENT_M2}
+
+
+def test_a_dask_cluster_gives_the_same_benchmark(bench: benchmark.Benchmark, small: list[covmap.Building]) -> None:
+    """The buildings travel to the workers (pickled with their rooms): the
+    same runs, the same rooms never entered, on a local Dask cluster."""
+    try:
+        import distributed  # noqa: F401
+    except ImportError:
+        if os.environ.get("CI") == "true":
+            pytest.fail("dask.distributed is not installed (CI=true: CI installs covmap[dask])")
+        pytest.skip("dask.distributed is not installed: pip install 'covmap[dask]' to run the Dask tests")
+    with covmap.dask_client(workers=2) as client:
+        on_dask = benchmark.run(
+            small,
+            strategies=["frontier", "counting n=1"],
+            sensors=["sonar", "laser"],
+            executor=client,
+            progress=False,
+            **LIMITS,
+        )
+    assert on_dask.runs == bench.runs
