@@ -123,7 +123,8 @@ class RunSummary:
     index: int
     """The spec's position in the list given to :func:`sweep`."""
     world: str
-    """The world: its built-in name, or the ``repr`` of the ``World`` given."""
+    """The world: its name as the spec gave it, a ``Building``'s name, or the
+    ``repr`` of the ``World`` given."""
     strategy: Strategy
     """The strategy that chose the goals."""
     seed: int
@@ -286,25 +287,9 @@ def strategy_of(value: Any) -> Strategy:
 
 
 def _world_of(value: Any) -> tuple[World, str, Building | None]:
-    """A spec's world, its label, and its building (the rooms a run is
-    judged on): a ``World`` has none, a ``Building`` or a building's name
-    (:func:`covmap.buildings.building`) has one."""
-    from covmap._native import Building, World
+    from covmap.buildings import spec_world
 
-    if isinstance(value, World):
-        return value, repr(value), None
-    if isinstance(value, Building):
-        return value.world, value.name, value
-    if isinstance(value, str):
-        from covmap.buildings import building
-
-        found = building(value)
-        return found.world, value, found
-    from covmap._errors import InvalidTypeError
-
-    raise InvalidTypeError(
-        f"world must be a World, a Building or a building's name, got {type(value).__name__}"
-    )
+    return spec_world(value)
 
 
 def _seed_of(value: Any) -> int:

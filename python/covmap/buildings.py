@@ -58,6 +58,7 @@ __all__ = [
     "building",
     "building_set",
     "buildings",
+    "spec_world",
     "split_of",
 ]
 
@@ -153,6 +154,21 @@ def building(reference: str | Building | World, *, image_resolution: float | Non
     if image_resolution is not None:
         options["resolution"] = image_resolution
     return Building.from_file(path, **options)
+
+
+def spec_world(value: Any) -> tuple[World, str, Building | None]:
+    """A sweep spec's world (:func:`covmap.sweep`), its label and its
+    building (whose rooms a run is judged on): a ``World`` is its own, with
+    its ``repr`` and no rooms; a ``Building`` gives its world and name; a
+    name (:func:`building`) its building, labelled by the name."""
+    if isinstance(value, World):
+        return value, repr(value), None
+    if isinstance(value, Building):
+        return value.world, value.name, value
+    if isinstance(value, str):
+        found = building(value)
+        return found.world, value, found
+    raise InvalidTypeError(f"world must be a World, a Building or a building's name, got {type(value).__name__}")
 
 
 def split_of(name: str) -> str:

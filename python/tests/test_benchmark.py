@@ -14,7 +14,7 @@ import pytest
 
 import covmap
 from cli_helpers import PNG_SIGNATURE, run_cli
-from covmap.experiments import benchmark, fig7, table1
+from covmap.experiments import benchmark, benchmark_files, fig7, table1
 
 #: Two small buildings, kept short: the benchmark's machinery, not its figures.
 SMALL = ("generated:1:60", "generated:2:60")
@@ -48,27 +48,27 @@ def test_every_run_reports_its_figures(bench: benchmark.Benchmark, small: list[c
         assert 0.0 <= r.uncertain_fraction <= 1.0 and r.evaluation_area_m2 > 20.0
         assert r.termination in ("limit", "no_goal", "stagnated", "certain")
         assert r.real_time_factor > 0.0
-    rows = list(csv.DictReader(io.StringIO(benchmark.csv_text(bench))))
-    assert len(rows) == len(bench.runs) and list(rows[0]) == list(benchmark.CSV_FIELDS)
+    rows = list(csv.DictReader(io.StringIO(benchmark_files.csv_text(bench))))
+    assert len(rows) == len(bench.runs) and list(rows[0]) == list(benchmark_files.CSV_FIELDS)
     assert {row["sensor"] for row in rows} == {"sonar", "laser"}
 
 
 def test_the_csv_reads_back_as_the_runs(bench: benchmark.Benchmark, tmp_path: Path) -> None:
-    path = benchmark.write_csv(bench, tmp_path / "b.csv")
-    back = benchmark.read_csv(path)
+    path = benchmark_files.write_csv(bench, tmp_path / "b.csv")
+    back = benchmark_files.read_csv(path)
     assert back.runs == bench.runs
     assert [r.seconds for r in back.runs] == [r.seconds for r in bench.runs]
     assert benchmark.summary_table(back).splitlines()[2:] == benchmark.summary_table(bench).splitlines()[3:]
     bad = tmp_path / "bad.csv"
     bad.write_text("a,b\n1,2\n")
     with pytest.raises(covmap.FileFormatError, match="header"):
-        benchmark.read_csv(bad)
+        benchmark_files.read_csv(bad)
     text = path.read_text().splitlines()
     bad.write_text("\n".join([text[0], text[1].replace(",sonar,", ",radar,", 1)]) + "\n")
     with pytest.raises(covmap.FileFormatError, match="row 2"):
-        benchmark.read_csv(bad)
+        benchmark_files.read_csv(bad)
     with pytest.raises(covmap.FileIOError):
-        benchmark.read_csv(tmp_path / "missing.csv")
+        benchmark_files.read_csv(tmp_path / "missing.csv")
 
 
 def test_the_summary_has_a_row_per_strategy_and_sensor(bench: benchmark.Benchmark) -> None:

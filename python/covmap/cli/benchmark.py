@@ -106,11 +106,11 @@ def run(args: argparse.Namespace) -> int:
     from covmap._sweep import RunSummary, SweepFailure
     from covmap.buildings import buildings
     from covmap.cli._progress import Progress
-    from covmap.experiments import benchmark
+    from covmap.experiments import benchmark, benchmark_files
     from covmap.plot import plot_benchmark
 
     if args.report is not None:
-        b = benchmark.read_csv(args.report)
+        b = benchmark_files.read_csv(args.report)
         print(benchmark.summary_table(b))
         print(benchmark.speed_table(b))
         print(f"wrote {plot_benchmark(b, args.out / 'benchmark.png')}")
@@ -154,6 +154,6 @@ def run(args: argparse.Namespace) -> int:
         )
     print(benchmark.summary_table(b))
     print(benchmark.speed_table(b))
-    print(f"wrote {benchmark.write_csv(b, args.out / 'benchmark.csv')}")
+    print(f"wrote {benchmark_files.write_csv(b, args.out / 'benchmark.csv')}")
     print(f"wrote {plot_benchmark(b, args.out / 'benchmark.png')}")
     return 0
