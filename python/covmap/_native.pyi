@@ -36,6 +36,9 @@ __all__ = [
     "Candidates",
     "ExplorationStatus",
     "World",
+    "Building",
+    "Room",
+    "Door",
     "SonarRing",
     "Laser",
     "Robot",
@@ -895,6 +898,150 @@ class ExplorationStatus:
     def __ne__(self, value: object, /) -> bool: ...
 
 @final
+class Building:
+    """A building: a ``World`` with its rooms and doors, so that an
+    exploration can be judged room by room (``rooms_never_entered``).
+
+    Make one with a static method: ``Building.generate(seed, ...)`` (a
+    seeded floor plan), ``Building.from_file(path)`` (a real plan, a
+    map_server pair), ``Building.builtin(name)`` or
+    ``Building.from_world(world, name)``. Buildings pickle.
+    """
+
+    @staticmethod
+    def generate(
+        seed: int,
+        *,
+        area_m2: float = 200.0,
+        clutter: float = 0.5,
+        glass: float = 0.2,
+        door_width_m: tuple[float, float] = (0.8, 1.2),
+        corridor_width_m: tuple[float, float] = (1.5, 3.0),
+        room_size_m: tuple[float, float] = (2.5, 6.0),
+        wall_thickness_m: tuple[float, float] = (0.1, 0.2),
+    ) -> Building:
+        """The building of ``seed`` (0 to 2**64 - 1): corridors (straight, L
+        or T) with rooms along them, rooms behind rooms, open halls with
+        pillars, doors ``door_width_m`` wide, furniture that never blocks a
+        door, pillars along corridors, slanted walls and glass fronts.
+        ``area_m2``: the floor area, walls included (550 is AMROffice's
+        size); ``clutter``: furniture, from 0 (none) to 1 (a piece per 2.5
+        square metres); ``glass``: the share of glass room fronts; the
+        ranges ``(least, most)`` of door, corridor and room widths and wall
+        thicknesses, metres. Every room is reachable by a disc of 0.25 m
+        from the first corridor. The same seed and parameters give the same
+        building on every machine. A parameter out of its range (NaN, a
+        negative size, a door narrower than the robot, rooms that cannot
+        hold the widest door, an area too small for a corridor and two
+        rooms) raises ``InvalidParameterError`` naming it.
+        """
+    @staticmethod
+    def from_world(world: World, name: str = "world") -> Building:
+        """``world`` as a building named ``name``, its rooms found by the rule
+        for plans: the parts of the free space where the robot may start
+        that passages narrower than 1.3 m (doorways) separate, each at
+        least 0.25 square metres beyond 0.65 m from every obstacle (its
+        core); a run enters one when the robot's centre crosses its core.
+        Doors are not listed.
+        """
+    @staticmethod
+    def builtin(name: str) -> Building:
+        """A built-in world as a building (``World.builtin``; rooms by the
+        rule of ``from_world``), named by its name.
+        """
+    @staticmethod
+    def from_file(
+        path: _Path,
+        *,
+        wall_thickness_m: float | None = None,
+        resolution: float | None = None,
+        origin: tuple[float, float] | None = None,
+    ) -> Building:
+        """A world file as a building (``World.from_file``, the same
+        arguments; rooms by the rule of ``from_world``), named by the
+        file's name.
+        """
+    @property
+    def name(self) -> str:
+        """Its name: ``"generated:SEED"`` (``"generated:SEED:AREA"`` for
+        another area than the default), a plan's file name, a built-in
+        world's name.
+        """
+    @property
+    def world(self) -> World:
+        """The world: walls, furniture, pillars and glass."""
+    @property
+    def rooms(self) -> list[Room]:
+        """The rooms, corridors and halls, in order (doors name them by index)."""
+    @property
+    def doors(self) -> list[Door]:
+        """The doors."""
+    @property
+    def floor_area_m2(self) -> float:
+        """The area of the rooms' floors, square metres."""
+    def rooms_entered(self, trajectory: _Points) -> npt.NDArray[np.bool_]:
+        """Whether the robot's centre, driving straight from each point of
+        ``trajectory`` (``(K, 2)`` points or ``(K, 3)`` poses, as
+        ``ExplorationResult.trajectory``) to the next, entered each room:
+        a bool array, one a room.
+        """
+    def rooms_never_entered(self, trajectory: _Points) -> list[str]:
+        """The names of the rooms and halls (not corridors) that
+        ``trajectory`` never entered (see ``rooms_entered``).
+        """
+    def to_json(self) -> str:
+        """The building as JSON text (its world as GeoJSON, its rooms and
+        doors); ``Building.from_json`` reads it back.
+        """
+    @staticmethod
+    def from_json(text: str) -> Building:
+        """A building from ``to_json``'s text; ``FileFormatError`` for text
+        that is not one.
+        """
+    def __reduce__(self) -> tuple[Any, tuple[str]]:
+        """Pickle and copy support: rebuilt by ``Building.from_json``."""
+
+@final
+class Room:
+    """A room, corridor or hall of a ``Building``: its name, its kind and its
+    floor (axis-aligned rectangles between its walls' faces).
+    """
+
+    @property
+    def name(self) -> str:
+        """Its name, unique in the building (``"room 3"``, ``"corridor 1"``,
+        ``"region 2"``).
+        """
+    @property
+    def kind(self) -> str:
+        """``"room"``, ``"corridor"`` or ``"hall"``."""
+    @property
+    def floor(self) -> npt.NDArray[np.float64]:
+        """The floor: ``(K, 4)`` float64 rectangles ``(x_min, y_min, x_max,
+        y_max)``, metres.
+        """
+    @property
+    def area_m2(self) -> float:
+        """The floor's area, square metres."""
+
+@final
+class Door:
+    """A door of a ``Building``: an opening in a wall between two rooms."""
+
+    @property
+    def center(self) -> tuple[float, float]:
+        """The middle of the opening, ``(x, y)``, metres."""
+    @property
+    def width_m(self) -> float:
+        """The opening's clear width, metres."""
+    @property
+    def wall_angle_rad(self) -> float:
+        """The direction of the wall it is in, radians (0: along x)."""
+    @property
+    def rooms(self) -> tuple[int, int]:
+        """The indices in ``Building.rooms`` of the two rooms it joins."""
+
+@final
 class World:
     """A set of obstacle polygons in the plane (metres); everything outside them
     is free space, and overlapping polygons are their union.
@@ -938,11 +1085,17 @@ class World:
           ``resolution`` metres per pixel, its lower-left corner at ``origin``
           (default ``(0, 0)``); ``resolution`` is required.
 
+        In an image, the pixels that are not free (occupancy below the
+        YAML's ``free_thresh``, default 0.196) are obstacles: the occupied
+        ones and the unknown grey ones, so that a robot never drives in
+        space the map did not see; a map_server file in ``mode: scale``
+        makes obstacles of the occupied pixels only.
+
         An option the file's format does not use (``resolution`` for a
         GeoJSON file, say) raises ``InvalidParameterError``: it would be
-        ignored. A malformed file raises ``FileFormatError`` (a
-        ``ValueError``) naming the file and the place; a file that cannot be
-        read raises ``FileIOError`` (an ``OSError``).
+        ignored. A malformed file raises ``FileFormatError`` (a ``ValueError``) naming
+        the file and the place; a file that cannot be read raises
+        ``FileIOError`` (an ``OSError``).
         """
     def to_geojson(self) -> str:
         """The world as GeoJSON text (``World.from_file`` reads it back from a
@@ -1480,8 +1633,10 @@ def explore(
 
     The robot is a disc of ``robot_radius_m`` starting at ``start``
     (``(x, y, theta)``; ``None``: a free pose drawn from ``seed``, the
-    centre of a cell of the largest free region keeping twice the radius
-    from every obstacle, facing a random heading). It scans with ``sensor``
+    centre of a cell keeping twice the radius from every obstacle in the
+    free region the world encloses most of (not the outside of a
+    building, nor a map's unknown), facing a random heading). It scans
+    with ``sensor``
     (a ``SonarRing`` or a ``Laser``; ``None``: the 24-sonar ring) into a
     ``CoverageMap`` of ``bins`` bins over the world's bounds plus 0.5 m at
     ``resolution`` metres, and into an ``OccupancyGrid`` and scan counts

@@ -4,8 +4,10 @@ on any executor with ``concurrent.futures``' ``submit`` (a
 ``ProcessPoolExecutor``, a ``dask.distributed.Client``), and returns one
 :class:`RunSummary` per spec, in the specs' order.
 
-A spec holds ``world`` (a :class:`~covmap.World`, or the name of a built-in
-world such as ``"corridor"``), ``strategy`` (a :class:`~covmap.Strategy`;
+A spec holds ``world`` (a :class:`~covmap.World`, a
+:class:`~covmap.Building`, or a building's name: a built-in world such as
+``"corridor"``, ``"generated:SEED[:AREA]"``, a world file; see
+:func:`covmap.buildings.building`), ``strategy`` (a :class:`~covmap.Strategy`;
 or ``"coverage"``, ``"counting"``, ``"frontier"`` for the strategy's
 defaults; or a dict such as ``{"name": "counting", "n": 50,
 "discount_beyond_m": 2.0}`` or ``{"name": "coverage", "alpha": 0.25}``, the
@@ -81,7 +83,7 @@ if TYPE_CHECKING:
     import numpy.typing as npt
 
     from covmap._exploration import ExplorationResult
-    from covmap._native import Strategy, World
+    from covmap._native import Building, Strategy, World
 
 __all__ = [
     "RunSummary",
@@ -118,7 +120,8 @@ class RunSummary:
     index: int
     """The spec's position in the list given to :func:`sweep`."""
     world: str
-    """The world: its built-in name, or the ``repr`` of the ``World`` given."""
+    """The world: its name as the spec gave it, a ``Building``'s name, or the
+    ``repr`` of the ``World`` given."""
     strategy: Strategy
     """The strategy that chose the goals."""
     seed: int
@@ -151,6 +154,16 @@ class RunSummary:
     """Wall time of the loop by what it was spent on."""
     trace: dict[str, npt.NDArray[np.generic]] = field(repr=False)
     """Per-step figures (see :attr:`covmap.ExplorationResult.trace`)."""
+    rooms: int | None = None
+    """The rooms and halls of the building (its corridors aside) the run
+    is judged on (:attr:`covmap.Building.rooms`); ``None`` for a world
+    given without its rooms."""
+    rooms_never_entered: tuple[str, ...] = ()
+    """The names of those the robot never entered
+    (:meth:`covmap.Building.rooms_never_entered`)."""
+    evaluation_area_m2: float = 0.0
+    """The area of the evaluation cells, square metres: what the run
+    could observe."""
 
     @property
     def certain_fraction(self) -> float:
@@ -180,6 +193,9 @@ class RunSummary:
             self.epsilon,
             self.high_entropy_fraction,
             self.coverage_error,
+            self.rooms,
+            self.rooms_never_entered,
+            self.evaluation_area_m2,
         )
 
     def __eq__(self, other: object) -> bool:
@@ -217,12 +233,27 @@ def _summary_fields() -> dict[str, _state.Check]:
             return f"must be a dict of covmap.explore keywords, got {quoted(value)}"
         return None
 
+    def rooms(value: Any, _: Any) -> str | None:
+        if value is None or (type(value) is int and 0 <= value <= 2**32 - 1):
+            return None
+        return f"must be None or an integer from 0 to 2**32 - 1, got {quoted(value)}"
+
+    def rooms_never_entered(value: Any, state: Any) -> str | None:
+        if not isinstance(value, tuple) or not all(type(v) is str for v in value):
+            return f"must be a tuple of room names, got {quoted(value)}"
+        judged = state.get("rooms") if isinstance(state, dict) else None
+        if len(value) > (judged if type(judged) is int else 0):
+            return f"names {len(value)} rooms, more than the {judged} judged"
+        return None
+
     return {
         **outcome_fields(),
         "index": _state.integer(0, 2**63 - 1),
         "world": _state.instance(str),
         "options": options,
         "start": start,
+        "rooms": rooms,
+        "rooms_never_entered": rooms_never_entered,
     }
 
 
@@ -255,6 +286,7 @@ class _Run:
     strategy: Strategy
     seed: int
     options: dict[str, Any]
+    building: Building | None = None
 
 
 def strategy_of(value: Any) -> Strategy:
@@ -291,16 +323,10 @@ def strategy_of(value: Any) -> Strategy:
         raise InvalidTypeError(f"strategy {quoted(name)}: {e}") from None
 
 
-def _world_of(value: Any) -> tuple[World, str]:
-    from covmap._native import World
+def _world_of(value: Any) -> tuple[World, str, Building | None]:
+    from covmap.buildings import spec_world
 
-    if isinstance(value, World):
-        return value, repr(value)
-    if isinstance(value, str):
-        return World.builtin(value), value
-    from covmap._errors import InvalidTypeError
-
-    raise InvalidTypeError(f"world must be a World or the name of a built-in world, got {type(value).__name__}")
+    return spec_world(value)
 
 
 def _seed_of(value: Any) -> int:
@@ -341,7 +367,7 @@ def prepare(specs: Sequence[Mapping[str, Any]]) -> list[_Run]:
     # The native check builds a run (ground truth, evaluation cells): once per
     # world and options, whatever the strategy and seed.
     checked: set[tuple[int, str]] = set()
-    worlds: dict[str, World] = {}
+    worlds: dict[str, tuple[World, Building | None]] = {}
     for index, spec in enumerate(specs):
         if not isinstance(spec, abc.Mapping):
             raise InvalidSpecError(index, f"expected a dict of covmap.explore arguments, got {type(spec).__name__}")
@@ -358,11 +384,11 @@ def prepare(specs: Sequence[Mapping[str, Any]]) -> list[_Run]:
         try:
             name = spec["world"]
             if isinstance(name, str) and name in worlds:
-                world, label = worlds[name], name
+                (world, building), label = worlds[name], name
             else:
-                world, label = _world_of(name)
+                world, label, building = _world_of(name)
                 if isinstance(name, str):
-                    worlds[name] = world
+                    worlds[name] = (world, building)
             strategy = strategy_of(spec["strategy"])
             seed = _seed_of(spec.get("seed", 0))
             options = {k: v for k, v in spec.items() if k not in (*SPEC_KEYS, "seed")}
@@ -374,13 +400,23 @@ def prepare(specs: Sequence[Mapping[str, Any]]) -> list[_Run]:
                 checked.add(same_check)
         except (CovmapError, TypeError, ValueError) as e:
             raise InvalidSpecError(index, f"{type(e).__name__}: {e}") from e
-        runs.append(_Run(index, world, label, strategy, seed, options))
+        runs.append(_Run(index, world, label, strategy, seed, options, building))
     return runs
 
 
-def summarise(index: int, world: str, options: Mapping[str, Any], result: ExplorationResult) -> RunSummary:
-    """The :class:`RunSummary` of ``result``, the run of spec ``index``."""
+def summarise(
+    index: int,
+    world: str,
+    options: Mapping[str, Any],
+    result: ExplorationResult,
+    building: Building | None = None,
+) -> RunSummary:
+    """The :class:`RunSummary` of ``result``, the run of spec ``index``
+    (in ``building``, whose rooms it is judged on, if given)."""
     start = tuple(float(x) for x in result.start)
+    rooms = None if building is None else sum(1 for r in building.rooms if r.kind != "corridor")
+    never = () if building is None else tuple(building.rooms_never_entered(result.trajectory))
+    cell_m2 = result.grid.resolution * result.grid.resolution
     return RunSummary(
         index=index,
         world=world,
@@ -399,6 +435,9 @@ def summarise(index: int, world: str, options: Mapping[str, Any], result: Explor
         seconds=result.seconds,
         timing=result.timing,
         trace={k: np.array(v) for k, v in result.trace.items()},
+        rooms=rooms,
+        rooms_never_entered=never,
+        evaluation_area_m2=float(np.count_nonzero(result.evaluation_cells)) * cell_m2,
     )
 
 
@@ -412,7 +451,7 @@ def _run_pickled(payload: bytes, caller_pid: int) -> RunSummary:
 
     run: _Run = pickle.loads(payload)
     result = explore(run.world, run.strategy, seed=run.seed, **run.options)
-    return summarise(run.index, run.world_label, run.options, result)
+    return summarise(run.index, run.world_label, run.options, result, run.building)
 
 
 def _one_thread() -> None:

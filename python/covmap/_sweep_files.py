@@ -110,8 +110,8 @@ def read_specs(path: Path) -> list[dict[str, Any]]:
     table that gives both is refused (one would be dropped), and a run's
     ``seed`` or ``seeds`` replaces either of the defaults'.
     Strategies are written as names or tables (``strategy = { name =
-    "counting", n = 50, discount_beyond_m = 2.0 }``), worlds as built-in
-    names. A malformed file raises :class:`~covmap.FileFormatError` naming
+    "counting", n = 50, discount_beyond_m = 2.0 }``), worlds as building
+    names (built-in, ``generated:SEED[:AREA]``, a world file). A malformed file raises :class:`~covmap.FileFormatError` naming
     the file and the place; the specs themselves are checked by
     :func:`sweep`.
 

@@ -144,9 +144,18 @@ def test_explore_command_writes_its_pictures(tmp_path: Path) -> None:
     assert "at a limit" in result.stdout
     assert "step 4" in result.stderr or "4 step" in result.stderr  # the progress line or bar
     names = sorted(p.name for p in tmp_path.iterdir())
-    assert names == ["corridor-coverage-entropy.png", "corridor-coverage-map.png", "corridor-coverage.gif"]
+    assert names == [
+        "corridor-coverage-entropy.png",
+        "corridor-coverage-map.png",
+        "corridor-coverage-trajectory.csv",
+        "corridor-coverage.gif",
+        "corridor-coverage.npz",
+        "corridor-coverage.pgm",
+        "corridor-coverage.yaml",
+    ]
     for name in names[:2]:
         assert (tmp_path / name).read_bytes()[:8] == PNG_SIGNATURE
+    assert "frame" in result.stderr  # drawing the animation shows its progress
     from PIL import Image
 
     with Image.open(tmp_path / "corridor-coverage.gif") as gif:
@@ -215,3 +224,22 @@ def test_an_unknown_world_is_a_clean_error(tmp_path: Path) -> None:
         assert result.returncode == 2 and "atlantis" in result.stderr and "corridor" in result.stderr
         assert "Traceback" not in result.stderr
     assert not any(tmp_path.iterdir())
+
+
+def test_a_large_plan_is_drawn_thinned_to_the_pixels(tmp_path: Path) -> None:
+    """A grid of more cells than the figures have pixels is thinned before
+    it is drawn: the figures and the animation are written, the animation
+    as wide as its figure, its frames showing the run."""
+    building = covmap.Building.generate(5, area_m2=550)
+    run = exploration.run(building.world, covmap.Strategy.frontier(), frames=3, max_steps=3, seed=0)
+    assert max(run.result.grid.shape) > 480  # more cells than the GIF's 480-pixel width
+    paths = covmap.plot.plot_exploration(run, tmp_path)
+    assert [p.name for p in paths] == ["world-frontier-map.png", "world-frontier-entropy.png", "world-frontier.gif"]
+    from PIL import Image
+
+    with Image.open(paths[2]) as gif:
+        assert getattr(gif, "n_frames") == len(run.frames) and gif.size[0] == 6 * 80
+        first = np.asarray(gif.convert("RGB")).copy()
+        gif.seek(gif.n_frames - 1)
+        last = np.asarray(gif.convert("RGB")).copy()
+    assert not np.array_equal(first, last)  # the path and the map grew

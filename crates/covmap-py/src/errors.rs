@@ -267,6 +267,7 @@ pub(crate) fn sim_to_py(py: Python<'_>, err: SimError) -> PyErr {
         SimError::InvalidParameter { .. } => Exception::InvalidParameter.err(py, message),
         SimError::InvalidValue { .. } => Exception::InvalidValue.err(py, message),
         SimError::LengthMismatch { .. } => Exception::LengthMismatch.err(py, message),
+        SimError::UnreachableRooms { .. } => Exception::InvalidValue.err(py, message),
         SimError::Core(core) => to_py(py, core),
         // The simulator's enum is non-exhaustive: a new variant is still a CovmapError.
         _ => Exception::Base.err(py, message),

@@ -219,8 +219,10 @@ run_keywords! { explore_function! {
     ///
     /// The robot is a disc of ``robot_radius_m`` starting at ``start``
     /// (``(x, y, theta)``; ``None``: a free pose drawn from ``seed``, the
-    /// centre of a cell of the largest free region keeping twice the radius
-    /// from every obstacle, facing a random heading). It scans with ``sensor``
+    /// centre of a cell keeping twice the radius from every obstacle in the
+    /// free region the world encloses most of (not the outside of a
+    /// building, nor a map's unknown), facing a random heading). It scans
+    /// with ``sensor``
     /// (a ``SonarRing`` or a ``Laser``; ``None``: the 24-sonar ring) into a
     /// ``CoverageMap`` of ``bins`` bins over the world's bounds plus 0.5 m at
     /// ``resolution`` metres, and into an ``OccupancyGrid`` and scan counts

@@ -5,6 +5,7 @@
 #![warn(missing_docs)]
 #![cfg_attr(not(test), deny(clippy::unwrap_used, clippy::expect_used))]
 
+mod building;
 mod convert;
 mod coverage_map;
 mod errors;
@@ -54,6 +55,9 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<plan::PyCandidates>()?;
     m.add_class::<plan::PyExplorationStatus>()?;
     m.add_class::<world::PyWorld>()?;
+    m.add_class::<building::PyBuilding>()?;
+    m.add_class::<building::PyRoom>()?;
+    m.add_class::<building::PyDoor>()?;
     m.add_class::<sim_sensor::PySonarRing>()?;
     m.add_class::<sim_sensor::PyLaser>()?;
     m.add_class::<robot::PyRobot>()?;

@@ -44,6 +44,74 @@ fn extension(path: &std::path::Path) -> String {
         .unwrap_or_default()
 }
 
+/// A world from a file, by its extension (see `World.from_file`).
+pub(crate) fn load(
+    py: Python<'_>,
+    path: PathBuf,
+    wall_thickness_m: Option<Float>,
+    resolution: Option<Float>,
+    origin: Option<&Bound<'_, PyAny>>,
+) -> PyResult<World> {
+    let origin = origin
+        .map(|o| convert::point(o, "origin", false))
+        .transpose()?;
+    let ext = extension(&path);
+    let image = matches!(ext.as_str(), "pgm" | "png");
+    let unused = [
+        (
+            "wall_thickness_m",
+            wall_thickness_m.is_some() && ext != "map",
+            "ARIA .map",
+        ),
+        (
+            "resolution",
+            resolution.is_some() && !image,
+            ".pgm/.png image",
+        ),
+        ("origin", origin.is_some() && !image, ".pgm/.png image"),
+    ];
+    if let Some((name, _, format)) = unused.iter().find(|(_, given, _)| *given) {
+        return Err(Exception::InvalidParameter.err(
+            py,
+            format!(
+                "{}: {name} is an option of {format} worlds only; this file's format does not use it",
+                path.display()
+            ),
+        ));
+    }
+    let resolution = resolution.map(|r| r.0);
+    if image && resolution.is_none() {
+        return Err(Exception::InvalidParameter.err(
+            py,
+            format!(
+                "{}: an occupancy image needs resolution= (metres per pixel)",
+                path.display()
+            ),
+        ));
+    }
+    let loaded = py.detach(|| match ext.as_str() {
+        "json" | "geojson" => World::from_geojson_file(&path),
+        "map" => World::from_aria_map_file(&path, wall_thickness_m.map_or(0.1, |w| w.0)),
+        "yaml" | "yml" => World::from_ros_map_yaml(&path),
+        "pgm" | "png" => {
+            let options = ImageOptions {
+                origin_m: origin.unwrap_or([0.0, 0.0]),
+                ..ImageOptions::new(resolution.unwrap_or(f64::NAN))
+            };
+            World::from_image_file(&path, &options)
+        }
+        _ => Err(SimError::Parse {
+            path: path.clone(),
+            place: "file name".into(),
+            reason: format!(
+                "unknown extension {ext:?}: expected .json/.geojson (GeoJSON), .map (ARIA), \
+                 .yaml (ROS map_server) or .pgm/.png (occupancy image)"
+            ),
+        }),
+    });
+    loaded.or_raise(py)
+}
+
 #[pymethods]
 impl PyWorld {
     #[new]
@@ -162,11 +230,17 @@ impl PyWorld {
     ///   ``resolution`` metres per pixel, its lower-left corner at ``origin``
     ///   (default ``(0, 0)``); ``resolution`` is required.
     ///
+    /// In an image, the pixels that are not free (occupancy below the
+    /// YAML's ``free_thresh``, default 0.196) are obstacles: the occupied
+    /// ones and the unknown grey ones, so that a robot never drives in
+    /// space the map did not see; a map_server file in ``mode: scale``
+    /// makes obstacles of the occupied pixels only.
+    ///
     /// An option the file's format does not use (``resolution`` for a
     /// GeoJSON file, say) raises ``InvalidParameterError``: it would be
-    /// ignored. A malformed file raises ``FileFormatError`` (a
-    /// ``ValueError``) naming the file and the place; a file that cannot be
-    /// read raises ``FileIOError`` (an ``OSError``).
+    /// ignored. A malformed file raises ``FileFormatError`` (a ``ValueError``) naming
+    /// the file and the place; a file that cannot be read raises
+    /// ``FileIOError`` (an ``OSError``).
     #[staticmethod]
     #[pyo3(signature = (path, *, wall_thickness_m=None, resolution=None, origin=None))]
     fn from_file(
@@ -176,64 +250,7 @@ impl PyWorld {
         resolution: Option<Float>,
         origin: Option<&Bound<'_, PyAny>>,
     ) -> PyResult<Self> {
-        let origin = origin
-            .map(|o| convert::point(o, "origin", false))
-            .transpose()?;
-        let ext = extension(&path);
-        let image = matches!(ext.as_str(), "pgm" | "png");
-        let unused = [
-            (
-                "wall_thickness_m",
-                wall_thickness_m.is_some() && ext != "map",
-                "ARIA .map",
-            ),
-            (
-                "resolution",
-                resolution.is_some() && !image,
-                ".pgm/.png image",
-            ),
-            ("origin", origin.is_some() && !image, ".pgm/.png image"),
-        ];
-        if let Some((name, _, format)) = unused.iter().find(|(_, given, _)| *given) {
-            return Err(Exception::InvalidParameter.err(
-                py,
-                format!(
-                    "{}: {name} is an option of {format} worlds only; this file's format does not use it",
-                    path.display()
-                ),
-            ));
-        }
-        let resolution = resolution.map(|r| r.0);
-        if image && resolution.is_none() {
-            return Err(Exception::InvalidParameter.err(
-                py,
-                format!(
-                    "{}: an occupancy image needs resolution= (metres per pixel)",
-                    path.display()
-                ),
-            ));
-        }
-        let loaded = py.detach(|| match ext.as_str() {
-            "json" | "geojson" => World::from_geojson_file(&path),
-            "map" => World::from_aria_map_file(&path, wall_thickness_m.map_or(0.1, |w| w.0)),
-            "yaml" | "yml" => World::from_ros_map_yaml(&path),
-            "pgm" | "png" => {
-                let options = ImageOptions {
-                    origin_m: origin.unwrap_or([0.0, 0.0]),
-                    ..ImageOptions::new(resolution.unwrap_or(f64::NAN))
-                };
-                World::from_image_file(&path, &options)
-            }
-            _ => Err(SimError::Parse {
-                path: path.clone(),
-                place: "file name".into(),
-                reason: format!(
-                    "unknown extension {ext:?}: expected .json/.geojson (GeoJSON), .map (ARIA), \
-                     .yaml (ROS map_server) or .pgm/.png (occupancy image)"
-                ),
-            }),
-        });
-        loaded.map(Self).or_raise(py)
+        load(py, path, wall_thickness_m, resolution, origin).map(Self)
     }
 
     /// Pickle and copy support: rebuilt by ``World._from_geojson`` from

@@ -78,6 +78,15 @@ pub enum SimError {
         /// The second length.
         right: usize,
     },
+    /// Rooms of a generated building that the robot cannot reach: the
+    /// generator failed its own check (a bug; the building is named).
+    #[error("building {building}: rooms {rooms} cannot be reached by the robot")]
+    UnreachableRooms {
+        /// The building's name (its seed).
+        building: String,
+        /// The rooms, comma-separated.
+        rooms: String,
+    },
     /// An error of the core crate (an invalid grid, pose or sensor model).
     #[error(transparent)]
     Core(#[from] CovmapError),

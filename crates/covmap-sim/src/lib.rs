@@ -29,6 +29,7 @@
 #![warn(missing_docs)]
 #![cfg_attr(not(test), deny(clippy::unwrap_used, clippy::expect_used))]
 
+pub mod building;
 mod builtin;
 mod error;
 pub mod experiments;
@@ -49,6 +50,7 @@ mod sonar;
 pub mod truth;
 mod world;
 
+pub use building::{Building, BuildingOptions};
 pub use error::{MAX_BEAMS, Result, SimError};
 pub use laser::Laser;
 pub use load::image::ImageOptions;

@@ -1,7 +1,7 @@
 """The ``covmap`` command line (also ``python -m covmap``).
 
 One module a command (``fig1``, ``fig2``, ``world``, ``fig3``, ``learn``,
-``gain``, ``explore``, ``table1``, ``fig7``, ``sweep``, ``map``), each with its
+``gain``, ``explore``, ``table1``, ``fig7``, ``benchmark``, ``sweep``, ``map``), each with its
 ``NAME``, ``HELP`` and ``DESCRIPTION``, ``add_arguments(parser)``,
 ``outputs(args)`` (the files it writes, checked before it runs: see
 :func:`covmap.cli._options.check_outputs`) and ``run(args) -> exit status``;
@@ -16,12 +16,12 @@ from typing import TYPE_CHECKING
 
 from covmap._errors import CovmapError
 from covmap._native import __version__
-from covmap.cli import _options, explore, fig1, fig2, fig3, fig7, gain, learn, map, sweep, table1, world
+from covmap.cli import _options, benchmark, explore, fig1, fig2, fig3, fig7, gain, learn, map, sweep, table1, world
 
 if TYPE_CHECKING:
     from collections.abc import Sequence
 
-COMMANDS = (fig1, fig2, world, fig3, learn, gain, explore, table1, fig7, sweep, map)
+COMMANDS = (fig1, fig2, world, fig3, learn, gain, explore, table1, fig7, benchmark, sweep, map)
 """The command modules, in the order ``covmap --help`` lists them."""
 
 

@@ -99,6 +99,24 @@ distance = _within(
 discount = distance
 """The range beyond which scan counting discounts a beam, metres."""
 
+entropy = _within(_number, lambda v: 0.0 < v <= 10.0, "an entropy in nats, more than 0 and at most 10")
+"""The entropy below which a cell is certain, nats."""
+
+
+def start_pose(text: str) -> tuple[float, float, float]:
+    """A start ``X,Y`` or ``X,Y,THETA`` (metres, radians), finite."""
+    import math
+
+    parts = text.split(",")
+    try:
+        values = [float(p) for p in parts]
+    except ValueError:
+        values = []
+    if len(values) not in (2, 3) or not all(math.isfinite(v) for v in values):
+        raise argparse.ArgumentTypeError(f"expected X,Y or X,Y,THETA (finite numbers), got {text}")
+    return (values[0], values[1], values[2] if len(values) == 3 else 0.0)
+
+
 frame_count = _within(_integer, lambda v: 2 <= v <= MAX_FRAMES, f"an integer from 2 to {MAX_FRAMES}")
 """The most frames of an animation."""
 
@@ -114,8 +132,70 @@ def add_out(command: argparse.ArgumentParser, name: str) -> None:
 
 
 def add_world(command: argparse.ArgumentParser) -> None:
-    """The ``--world`` option: a built-in world, default ``corridor``."""
-    command.add_argument("--world", default="corridor", help="built-in world (default corridor)")
+    """The ``--world`` option: a building, by name (a built-in world,
+    ``generated:SEED[:AREA]``, a world file; see
+    :func:`covmap.buildings.building`), default ``corridor``."""
+    command.add_argument(
+        "--world",
+        default="corridor",
+        help="built-in world (corridor, office, partial), generated building (generated:SEED or "
+        "generated:SEED:AREA) or world file (.map, .json/.geojson, .yaml; .pgm/.png with "
+        "--image-resolution) (default corridor)",
+    )
+    command.add_argument(
+        "--image-resolution",
+        type=length,
+        metavar="M",
+        help="metres per pixel of a .pgm/.png world file",
+    )
+
+
+def names(text: str) -> list[str]:
+    """A list of names separated by commas."""
+    found = [part.strip() for part in text.split(",") if part.strip()]
+    if not found:
+        raise argparse.ArgumentTypeError(f"expected names separated by commas, got {text!r}")
+    return found
+
+
+def add_buildings(command: argparse.ArgumentParser) -> None:
+    """The ``--buildings`` option (a view over many buildings) and the
+    ``--count`` and ``--plans`` of its sets."""
+    from covmap.buildings import DEFAULT_PLANS_DIR
+
+    command.add_argument(
+        "--buildings",
+        type=names,
+        metavar="NAME,...",
+        help="run over these buildings instead of --world: sets (default, development, test) or buildings "
+        "(corridor, office, generated:SEED[:AREA], a world file), separated by commas",
+    )
+    command.add_argument(
+        "--count",
+        type=positive_int,
+        help="generated buildings in each set named (default: 4 in default, 12 in development and test)",
+    )
+    command.add_argument(
+        "--plans",
+        default=str(DEFAULT_PLANS_DIR),
+        metavar="DIR",
+        help=f"where the test set's real plans are read from (default {DEFAULT_PLANS_DIR})",
+    )
+
+
+def chosen_buildings(args: argparse.Namespace) -> list[Any]:
+    """The buildings of :func:`add_buildings`' options (``--buildings``
+    given)."""
+    from covmap.buildings import buildings
+
+    return buildings(args.buildings, count=args.count, plans_dir=args.plans)
+
+
+def world_building(args: argparse.Namespace) -> Any:
+    """The building ``--world`` names (:func:`covmap.buildings.building`)."""
+    from covmap.buildings import building
+
+    return building(args.world, image_resolution=args.image_resolution)
 
 
 def add_seed(command: argparse.ArgumentParser) -> None:

@@ -10,6 +10,8 @@ if TYPE_CHECKING:
     import argparse
     from pathlib import Path
 
+    from covmap._native import Building
+
 NAME = "fig7"
 """The command's name: ``covmap fig7``."""
 
@@ -27,7 +29,8 @@ counting runs end in the part of the building they started in
 (BENCHMARKS.md, Fig. 7)."""
 
 DESCRIPTION = (
-    "Explore a built-in world with 24 simulated sonars by scan counting forced to each count n "
+    "Explore a world (a built-in one, a generated building, a world file) with 24 simulated sonars by "
+    "scan counting forced to each count n "
     "(long beams discounted beyond 2 m, as in Table I) and by coverage maps (alpha A), once per "
     "seed (seeds 0 to K - 1), all runs in parallel: one a local core, or on Dask (--dask "
     "ADDRESS, a running scheduler; --dask-local WORKERS, a cluster started here). Shows a "
@@ -36,7 +39,9 @@ DESCRIPTION = (
     "at 85, 90 and 95 % certain cells (read off the counting curve by linear interpolation), "
     "and writes fig7.png and fig7.csv (one row per run). The default sweep: 11 values of n, "
     f"{DEFAULT_SEEDS} seeds, {DEFAULT_RESOLUTION_M:g} m cells as covmap explore's (--resolution 0.1 "
-    "runs four times as fast on maps too coarse for the corridor's doorways)."
+    "runs four times as fast on maps too coarse for the corridor's doorways). With --buildings, the figure "
+    "is a view of the benchmark: every n and the coverage runs in every building named (sets such as "
+    "test, or buildings), each point the mean over the buildings and seeds."
 )
 """What ``covmap fig7 --help`` says the command does."""
 
@@ -88,6 +93,7 @@ def add_arguments(command: argparse.ArgumentParser) -> None:
         default=DEFAULT_RESOLUTION_M,
         help=f"the maps' cell size, metres (default {DEFAULT_RESOLUTION_M:g}, as covmap explore's)",
     )
+    _options.add_buildings(command)
     _options.add_dask(command)
     _options.add_out(command, NAME)
     _options.add_run_limits(command, max_path_m=MAX_PATH_M)
@@ -106,7 +112,11 @@ def run(args: argparse.Namespace) -> int:
     from covmap.plot import plot_fig7
 
     seeds = list(range(args.seeds))
-    total = (len(args.ns) + 1) * len(seeds)
+    if args.buildings is not None:
+        worlds: list[Building] = _options.chosen_buildings(args)
+    else:
+        worlds = [_options.world_building(args)]
+    total = (len(args.ns) + 1) * len(seeds) * len(worlds)
     with Progress(total, "run") as progress, _options.executor(args) as executor:
 
         def show(index: int, outcome: RunSummary | SweepFailure) -> None:
@@ -116,12 +126,12 @@ def run(args: argparse.Namespace) -> int:
             s = outcome.strategy
             label = f"n = {s.n}" if s.name == "counting" else s.name
             progress.update(
-                f"{label}, seed {outcome.seed}: {outcome.path_length_m:.1f} m, "
+                f"{outcome.world}, {label}, seed {outcome.seed}: {outcome.path_length_m:.1f} m, "
                 f"{100.0 * outcome.certain_fraction:.1f} % certain"
             )
 
         f = fig7.run(
-            args.world,
+            worlds,
             ns=args.ns,
             seeds=seeds,
             alpha=args.alpha,

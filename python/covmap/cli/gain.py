@@ -4,7 +4,6 @@ from __future__ import annotations
 
 from typing import TYPE_CHECKING
 
-from covmap._native import World
 from covmap.cli import _options
 
 if TYPE_CHECKING:
@@ -18,7 +17,7 @@ HELP = "expected information gain and the next viewpoint after a few sonar scans
 """The command's line in ``covmap --help``."""
 
 DESCRIPTION = (
-    "Scan a built-in world a few times with 24 simulated sonars from a free pose near "
+    "Scan a world (a built-in one, a generated building, a world file) a few times with 24 simulated sonars from a free pose near "
     "one end of its main passage, integrate the scans into a coverage map, let the "
     "planner choose the next viewpoint, print it, and write gain.png: the ML map and "
     "the expected gain of every candidate with the chosen viewpoint and its path."
@@ -52,7 +51,7 @@ def run(args: argparse.Namespace) -> int:
     from covmap.experiments import planning_step
     from covmap.plot import plot_planning_step
 
-    world = World.builtin(args.world)
+    world = _options.world_building(args).world
     step = planning_step.run(world, scans=args.scans, seed=args.seed, alpha=args.alpha)
     print(f"world {args.world}")
     print(planning_step.report(step))

@@ -21,7 +21,8 @@ HELP = "draw a world and its exact ground-truth coverage"
 DESCRIPTION = (
     "Draw a world's obstacles (NAME-world.png) and its exact coverage on a grid "
     "over its bounds (NAME-coverage.png); print its bounds and obstacle area. "
-    "NAME is a built-in world (corridor, office, partial) or a world file "
+    "NAME is a built-in world (corridor, office, partial), a generated building "
+    "(generated:SEED or generated:SEED:AREA) or a world file "
     "(.json/.geojson, .map, .yaml/.yml; .pgm/.png with --image-resolution)."
 )
 """What ``covmap world --help`` says the command does."""
@@ -29,7 +30,7 @@ DESCRIPTION = (
 
 def add_arguments(command: argparse.ArgumentParser) -> None:
     """The command's arguments."""
-    command.add_argument("name", metavar="NAME", help="built-in world or world file")
+    command.add_argument("name", metavar="NAME", help="built-in world, generated:SEED[:AREA] or world file")
     _options.add_out(command, NAME)
     command.add_argument(
         "--resolution",
@@ -68,6 +69,10 @@ def _load_world(args: argparse.Namespace) -> tuple[World, str]:
     """The world NAME names, and a name for its files."""
     if args.name in World.builtin_names():
         return World.builtin(args.name), args.name
+    if args.name.startswith("generated:"):
+        from covmap.buildings import building
+
+        return building(args.name).world, args.name.replace(":", "-")
     path = Path(args.name)
     if not path.suffix:
         # Not a file name: let the built-in lookup say which names exist.

@@ -12,9 +12,22 @@ drawing them to :mod:`covmap.plot` and running them to the ``covmap`` command.
 - :mod:`~covmap.experiments.table1`: the paper's Table I, coverage maps against
   scan counting (and nearest frontiers) over several seeds;
 - :mod:`~covmap.experiments.fig7`: the paper's Fig. 7, scan counting forced
-  to each count ``n`` against coverage maps, a sweep (:func:`covmap.sweep`).
+  to each count ``n`` against coverage maps, a sweep (:func:`covmap.sweep`);
+- :mod:`~covmap.experiments.benchmark`: the exploration benchmark,
+  strategies x sensors x buildings x seeds (``covmap benchmark``), its file in
+  :mod:`~covmap.experiments.benchmark_files`; Table I and Fig. 7 are its views
+  over any buildings.
 """
 
-from covmap.experiments import exploration, fig1, fig3, fig7, planning_step, table1
+from covmap.experiments import (
+    benchmark,
+    benchmark_files,
+    exploration,
+    fig1,
+    fig3,
+    fig7,
+    planning_step,
+    table1,
+)
 
-__all__ = ["exploration", "fig1", "fig3", "fig7", "planning_step", "table1"]
+__all__ = ["benchmark", "benchmark_files", "exploration", "fig1", "fig3", "fig7", "planning_step", "table1"]

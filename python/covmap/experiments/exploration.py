@@ -13,10 +13,12 @@ from covmap._exploration import REAL_TIME_SPEED_M_S
 from covmap._native import Exploration
 
 if TYPE_CHECKING:
+    from pathlib import Path
+
     import numpy.typing as npt
 
     from covmap._exploration import ExplorationResult, Step
-    from covmap._native import Strategy, World
+    from covmap._native import Building, Strategy, World
 
 MAX_FRAMES = 60
 """The most snapshots an animation of a run is drawn from (``covmap explore``
@@ -126,10 +128,11 @@ def run(
     return ExploreRun(world_name, world, exploration.result(), spread(kept, frames))
 
 
-def summary(run_: ExploreRun, speed_m_s: float = REAL_TIME_SPEED_M_S) -> str:
+def summary(run_: ExploreRun, speed_m_s: float = REAL_TIME_SPEED_M_S, *, building: Building | None = None) -> str:
     """The run's figures as a table: path, scans, steps, how it ended, the
-    uncertain share of the evaluation cells, the maps' errors, wall time and
-    how much faster than a robot driving at ``speed_m_s`` it ran."""
+    uncertain share of the evaluation cells, the rooms of ``building`` (if
+    given) never entered, the maps' errors, wall time and how much faster
+    than a robot driving at ``speed_m_s`` it ran."""
     r = run_.result
     t = r.timing
     rows = [
@@ -144,6 +147,16 @@ def summary(run_: ExploreRun, speed_m_s: float = REAL_TIME_SPEED_M_S) -> str:
         ("contacts", str(r.contacts)),
         ("evaluation cells", f"{int(r.evaluation_cells.sum())} of {r.grid.rows * r.grid.cols}"),
         (f"uncertain (H > {r.epsilon:g} nats)", f"{100.0 * r.high_entropy_fraction:.2f} % of the evaluation cells"),
+        *(
+            []
+            if building is None
+            else [
+                (
+                    "rooms never entered",
+                    _rooms_text(building, building.rooms_never_entered(r.trajectory)),
+                )
+            ]
+        ),
         ("map error, coverage map (mean)", f"{r.coverage_error.coverage_map:.4f}"),
         ("map error, occupancy grid", f"{r.coverage_error.occupancy:.4f}"),
         (
@@ -155,3 +168,46 @@ def summary(run_: ExploreRun, speed_m_s: float = REAL_TIME_SPEED_M_S) -> str:
     ]
     width = max(len(name) for name, _ in rows)
     return "\n".join(f"{name:<{width}}  {value}" for name, value in rows)
+
+
+def _rooms_text(building: Building, never: list[str]) -> str:
+    judged = sum(1 for r in building.rooms if r.kind != "corridor")
+    names = f": {', '.join(never)}" if never else ""
+    return f"{len(never)} of {judged}{names}"
+
+
+TRAJECTORY_FIELDS = ("x_m", "y_m", "theta_rad", "scanned")
+"""The columns of the trajectory CSV (:func:`save`)."""
+
+
+def trajectory_csv(result: ExplorationResult) -> str:
+    """The run's trajectory as CSV, columns :data:`TRAJECTORY_FIELDS`: every
+    pose in order, the start first, and whether a scan was taken there."""
+    lines = [",".join(TRAJECTORY_FIELDS)]
+    for (x, y, theta), scanned in zip(result.trajectory.tolist(), result.scanned.tolist()):
+        lines.append(f"{x!r},{y!r},{theta!r},{int(scanned)}")
+    return "\n".join(lines) + "\n"
+
+
+def save(run_: ExploreRun, out: Path, stem: str) -> list[Path]:
+    """Save what a user needs to continue from the run into ``out``, each
+    file written whole or not at all: ``<stem>.npz`` (the final posterior,
+    :meth:`covmap.CoverageMap.load`), ``<stem>.yaml`` and ``<stem>.pgm``
+    (the ML map as a ROS map_server pair: cells no evidence reached
+    unknown) and ``<stem>-trajectory.csv`` (:func:`trajectory_csv`).
+    Returns the paths."""
+    from covmap._native import write_atomic
+
+    out.mkdir(parents=True, exist_ok=True)
+    r = run_.result
+    posterior, yaml, pgm, trajectory = saved_paths(out, stem)
+    r.map.save(posterior)
+    r.map.to_ros_map(yaml)
+    write_atomic(trajectory, trajectory_csv(r).encode())
+    return [posterior, yaml, pgm, trajectory]
+
+
+def saved_paths(out: Path, stem: str) -> list[Path]:
+    """The files :func:`save` writes into ``out``: the posterior, the
+    map_server pair and the trajectory."""
+    return [out / f"{stem}.npz", out / f"{stem}.yaml", out / f"{stem}.pgm", out / f"{stem}-trajectory.csv"]

@@ -26,6 +26,8 @@ if TYPE_CHECKING:
     from collections.abc import Sequence
     from pathlib import Path
 
+    from covmap._native import Building
+
 DEFAULT_NS = (1, 2, 5, 10, 20, 35, 50, 70, 90, 110, 130)
 """The paper's counts ``n`` of scan counting."""
 
@@ -109,29 +111,41 @@ curve needs no more than this to show where it crosses coverage maps."""
 
 
 def specs(
-    world_name: str, *, ns: Sequence[int], seeds: Sequence[int], alpha: float, **options: Any
+    world_name: str | Sequence[str | Building],
+    *,
+    ns: Sequence[int],
+    seeds: Sequence[int],
+    alpha: float,
+    **options: Any,
 ) -> list[dict[str, Any]]:
-    """The sweep's specs: coverage with ``alpha`` for each seed, then
-    counting (discounted beyond :data:`~covmap.DEFAULT_DISCOUNT_BEYOND_M`)
-    for each ``n`` from the largest down and each seed. Every run stops at
-    :data:`MAX_PATH_M` unless ``options`` give ``max_path_m``.
+    """The sweep's specs: coverage with ``alpha`` for each building and
+    seed, then counting (discounted beyond
+    :data:`~covmap.DEFAULT_DISCOUNT_BEYOND_M`) for each ``n`` from the
+    largest down, each building and each seed. ``world_name``: one building
+    (a name, see :func:`covmap.buildings.building`) or several (names or
+    :class:`~covmap.Building` objects). Every run stops at :data:`MAX_PATH_M`
+    unless ``options`` give ``max_path_m``.
 
     The order is the order the runs start in: the long runs (coverage's, a
     large ``n``'s) first and the short ones last, so that the cores finish
     together rather than one of them running a long run alone at the end.
     """
     options = {"max_path_m": MAX_PATH_M, **options}
-    coverage = [{"world": world_name, "strategy": Strategy.coverage(alpha), "seed": s, **options} for s in seeds]
+    worlds = [world_name] if isinstance(world_name, str) else list(world_name)
+    coverage = [
+        {"world": w, "strategy": Strategy.coverage(alpha), "seed": s, **options} for w in worlds for s in seeds
+    ]
     counting = [
-        {"world": world_name, "strategy": Strategy.counting(n, DEFAULT_DISCOUNT_BEYOND_M), "seed": s, **options}
+        {"world": w, "strategy": Strategy.counting(n, DEFAULT_DISCOUNT_BEYOND_M), "seed": s, **options}
         for n in sorted(ns, reverse=True)
+        for w in worlds
         for s in seeds
     ]
     return coverage + counting
 
 
 def run(
-    world_name: str = "corridor",
+    world_name: str | Sequence[str | Building] = "corridor",
     *,
     ns: Sequence[int] = DEFAULT_NS,
     seeds: Sequence[int] = (0, 1, 2, 3),
@@ -142,19 +156,33 @@ def run(
 ) -> Fig7:
     """Run the sweep of Fig. 7 (:func:`specs`; a failure's index is its
     spec's there) with :func:`covmap.sweep` on ``executor`` (``None``: the
-    local cores). :class:`~covmap.InvalidValueError` for no ``ns`` or no
-    ``seeds``: the figure would have no curve or no runs."""
-    if not ns or not seeds:
+    local cores): in one building, or over several (the benchmark's view,
+    ``covmap fig7 --buildings``: every point the mean over the buildings
+    and seeds). :class:`~covmap.InvalidValueError` for no ``ns``, no
+    ``seeds`` or no buildings: the figure would have no curve or no runs."""
+    worlds = [world_name] if isinstance(world_name, str) else list(world_name)
+    if not ns or not seeds or not worlds:
         from covmap._errors import InvalidValueError
 
-        raise InvalidValueError(f"fig7 needs at least one n and one seed, got ns={list(ns)}, seeds={list(seeds)}")
-    all_specs = specs(world_name, ns=ns, seeds=seeds, alpha=alpha, **options)
+        raise InvalidValueError(
+            f"fig7 needs at least one n and one seed, and a building, got ns={list(ns)}, seeds={list(seeds)}, "
+            f"buildings={worlds}"
+        )
+    all_specs = specs(worlds, ns=ns, seeds=seeds, alpha=alpha, **options)
     summaries = sweep(all_specs, executor=executor, progress=progress)
-    coverage, counting = summaries[: len(seeds)], summaries[len(seeds) :]
+    first = len(seeds) * len(worlds)
+    coverage, counting = summaries[:first], summaries[first:]
     # Counting in the order of ``ns`` (the specs run the largest first),
-    # the seeds within (the sort keeps their order).
+    # the buildings and seeds within (the sort keeps their order).
     counting.sort(key=lambda r: ns.index(r.strategy.n))
-    return Fig7(world_name, list(ns), list(seeds), alpha, dict(options), counting, coverage)
+    label = world_name if isinstance(world_name, str) else _label(worlds)
+    return Fig7(label, list(ns), list(seeds), alpha, dict(options), counting, coverage)
+
+
+def _label(worlds: Sequence[str | Building]) -> str:
+    """A name for the buildings of a sweep: their names, or how many."""
+    names = [w if isinstance(w, str) else w.name for w in worlds]
+    return ", ".join(names) if len(names) <= 3 else f"{len(names)} buildings"
 
 
 def path_at(curve: Sequence[Point], fraction: float) -> float | None:

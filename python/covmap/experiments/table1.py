@@ -10,13 +10,14 @@ from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any, Callable
 
 from covmap._native import DEFAULT_DISCOUNT_BEYOND_M, Strategy, explore
+from covmap._sweep import RunSummary, SweepFailure, sweep
 
 if TYPE_CHECKING:
     from collections.abc import Sequence
     from pathlib import Path
 
     from covmap._exploration import ExplorationResult
-    from covmap._native import World
+    from covmap._native import Building, World
 
 
 @dataclass(frozen=True)
@@ -56,6 +57,7 @@ CSV_FIELDS = (
     "error_occupancy",
     "seconds",
     "real_time_factor",
+    "building",
 )
 """The columns of :func:`csv_text`, one row per run."""
 
@@ -77,6 +79,27 @@ class Run:
     error_occupancy: float
     seconds: float
     real_time_factor: float
+    building: str = ""
+    """The building's name (empty for the world of :func:`run`)."""
+
+    @classmethod
+    def of_summary(cls, method: Method, s: RunSummary) -> Run:
+        """The figures of a sweep's run of ``method``."""
+        return cls(
+            method=method,
+            seed=s.seed,
+            termination=s.termination,
+            path_length_m=s.path_length_m,
+            uncertain_fraction=s.high_entropy_fraction,
+            scans=s.scans,
+            steps=s.steps,
+            contacts=s.contacts,
+            error_coverage_map=s.coverage_error.coverage_map,
+            error_occupancy=s.coverage_error.occupancy,
+            seconds=s.seconds,
+            real_time_factor=s.real_time_factor(),
+            building=s.world,
+        )
 
     @classmethod
     def of(cls, method: Method, result: ExplorationResult) -> Run:
@@ -168,6 +191,36 @@ def run(
     return Table1(world_name, list(seeds), rows, dict(options))
 
 
+def run_buildings(
+    buildings: Sequence[str | Building],
+    *,
+    seeds: Sequence[int] = (0, 1, 2),
+    methods: Sequence[Method] = METHODS,
+    executor: Any = None,
+    progress: bool | Callable[[int, RunSummary | SweepFailure], None] = True,
+    **options: Any,
+) -> Table1:
+    """Table I as a view of the benchmark: every method with every seed
+    in every building of ``buildings`` (names, see
+    :func:`covmap.buildings.building`, or :class:`~covmap.Building` objects),
+    all runs through :func:`covmap.sweep` on ``executor`` (``progress`` as
+    it takes it); each row's figures over all buildings and seeds. No
+    buildings or seeds raise :class:`~covmap.InvalidValueError`."""
+    worlds = list(buildings)
+    if not worlds or not seeds:
+        from covmap._errors import InvalidValueError
+
+        raise InvalidValueError(f"Table I needs a building and a seed, got buildings={worlds}, seeds={list(seeds)}")
+    specs = [
+        {"world": w, "strategy": m.strategy, "seed": s, **options} for m in methods for w in worlds for s in seeds
+    ]
+    summaries = iter(sweep(specs, executor=executor, progress=progress))
+    rows = [Row(m, [Run.of_summary(m, next(summaries)) for _ in worlds for _ in seeds]) for m in methods]
+    names = [w if isinstance(w, str) else w.name for w in worlds]
+    label = ", ".join(names) if len(names) <= 3 else f"{len(names)} buildings"
+    return Table1(label, list(seeds), rows, dict(options))
+
+
 def _stat(value: tuple[float, float], scale: float, digits: int) -> str:
     mean, spread = value
     return f"{mean * scale:.{digits}f} ± {spread * scale:.{digits}f}"
@@ -211,7 +264,7 @@ def table(t: Table1) -> str:
     widths = [max(len(line[i]) for line in lines) for i in range(len(header))]
     text = [
         f"Table I, {t.world_name}, {len(t.seeds)} seed{'s' if len(t.seeds) != 1 else ''} "
-        f"({', '.join(map(str, t.seeds))}); mean ± sample standard deviation over the seeds"
+        f"({', '.join(map(str, t.seeds))}); mean ± sample standard deviation over the runs"
     ]
     if t.options:
         text.append("options: " + ", ".join(f"{k}={v!r}" for k, v in sorted(t.options.items())))
@@ -247,6 +300,7 @@ def csv_text(t: Table1) -> str:
                 repr(r.error_occupancy),
                 f"{r.seconds:.3f}",
                 f"{r.real_time_factor:.1f}",
+                r.building,
             ]
         )
     return out.getvalue()

@@ -10,7 +10,7 @@ of its own: ``plot_map`` draws the cells no evidence reached (``observed=``,
 e.g. ``CoverageMap.observed()``, or masked values) in ``UNKNOWN_COLOR``,
 never as free. The figures of the experiments (``plot_fig1``, ``plot_fig3``,
 ``plot_planning_step``, ``plot_world_and_coverage``, ``plot_exploration``
-with its GIF ``save_animation``, ``plot_table1``, ``plot_mapping``, ``plot_fig7``) are drawn and written to
+with its GIF ``save_animation``, ``plot_table1``, ``plot_mapping``, ``plot_fig7``, ``plot_benchmark``) are drawn and written to
 files whole, as the ``covmap`` command writes them.
 
 >>> import matplotlib
@@ -26,6 +26,7 @@ files whole, as the ``covmap`` command writes them.
 >>> plt.close(ax.figure)
 """
 
+from covmap.plot.benchmark import plot_benchmark
 from covmap.plot.drawing import (
     MATERIAL_COLORS,
     UNKNOWN_COLOR,
@@ -48,6 +49,7 @@ from covmap.plot.saving import save_figure
 __all__ = [
     "MATERIAL_COLORS",
     "UNKNOWN_COLOR",
+    "plot_benchmark",
     "plot_exploration",
     "plot_fig1",
     "plot_fig3",

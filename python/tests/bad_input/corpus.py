@@ -45,6 +45,8 @@ B = np.array([0.0, 1.0, 2.0])
 POSES = np.array([[1.0, 1.0, 0.0], [1.2, 1.0, 0.1]])
 log = covmap.Log(POSES, np.ones((2, 3)), B, max_range_m=5.0)
 strategy = covmap.Strategy.coverage()
+import covmap.buildings, covmap.experiments.benchmark
+building = covmap.Building.generate(0, area_m2=60.0)
 """
 
 #: Values no argument expects: extreme numbers, wrong types, sequences of
@@ -137,6 +139,20 @@ API: list[tuple[str, list[tuple[str, str, str]]]] = [
     ("w.contains", [("x", "1.0", "pos"), ("y", "1.0", "pos")]),
     ("w.distance_to_obstacle", [("x", "1.0", "pos"), ("y", "1.0", "pos")]),
     ("covmap.World._from_geojson", [("text", "'{}'", "pos")]),
+    ("covmap.Building.generate", [("seed", "0", "pos"), ("area_m2", "60.0", "kw"), ("clutter", "0.5", "kw"), ("glass", "0.2", "kw"), ("door_width_m", "(0.8, 1.2)", "kw"), ("corridor_width_m", "(1.5, 3.0)", "kw"), ("room_size_m", "(2.5, 6.0)", "kw"), ("wall_thickness_m", "(0.1, 0.2)", "kw")]),
+    ("covmap.Building.from_world", [("world", "small", "pos"), ("name", "'small'", "pos")]),
+    ("covmap.Building.builtin", [("name", "'partial'", "pos")]),
+    ("covmap.Building.from_file", [("path", "os.path.join(tmp, 'missing.map')", "pos"), ("wall_thickness_m", "0.1", "kw"), ("resolution", "None", "kw"), ("origin", "None", "kw")]),
+    ("covmap.Building.from_json", [("text", "building.to_json()", "pos")]),
+    ("building.rooms_entered", [("trajectory", "POSES", "pos")]),
+    ("building.rooms_never_entered", [("trajectory", "POSES", "pos")]),
+    ("covmap.buildings.building", [("reference", "'generated:1:60'", "pos"), ("image_resolution", "None", "kw")]),
+    ("covmap.buildings.building_set", [("name", "'default'", "pos"), ("count", "1", "kw"), ("plans", "False", "kw"), ("plans_dir", "None", "kw")]),
+    ("covmap.buildings.buildings", [("references", "['partial']", "pos")]),
+    ("covmap.buildings.split_of", [("name", "'corridor'", "pos")]),
+    # A benchmark kept short by its limits, as the runs above.
+    ("covmap.experiments.benchmark.run", [("buildings", "[building]", "pos"), ("strategies", "['frontier']", "kw"), ("sensors", "['sonar']", "kw"), ("seeds", "[0]", "kw"), ("executor", "None", "kw"), ("progress", "False", "kw"), ("max_steps", "2", "kw"), ("resolution", "0.2", "kw")]),
+    ("covmap.experiments.benchmark.sensor_of", [("name", "'sonar'", "pos")]),
     ("laser.simulate", [("world", "w", "pos"), ("pose", "P", "pos"), ("seed", "0", "kw")]),
     ("laser.simulate_path", [("world", "w", "pos"), ("poses", "POSES", "pos"), ("seed", "0", "kw")]),
     ("laser.record", [("world", "w", "pos"), ("poses", "POSES", "pos"), ("seed", "0", "kw")]),
@@ -294,6 +310,20 @@ WRITTEN: list[Case] = [
     Case("sweep spec of a bad seed", "covmap.sweep([{'world': 'corridor', 'seed': 2**64}])", "CovmapError"),
     Case("sweep spec of a bad key", "covmap.sweep([{'world': 'corridor', 'nonsense': 1}])", "InvalidSpecError", "ValueError"),
     Case("sweep spec of a bad world", "covmap.sweep([{'world': 3}])", "CovmapError"),
+    # Buildings and the benchmark: typed errors naming the value, before anything runs.
+    Case("building of an unknown name", "covmap.buildings.building('atlantis')", "UnknownWorldError", "ValueError", "atlantis"),
+    Case("generated building of a bad seed", "covmap.buildings.building('generated:-1')", "InvalidParameterError", "ValueError", "seed"),
+    Case("generated building of a door narrower than the robot", "covmap.Building.generate(0, door_width_m=(0.4, 0.45))", "InvalidParameterError", "ValueError", "door_width_m[0]"),
+    Case("generated building whose rooms cannot fit", "covmap.Building.generate(0, area_m2=12.0)", "InvalidParameterError", "ValueError", "area_m2"),
+    Case("generated building of nan rooms", "covmap.Building.generate(0, room_size_m=(math.nan, 4.0))", "InvalidParameterError", "ValueError", "room_size_m[0]"),
+    Case("building set without seeds", "covmap.buildings.building_set('test', count=0)", "InvalidParameterError", "ValueError", "count"),
+    Case("building set of an unknown name", "covmap.buildings.building_set('holdout')", "UnknownWorldError", "ValueError", "holdout"),
+    Case("building from a directory", "covmap.Building.from_file(tmp)", "CovmapError"),
+    Case("building from a fifo", "p = os.path.join(tmp, 'fifo.map')\nos.mkfifo(p)\ncovmap.Building.from_file(p)", "CovmapError", None, "fifo", alone=True),
+    Case("building from /dev/zero", "covmap.Building.from_file('/dev/zero')", "CovmapError", None, "/dev/zero", alone=True),
+    Case("benchmark of no buildings", "covmap.experiments.benchmark.run([], progress=False)", "InvalidValueError", "ValueError", "buildings"),
+    Case("benchmark of an unknown strategy", "covmap.experiments.benchmark.run([building], strategies=['greedy'], progress=False)", "InvalidParameterError", "ValueError", "greedy"),
+    Case("benchmark of too many runs", "covmap.experiments.benchmark.run([building] * 10**4, seeds=range(10**4), progress=False)", "InvalidValueError", "ValueError", "runs"),
 ]
 
 
@@ -377,6 +407,7 @@ INSTANCES: dict[str, str] = {
     "Log": "log",
     "Planner": "planner",
     "World": "w",
+    "Building": "building",
     "SonarRing": "ring",
     "Laser": "laser",
     "Robot": "robot",
@@ -386,7 +417,7 @@ INSTANCES: dict[str, str] = {
 #: The package's public modules besides the native one: the functions and
 #: classes of their ``__all__`` (or, without one, the public names they
 #: define) are its API. Every module of ``covmap.experiments`` is added.
-PUBLIC_MODULES = ["covmap", "covmap.plot", "covmap.cli"]
+PUBLIC_MODULES = ["covmap", "covmap.plot", "covmap.cli", "covmap.buildings"]
 
 
 @dataclass(frozen=True)

@@ -18,12 +18,29 @@
 //! make them certain or right.
 //!
 //! # The start
-//! Without a given start, the robot starts at the centre of a cell drawn
-//! uniformly from the cells of the largest connected free region whose
-//! centre keeps twice the robot's radius from every obstacle (a clearance
-//! well above the radius: room to turn and scan), facing a heading drawn
-//! uniformly from `[-pi, pi)`; both draws come from stream
-//! [`START_STREAM`] of the run's seed.
+//! Without a given start, the robot starts in the *start region*: of the
+//! connected regions of cells where its disc fits ([`free_regions`]), the
+//! one holding the most *enclosed* cells: cells from which, in each of the
+//! grid's eight directions (along the rows, the columns and both
+//! diagonals), a cell where the disc does not fit lies before the grid's
+//! border ([`enclosed_cells`]). The margin around a world, the outside of a
+//! building (connected to its inside through an outer door or a gap in a
+//! plan's walls), a map's free space beyond its walls are not enclosed; a
+//! building's rooms and corridors are (but for the cells that look out
+//! straight through an outer door). Where no region holds an enclosed cell
+//! (an open world, a single obstacle) the start region is the largest.
+//!
+//! The robot starts at the centre of a cell drawn uniformly from the
+//! enclosed cells of the start region whose centre keeps twice the robot's
+//! radius from every obstacle (a clearance well above the radius: room to
+//! turn and scan), or where none does from the start region's enclosed
+//! cells, or from all its cells; facing a heading drawn uniformly from
+//! `[-pi, pi)`; both draws come from stream [`START_STREAM`] of the run's
+//! seed.
+//!
+//! On a world read from an occupancy image whose unknown pixels are
+//! obstacles ([`crate::load::image`]) the start region is thus the largest
+//! free region that the image's known free pixels enclose.
 
 use covmap_core::exploration::dilate;
 use covmap_core::planner::shortest_paths;
@@ -87,6 +104,78 @@ pub fn evaluation_cells(
         .collect())
 }
 
+/// The cells of the start region (see the module documentation), in
+/// increasing index order, given the [`clearances`] of the robot on `grid`,
+/// and which of all cells are enclosed ([`enclosed_cells`]): empty where
+/// the robot fits nowhere.
+pub fn start_region(grid: &Grid, clearance_m: &[f64]) -> (Vec<usize>, Vec<bool>) {
+    let free: Vec<bool> = clearance_m.iter().map(|&c| c >= 0.0).collect();
+    let enclosed = enclosed_cells(grid, &free);
+    let regions = free_regions(grid, &free);
+    let score = |r: &Vec<usize>| {
+        let inside = r.iter().filter(|&&i| enclosed[i]).count();
+        (inside, if inside == 0 { r.len() } else { 0 })
+    };
+    // The most enclosed cells; without any, the most cells; ties to the
+    // region of the lowest first cell.
+    let best = regions
+        .iter()
+        .fold(None::<(&Vec<usize>, (usize, usize))>, |best, r| {
+            let s = score(r);
+            match best {
+                Some((_, b)) if b >= s => best,
+                _ => Some((r, s)),
+            }
+        });
+    (best.map(|(r, _)| r.clone()).unwrap_or_default(), enclosed)
+}
+
+/// Which cells are enclosed: from each, in each of the grid's eight
+/// directions, a cell that is not `free` lies before the grid's border.
+pub fn enclosed_cells(grid: &Grid, free: &[bool]) -> Vec<bool> {
+    let (rows, cols) = (grid.rows() as i64, grid.cols() as i64);
+    let mut enclosed = vec![true; free.len()];
+    let mut blocked = vec![false; free.len()];
+    for (dr, dc) in [
+        (0i64, 1i64),
+        (0, -1),
+        (1, 0),
+        (-1, 0),
+        (1, 1),
+        (1, -1),
+        (-1, 1),
+        (-1, -1),
+    ] {
+        // Walk each cell after the one it looks at (`blocked` of the cell
+        // one step in the direction is known first): rows and columns in
+        // the order opposite to the direction.
+        let row_order: Vec<i64> = if dr > 0 {
+            (0..rows).rev().collect()
+        } else {
+            (0..rows).collect()
+        };
+        let col_order: Vec<i64> = if dc > 0 {
+            (0..cols).rev().collect()
+        } else {
+            (0..cols).collect()
+        };
+        for &r in &row_order {
+            for &c in &col_order {
+                let (nr, nc) = (r + dr, c + dc);
+                let i = (r * cols + c) as usize;
+                blocked[i] = if nr < 0 || nc < 0 || nr >= rows || nc >= cols {
+                    false
+                } else {
+                    let n = (nr * cols + nc) as usize;
+                    !free[n] || blocked[n]
+                };
+                enclosed[i] &= blocked[i];
+            }
+        }
+    }
+    enclosed
+}
+
 /// A start for a run seeded `seed` (see the module documentation).
 ///
 /// # Errors
@@ -97,17 +186,18 @@ pub fn choose_start(
     robot_radius_m: f64,
     seed: u64,
 ) -> Result<Pose> {
-    let free: Vec<bool> = clearance_m.iter().map(|&c| c >= 0.0).collect();
-    let largest = largest_region(grid, &free);
-    let mut roomy: Vec<usize> = largest
+    let (region, enclosed) = start_region(grid, clearance_m);
+    let inside: Vec<usize> = region.iter().copied().filter(|&i| enclosed[i]).collect();
+    let roomy: Vec<usize> = inside
         .iter()
         .copied()
         .filter(|&i| clearance_m[i] >= robot_radius_m)
         .collect();
-    if roomy.is_empty() {
-        roomy = largest;
-    }
-    if roomy.is_empty() {
+    let cells = [roomy, inside, region]
+        .into_iter()
+        .find(|c| !c.is_empty())
+        .unwrap_or_default();
+    if cells.is_empty() {
         let [x, y, ..] = grid.bounds_m();
         return Err(CovmapError::InvalidStart {
             x,
@@ -117,7 +207,7 @@ pub fn choose_start(
         .into());
     }
     let mut rng = sim_rng_stream(seed, START_STREAM);
-    let cell = roomy[rng.random_range(0..roomy.len())];
+    let cell = cells[rng.random_range(0..cells.len())];
     let heading = rng.random_range(-std::f64::consts::PI..std::f64::consts::PI);
     let [x, y] = grid.cell_center(grid.cell(cell));
     Ok(Pose::new(x, y, heading))
@@ -163,13 +253,13 @@ fn cell_of(grid: &Grid, pose: &Pose) -> Result<covmap_core::Cell> {
     })
 }
 
-/// The cells of the largest 8-connected region of `free` cells (diagonal
-/// steps need both side cells free), in increasing index order; ties to
-/// the region with the lowest first cell.
-fn largest_region(grid: &Grid, free: &[bool]) -> Vec<usize> {
+/// The 8-connected regions of `free` cells (a diagonal step needs both
+/// side cells free, as the planner's paths do), each in increasing index
+/// order, the regions in the order of their first cell.
+pub fn free_regions(grid: &Grid, free: &[bool]) -> Vec<Vec<usize>> {
     let (rows, cols) = (grid.rows() as i64, grid.cols() as i64);
     let mut seen = vec![false; free.len()];
-    let mut best: Vec<usize> = Vec::new();
+    let mut regions = Vec::new();
     for first in 0..free.len() {
         if !free[first] || seen[first] {
             continue;
@@ -205,17 +295,44 @@ fn largest_region(grid: &Grid, free: &[bool]) -> Vec<usize> {
                 }
             }
         }
-        if region.len() > best.len() {
-            best = region;
-        }
+        region.sort_unstable();
+        regions.push(region);
     }
-    best.sort_unstable();
-    best
+    regions
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// A small closed room beside a large open yard: the start lies in
+    /// the room (the region the world encloses), not in the larger region
+    /// around it that reaches the grid's border; a world that encloses
+    /// nothing starts in its largest region.
+    #[test]
+    fn the_start_lies_in_the_region_the_world_encloses() {
+        let mut walls = vec![
+            vec![[0.0, 0.0], [3.0, 0.0], [3.0, 0.1], [0.0, 0.1]],
+            vec![[0.0, 2.9], [3.0, 2.9], [3.0, 3.0], [0.0, 3.0]],
+            vec![[0.0, 0.0], [0.1, 0.0], [0.1, 3.0], [0.0, 3.0]],
+            vec![[2.9, 0.0], [3.0, 0.0], [3.0, 3.0], [2.9, 3.0]],
+        ];
+        // A post far away stretches the grid: the yard around the room is
+        // far larger than the room.
+        walls.push(vec![[20.0, 20.0], [20.1, 20.0], [20.1, 20.1], [20.0, 20.1]]);
+        let world = World::from_vertex_lists(walls.clone(), crate::Material::Wall).unwrap();
+        let grid = Grid::covering(-0.5, -0.5, 20.6, 20.6, 0.1).unwrap();
+        let robot = Robot::new(0.25).unwrap();
+        let clearance = clearances(&world, &grid, &robot);
+        for seed in 0..5 {
+            let start = choose_start(&grid, &clearance, 0.25, seed).unwrap();
+            assert!(start.x_m > 0.1 && start.x_m < 2.9 && start.y_m > 0.1 && start.y_m < 2.9);
+        }
+        let open = World::from_vertex_lists(walls[..3].to_vec(), crate::Material::Wall).unwrap();
+        let clearance = clearances(&open, &grid, &robot);
+        let (region, _) = start_region(&grid, &clearance);
+        assert!(region.len() > 40_000, "{}", region.len());
+    }
 
     #[test]
     fn the_start_lies_in_the_largest_region_with_room() {

@@ -18,7 +18,10 @@ mod robot_io;
 mod run;
 mod sensor;
 
-pub use cells::{START_STREAM, check_start, choose_start, clearances, evaluation_cells};
+pub use cells::{
+    START_STREAM, check_start, choose_start, clearances, evaluation_cells, free_regions,
+    start_region,
+};
 pub use options::ExploreOptions;
 pub use robot_io::{STANDOFF_M, WorldMotion, WorldScans};
 pub use run::{ExplorationErrors, ExplorationRun, SimExploration, WorldExploration, explore};

@@ -4,9 +4,20 @@
 //!
 //! A pixel's darkness `1 - v` (`v` its grey value scaled to `[0, 1]`; colour
 //! channels are averaged and alpha is ignored, as map_server does) is its
-//! probability of being occupied, or `v` itself with `negate`. A pixel is an
-//! obstacle when that probability exceeds `occupied_thresh` (map_server's
-//! trinary rule; unknown and free pixels are free space here).
+//! probability `p` of being occupied, or `v` itself with `negate`.
+//! map_server's trinary rule makes a pixel occupied where `p` exceeds
+//! `occupied_thresh`, free where it is below `free_thresh`, and unknown
+//! between. **Unknown pixels are obstacles here**: a map says nothing of what
+//! lies in them, and as free space they would give a robot voids to drive in
+//! that the map never saw (the unmapped interior of a building, the outside
+//! of a mapped one), with walls where there are none; as obstacles they
+//! bound the world to what its map knows, and the seeded start lies in the
+//! largest free region that the known free pixels enclose
+//! ([`crate::exploration::cells`]). So in trinary mode (the default,
+//! [`ImageOptions::free_thresh`] `Some`) a pixel is an obstacle unless it is
+//! free. In scale mode (`free_thresh` `None`, a map_server YAML file's `mode:
+//! scale`) a grey pixel is a known partial occupancy rather than unknown,
+//! and a pixel is an obstacle when `p` exceeds `occupied_thresh`.
 //!
 //! Each horizontal run of obstacle pixels becomes one rectangle, and runs
 //! spanning the same columns in consecutive rows are merged into one taller
@@ -44,6 +55,10 @@ use crate::material::Material;
 use crate::polygon::Polygon;
 use crate::world::World;
 
+/// map_server's default `free_thresh`: a pixel less likely occupied than
+/// this is free.
+pub const DEFAULT_FREE_THRESH: f64 = 0.196;
+
 /// How to read an occupancy image.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct ImageOptions {
@@ -55,13 +70,18 @@ pub struct ImageOptions {
     pub yaw_rad: f64,
     /// Whether light pixels are the occupied ones.
     pub negate: bool,
-    /// Probability of occupancy above which a pixel is an obstacle, in `[0, 1)`.
+    /// Probability of occupancy above which a pixel is occupied, in `[0, 1)`.
     pub occupied_thresh: f64,
+    /// Trinary mode: the probability of occupancy below which a pixel is
+    /// free, in `[0, occupied_thresh)`; every other pixel (occupied or
+    /// unknown) is an obstacle. `None`: scale mode, where a pixel is an
+    /// obstacle when it is occupied and free space otherwise.
+    pub free_thresh: Option<f64>,
 }
 
 impl ImageOptions {
     /// At `resolution_m` per pixel, origin at zero, no yaw, dark = occupied,
-    /// threshold 0.65 (map_server's defaults).
+    /// trinary with thresholds 0.65 and 0.196 (map_server's defaults).
     pub fn new(resolution_m: f64) -> Self {
         Self {
             resolution_m,
@@ -69,6 +89,7 @@ impl ImageOptions {
             yaw_rad: 0.0,
             negate: false,
             occupied_thresh: 0.65,
+            free_thresh: Some(DEFAULT_FREE_THRESH),
         }
     }
 
@@ -91,7 +112,16 @@ impl ImageOptions {
             self.occupied_thresh,
             (0.0..1.0).contains(&self.occupied_thresh),
             "a probability in [0, 1)",
-        )
+        )?;
+        if let Some(free) = self.free_thresh {
+            check_param(
+                "free_thresh",
+                free,
+                (0.0..self.occupied_thresh).contains(&free),
+                "a probability at least 0 and below occupied_thresh",
+            )?;
+        }
+        Ok(())
     }
 }
 
@@ -333,7 +363,10 @@ fn decode_grey(
 fn world_from_grey(grey: &Grey, o: &ImageOptions, path: &Path) -> Result<World> {
     let occupied = |v: f64| {
         let p = if o.negate { v } else { 1.0 - v };
-        p > o.occupied_thresh
+        match o.free_thresh {
+            Some(free) => !(p < free),
+            None => p > o.occupied_thresh,
+        }
     };
     let (w, h, r) = (grey.width, grey.height, o.resolution_m);
     // Open rectangles: (first column, end column, top row), sorted by column.
@@ -389,8 +422,11 @@ fn world_from_grey(grey: &Grey, o: &ImageOptions, path: &Path) -> Result<World> 
             path,
             "all pixels",
             format!(
-                "no occupied pixel (probability of occupancy above {}{}): check `negate` and `occupied_thresh`",
-                o.occupied_thresh,
+                "no obstacle pixel (probability of occupancy {}{}): check `negate` and the thresholds",
+                match o.free_thresh {
+                    Some(free) => format!("at least free_thresh = {free}"),
+                    None => format!("above occupied_thresh = {}", o.occupied_thresh),
+                },
                 if o.negate { ", negated" } else { "" }
             ),
         ));

@@ -5,9 +5,9 @@
 //! # Reading
 //! A YAML file gives `image` (a path relative to the YAML file),
 //! `resolution`, `origin: [x, y, yaw]`, and optionally `negate` (0/1, default
-//! 0) and `occupied_thresh` (default 0.65); `free_thresh` and `mode: trinary`
-//! or `mode: scale` (whose obstacles are the same pixels) are accepted and
-//! ignored. The YAML is read by serde (`serde_norway`, the maintained fork
+//! 0), `occupied_thresh` (default 0.65), `free_thresh` (default 0.196) and
+//! `mode: trinary` (the default: occupied and unknown pixels are obstacles)
+//! or `mode: scale` (occupied pixels are). The YAML is read by serde (`serde_norway`, the maintained fork
 //! of serde_yaml): a value of the wrong type is an error naming its line, a
 //! value map_server refuses one naming its key. The image is read as
 //! [`super::image`] reads occupancy images.
@@ -40,7 +40,7 @@ use covmap_core::Grid;
 use image::ExtendedColorType;
 use image::codecs::pnm::{PnmEncoder, PnmSubtype, SampleEncoding};
 
-use super::image::ImageOptions;
+use super::image::{DEFAULT_FREE_THRESH, ImageOptions};
 use super::{parse_error, read_text, write_atomic_all};
 use crate::error::{Result, SimError, check_param};
 use crate::world::World;
@@ -154,10 +154,9 @@ pub fn parse_ros_map_yaml(text: &str, path: &Path) -> Result<(String, ImageOptio
             ));
         }
     };
-    // Both modes make an obstacle of the same pixels: those more likely
-    // occupied than `occupied_thresh`.
     if let Some(mode) = yaml
         .mode
+        .as_ref()
         .filter(|m| !matches!(m.as_str(), "trinary" | "scale"))
     {
         return Err(at(
@@ -173,12 +172,13 @@ pub fn parse_ros_map_yaml(text: &str, path: &Path) -> Result<(String, ImageOptio
     options.yaw_rad = yaw;
     options.negate = negate;
     options.occupied_thresh = yaml.occupied_thresh.unwrap_or(options.occupied_thresh);
+    // `free_thresh` is checked below, naming its key.
+    options.free_thresh = None;
     options
         .validate()
         .map_err(|e| parse_error(path, "whole file", e.to_string()))?;
-    // `free_thresh` marks no pixel here (every pixel not an obstacle is
-    // free space to the simulator), but a map whose free cells would be
-    // more likely occupied than its obstacles is a wrong file.
+    // A map whose free cells would be more likely occupied than its
+    // obstacles is a wrong file, in either mode.
     if let Some(free) = yaml.free_thresh
         && !((0.0..options.occupied_thresh).contains(&free))
     {
@@ -190,6 +190,14 @@ pub fn parse_ros_map_yaml(text: &str, path: &Path) -> Result<(String, ImageOptio
             ),
         ));
     }
+    options.free_thresh = match yaml.mode.as_deref() {
+        Some("scale") => None,
+        _ => Some(
+            yaml.free_thresh
+                .unwrap_or(DEFAULT_FREE_THRESH)
+                .min(options.occupied_thresh),
+        ),
+    };
     Ok((image, options))
 }
 
@@ -367,9 +375,16 @@ mod tests {
             let world = World::from_ros_map_yaml(&yaml).unwrap();
             let truth = world.coverage(&grid);
             for (i, (&v, &c)) in occupancy.iter().zip(&truth).enumerate() {
-                // Scale: 70 % is grey 76, darker than the 0.65 threshold;
-                // trinary: 70 % is at least 65, black.
-                assert_eq!(c > 0.5, v >= 65, "{mode:?} cell {i}: {v} read as {c}");
+                // Scale: 70 % is grey 76, darker than the 0.65 threshold,
+                // the rest lighter; trinary: only a cell at or below
+                // free_thresh (20 %) is white and free, the unknown (-1)
+                // and the uncertain (30 %, 64 %) are grey 205 and
+                // obstacles, as the occupied black.
+                let obstacle = match mode {
+                    RosMapMode::Scale => v >= 65,
+                    RosMapMode::Trinary => !(0..=20).contains(&v),
+                };
+                assert_eq!(c > 0.5, obstacle, "{mode:?} cell {i}: {v} read as {c}");
             }
         }
         let yaml = dir.join("bad.yaml");

@@ -41,12 +41,18 @@ fn runs_merge_into_rectangles_with_exact_coverage() {
     }
 }
 
+/// In scale mode a pixel is an obstacle when its occupancy is above
+/// `occupied_thresh`.
 #[test]
 fn thresholds_negate_and_sixteen_bits() {
     // Values 100/255 -> p = 0.61 (free at 0.65, occupied at 0.5).
     let px = [100u8, 255];
-    assert!(World::from_image_bytes(&pgm_p5(2, 1, &px), "t.pgm", &ImageOptions::new(1.0)).is_err());
-    let mut o = ImageOptions::new(1.0);
+    let scale = ImageOptions {
+        free_thresh: None,
+        ..ImageOptions::new(1.0)
+    };
+    assert!(World::from_image_bytes(&pgm_p5(2, 1, &px), "t.pgm", &scale).is_err());
+    let mut o = scale;
     o.occupied_thresh = 0.5;
     assert_eq!(
         World::from_image_bytes(&pgm_p5(2, 1, &px), "t.pgm", &o)
@@ -107,7 +113,10 @@ fn malformed_images_name_the_place() {
 /// clamps it): white, or occupied when negated.
 #[test]
 fn a_pgm_value_above_maxval_reads_as_maxval() {
-    let o = ImageOptions::new(1.0);
+    let o = ImageOptions {
+        free_thresh: None,
+        ..ImageOptions::new(1.0)
+    };
     let w = World::from_image_bytes(b"P2 2 1 10 3 11", "v.pgm", &o).unwrap();
     assert_eq!(w.len(), 1);
     assert_eq!(w.polygons()[0].bounds_m(), [0.0, 0.0, 1.0, 1.0]);
@@ -153,8 +162,41 @@ fn pgm_grey_values_are_the_files_values_over_maxval() {
     check(&b, 65534, 1.0 / 65534.0);
     // A value on the threshold stays on it: 35 of 100 is an occupancy of
     // exactly 0.65, not above it (stretched to 89 of 255 it would be).
-    let w = World::from_image_bytes(b"P2 2 1 100 35 0", "t.pgm", &ImageOptions::new(1.0)).unwrap();
+    let scale = ImageOptions {
+        free_thresh: None,
+        ..ImageOptions::new(1.0)
+    };
+    let w = World::from_image_bytes(b"P2 2 1 100 35 0", "t.pgm", &scale).unwrap();
     assert_eq!(w.polygons()[0].bounds_m(), [1.0, 0.0, 2.0, 1.0]);
+}
+
+/// Trinary mode (the default): a pixel is an obstacle unless it is free
+/// (occupancy below `free_thresh`): unknown grey is an obstacle, as the
+/// occupied black is; a bad `free_thresh` is named.
+#[test]
+fn unknown_pixels_are_obstacles() {
+    // 0 occupied, 205 unknown (p = 0.196...), 206 free (p = 0.192), 255 free.
+    let px = [0u8, 205, 206, 255];
+    let w = World::from_image_bytes(&pgm_p5(4, 1, &px), "u.pgm", &ImageOptions::new(1.0)).unwrap();
+    assert_eq!(w.len(), 1);
+    assert_eq!(w.polygons()[0].bounds_m(), [0.0, 0.0, 2.0, 1.0]);
+    for free in [f64::NAN, -0.1, 0.65, 0.9] {
+        let o = ImageOptions {
+            free_thresh: Some(free),
+            ..ImageOptions::new(1.0)
+        };
+        let e = World::from_image_bytes(&pgm_p5(4, 1, &px), "u.pgm", &o).unwrap_err();
+        assert!(
+            matches!(
+                e,
+                SimError::InvalidParameter {
+                    name: "free_thresh",
+                    ..
+                }
+            ),
+            "{free}: {e}"
+        );
+    }
 }
 
 /// A PGM header that declares more pixels than the file has bytes, or more
