@@ -22,7 +22,7 @@ use criterion::{Criterion, criterion_group, criterion_main};
 fn evaluate(drive: &Drive, model: &AnySensorModel, occlude: bool) -> f64 {
     let mut map = CoverageMap::new(drive.grid);
     if occlude {
-        map.integrate_log_occluding(&drive.log, model, &mut |_| {})
+        map.occluding().integrate_log(&drive.log, model)
     } else {
         map.integrate_log(&drive.log, model)
     }

@@ -1,6 +1,8 @@
 # Stubs of the native module covmap._native (built from crates/covmap-py). The
 # signatures are written by hand; the docstrings are the module's own, written
 # in by python/tools/gen_stubs.py and checked by python/tests/test_stubs.py.
+# One file, longer than the others: stubtest checks the native module against
+# one stub module, and every class of the module is declared here.
 """Native core of covmap (coverage maps, Stachniss and Burgard 2003). Import
 from ``covmap`` instead.
 """

@@ -42,10 +42,13 @@ def test_a_carmen_log_becomes_its_map_files(tmp_path: Path) -> None:
     assert (out / "maps.png").read_bytes().startswith(PNG_SIGNATURE)
     cmap = covmap.CoverageMap.load(out / "coverage.npz")
     assert cmap.grid.resolution == 0.1
-    # The walls read back from the map_server pair, where the room's are.
+    # The walls read back from the map_server pair, where the room's are
+    # (among the cells the map saw: the unknown ones read back as obstacles).
     world = covmap.World.from_file(out / "map.yaml")
     grid = cmap.grid
-    rows, cols = np.nonzero(world.coverage(grid) > 0.5)
+    seen = cmap.ros_occupancy() != -1
+    assert (world.coverage(grid) > 0.5)[~seen].mean() > 0.95
+    rows, cols = np.nonzero((world.coverage(grid) > 0.5) & seen)
     (x0, y0, _, _) = grid.bounds
     xs = x0 + (cols + 0.5) * grid.resolution
     ys = y0 + (rows + 0.5) * grid.resolution

@@ -39,6 +39,7 @@ COMMANDS: dict[str, Callable[[dict[str, Path], Path], list[str]]] = {
     "explore": lambda i, out: ["explore", "--world", "partial", "--max-steps", "2", "--frames", "2", "--out", str(out)],
     "table1": lambda i, out: ["table1", "--world", "partial", "--seeds", "1", "--max-steps", "2", "--out", str(out)],
     "fig7": lambda i, out: ["fig7", "--world", "partial", "--ns", "1", "--seeds", "1", "--resolution", "0.1", "--max-steps", "2", "--out", str(out)],
+    "benchmark": lambda i, out: ["benchmark", "--buildings", "partial", "--strategies", "frontier", "--resolution", "0.1", "--max-steps", "1", "--out", str(out)],
     "sweep": lambda i, out: ["sweep", str(i["specs"]), "--out", str(out / "results.csv")],
     "map": lambda i, out: ["map", str(i["log"]), "--resolution", "0.1", "--max-range", "20", "--out", str(out)],
 }
@@ -94,7 +95,7 @@ def test_a_command_refuses_a_target_that_is_no_regular_file_before_it_writes(
         assert not others, f"{command} wrote {others} although {path.name} was refused"
 
 
-@pytest.mark.parametrize("command", ["fig2", "world", "sweep", "map", "gain", "explore"])
+@pytest.mark.parametrize("command", ["fig2", "world", "sweep", "map", "gain", "explore", "benchmark"])
 def test_the_outputs_are_the_files_a_command_writes(
     tmp_path: Path, capsys: pytest.CaptureFixture[str], command: str
 ) -> None:

@@ -48,12 +48,13 @@ fn aria_office_walls_match_its_own_scan_points() {
 }
 
 #[test]
-fn willow_garage_coverage_reproduces_the_occupied_pixels() {
+fn willow_garage_coverage_reproduces_the_obstacle_pixels() {
     let Some(dir) = shared_worlds() else { return };
     let path = dir.join("willow-full.pgm");
     let world = World::from_image_file(&path, &ImageOptions::new(0.1)).unwrap();
-    // Count the occupied pixels independently: P5, 540 x 587, maxval 255, a
-    // pixel is occupied when (255 - v) / 255 > 0.65.
+    // Count the obstacle pixels independently: P5, 540 x 587, maxval 255;
+    // in trinary mode every pixel that is not free is an obstacle (the
+    // unknown ones too), free when (255 - v) / 255 < 0.196.
     let bytes = std::fs::read(&path).unwrap();
     let header_end = {
         let mut fields = 0;
@@ -75,11 +76,13 @@ fn willow_garage_coverage_reproduces_the_occupied_pixels() {
     };
     let pixels = &bytes[header_end..];
     assert_eq!(pixels.len(), 540 * 587);
-    let occupied = pixels
+    let not_free = |v: u8| (255.0 - v as f64) / 255.0 >= 0.196;
+    let occupied = pixels.iter().filter(|&&v| not_free(v)).count();
+    let dark = pixels
         .iter()
         .filter(|&&v| (255.0 - v as f64) / 255.0 > 0.65)
         .count();
-    assert!(occupied > 4000, "{occupied}");
+    assert!(dark > 4000 && occupied > dark, "{dark}, {occupied}");
     // On the pixel lattice the exact coverage is the image itself.
     let grid = Grid::new([0.0, 0.0], 0.1, 587, 540).unwrap();
     let cov = world.coverage(&grid);
@@ -91,9 +94,9 @@ fn willow_garage_coverage_reproduces_the_occupied_pixels() {
     for (i, &v) in cov.iter().enumerate() {
         let (row, col) = (i / 540, i % 540);
         let v_px = pixels[(586 - row) * 540 + col];
-        let dark = (255.0 - v_px as f64) / 255.0 > 0.65;
+        let obstacle = not_free(v_px);
         assert!(
-            (v - if dark { 1.0 } else { 0.0 }).abs() < 1e-9,
+            (v - if obstacle { 1.0 } else { 0.0 }).abs() < 1e-9,
             "cell ({row}, {col})"
         );
     }

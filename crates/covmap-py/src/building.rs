@@ -9,8 +9,8 @@ use numpy::{PyArray1, PyArray2};
 use pyo3::prelude::*;
 
 use crate::convert::{self, rows_array};
-use crate::numbers::{Float, Seed};
 use crate::errors::OrRaise;
+use crate::numbers::{Float, Seed};
 use crate::world::PyWorld;
 
 /// A building: a ``World`` with its rooms and doors, so that an
@@ -87,9 +87,17 @@ impl PyBuilding {
             clutter: clutter.0,
             glass: glass.0,
             door_width_m: range(door_width_m, "door_width_m", defaults.door_width_m)?,
-            corridor_width_m: range(corridor_width_m, "corridor_width_m", defaults.corridor_width_m)?,
+            corridor_width_m: range(
+                corridor_width_m,
+                "corridor_width_m",
+                defaults.corridor_width_m,
+            )?,
             room_size_m: range(room_size_m, "room_size_m", defaults.room_size_m)?,
-            wall_thickness_m: range(wall_thickness_m, "wall_thickness_m", defaults.wall_thickness_m)?,
+            wall_thickness_m: range(
+                wall_thickness_m,
+                "wall_thickness_m",
+                defaults.wall_thickness_m,
+            )?,
         };
         py.detach(|| Building::generate(seed.0, &options))
             .map(Self)
@@ -104,11 +112,7 @@ impl PyBuilding {
     /// Doors are not listed.
     #[staticmethod]
     #[pyo3(signature = (world, name="world"))]
-    fn from_world(
-        py: Python<'_>,
-        world: PyRef<'_, PyWorld>,
-        name: &str,
-    ) -> PyResult<Self> {
+    fn from_world(py: Python<'_>, world: PyRef<'_, PyWorld>, name: &str) -> PyResult<Self> {
         let world = world.0.clone();
         py.detach(|| Building::from_world(world, name))
             .map(Self)
@@ -118,10 +122,7 @@ impl PyBuilding {
     /// A built-in world as a building (``World.builtin``; rooms by the
     /// rule of ``from_world``), named by its name.
     #[staticmethod]
-    fn builtin(
-        py: Python<'_>,
-        name: &str,
-    ) -> PyResult<Self> {
+    fn builtin(py: Python<'_>, name: &str) -> PyResult<Self> {
         let world = World::builtin(name).or_raise(py)?;
         py.detach(|| Building::from_world(world, name))
             .map(Self)
@@ -217,10 +218,7 @@ impl PyBuilding {
     /// A building from ``to_json``'s text; ``FileFormatError`` for text
     /// that is not one.
     #[staticmethod]
-    fn from_json(
-        py: Python<'_>,
-        text: &str,
-    ) -> PyResult<Self> {
+    fn from_json(py: Python<'_>, text: &str) -> PyResult<Self> {
         Building::from_json(text, "building JSON")
             .map(Self)
             .or_raise(py)

@@ -185,7 +185,8 @@ impl PyCoverageMap {
             (progress, log.len()),
             |map, show| {
                 if occlude_no_echo {
-                    map.integrate_log_occluding(log, &model, show)
+                    map.occluding()
+                        .integrate_log_with_progress(log, &model, show)
                 } else {
                     map.integrate_log_with_progress(log, &model, show)
                 }

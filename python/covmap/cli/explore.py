@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+from pathlib import Path
 from typing import TYPE_CHECKING
 
 from covmap._native import DEFAULT_DISCOUNT_BEYOND_M, Laser, SonarRing, Strategy
@@ -10,7 +11,6 @@ from covmap.experiments.exploration import MAX_FRAMES
 
 if TYPE_CHECKING:
     import argparse
-    from pathlib import Path
 
     from covmap._exploration import Step
     from covmap._native import Exploration

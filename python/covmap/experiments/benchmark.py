@@ -126,7 +126,7 @@ MAX_PATH_M = 3000.0
 ``"limit"``. Counting to 50 drives 2.6 km in a 120 square-metre building
 and goes on for many kilometres in larger ones (20 m a square metre);
 coverage maps and frontiers end by their own rule well before it
-(BENCHMARKS.md). A step or path limit, never a wall-clock one: a run's end
+(docs/experiments.md, the benchmark's limits). A step or path limit, never a wall-clock one: a run's end
 must not depend on the machine."""
 
 LASER_MAX_PATH_M = 300.0
@@ -135,7 +135,7 @@ coverage strategy plans each step of the 361-beam laser for about 1 s (a
 120 square-metre building) to 10 s (550 square metres) on one core: a run
 to its own end takes some 320 steps, 455 m and 6 minutes in a small
 building, hours in a large one; counting to 50 drives 1.4 km in 2700 steps
-(BENCHMARKS.md)."""
+(docs/experiments.md, the benchmark's limits)."""
 
 LASER_MAX_EXTENT_M2 = 200.0
 """The largest building the full benchmark runs the laser in (bounding box,

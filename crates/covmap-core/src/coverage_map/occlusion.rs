@@ -3,12 +3,60 @@
 //! nothing of what lies behind.
 
 use super::{CONTACT_COVERAGE, CoverageMap};
+use crate::error::Result;
 use crate::footprint::visit;
+use crate::grid::Grid;
 use crate::histogram;
 use crate::pose::Pose;
+use crate::scan_map::{ScanBeams, ScanMap};
 use crate::sensor::SensorModel;
 
+/// A coverage map that integrates each scan with its no-echo readings
+/// occluded by the map as it stands when the scan comes
+/// ([`CoverageMap::occluding`]).
+#[derive(Debug)]
+pub struct Occluding<'a>(&'a mut CoverageMap);
+
+impl ScanMap for Occluding<'_> {
+    fn grid(&self) -> &Grid {
+        self.0.grid()
+    }
+
+    fn integrate_checked<M: SensorModel + ?Sized>(
+        &mut self,
+        scan: ScanBeams<'_>,
+        model: &M,
+    ) -> Result<usize> {
+        let mut reaches = self
+            .0
+            .no_echo_reaches(scan.pose, scan.ranges, scan.bearings, model);
+        for (r, &given) in reaches.iter_mut().zip(scan.no_echo_reach_m.unwrap_or(&[])) {
+            *r = r.min(given);
+        }
+        let no_echo_reach_m = Some(&reaches[..]);
+        self.0.integrate_checked(
+            ScanBeams {
+                no_echo_reach_m,
+                ..scan
+            },
+            model,
+        )
+    }
+}
+
 impl CoverageMap {
+    /// This map, integrating each scan ([`ScanMap::integrate`],
+    /// [`ScanMap::integrate_log`] and the rest) with its no-echo readings
+    /// occluded by the map as it stands when the scan comes: a no-echo
+    /// reading clears only up to the nearest cell of its footprint the map
+    /// holds as covered ([`CoverageMap::no_echo_reaches`]), as the
+    /// exploration loop integrates its scans. A no-echo reading through a
+    /// wall that earlier echoes found is then taken for a specular miss,
+    /// which says nothing of the wall or of what lies behind it.
+    pub fn occluding(&mut self) -> Occluding<'_> {
+        Occluding(self)
+    }
+
     /// How far each no-echo reading of a scan from `pose` should clear: to
     /// the nearest cell of its footprint that this map holds as covered (ML
     /// coverage above [`CONTACT_COVERAGE`]; a cell the robot ran into is

@@ -61,7 +61,7 @@ pub struct FitOptions {
     /// (standard deviation, nats; default 0.5).
     pub tolerance: f64,
     /// Whether the maps are built with no-echo readings occluded by the map
-    /// ([`CoverageMap::integrate_log_occluding`]) rather than clearing
+    /// ([`CoverageMap::occluding`]) rather than clearing
     /// their whole footprint ([`CoverageMap::integrate_log`]; the default).
     pub occlude_no_echo: bool,
 }
@@ -193,7 +193,7 @@ pub fn fit_sensor_model<M: Fittable>(
 /// The coverage map of `data.log` on `data.grid` with `bins` bins, built
 /// with `model` as a fit builds it: every scan in turn, no-echo readings
 /// occluded by the map if `occlude_no_echo`
-/// ([`CoverageMap::integrate_log_occluding`]).
+/// ([`CoverageMap::occluding`]).
 ///
 /// # Errors
 /// As [`CoverageMap::with_bins`] and [`CoverageMap::integrate_log`].
@@ -205,7 +205,7 @@ pub fn map_of_log<M: SensorModel + ?Sized>(
 ) -> Result<CoverageMap> {
     let mut map = CoverageMap::with_bins(data.grid, bins)?;
     if occlude_no_echo {
-        map.integrate_log_occluding(data.log, model, &mut |_| {})?;
+        map.occluding().integrate_log(data.log, model)?;
     } else {
         map.integrate_log(data.log, model)?;
     }

@@ -1,14 +1,13 @@
 //! A whole log into a map: every scan checked first, then every scan
-//! integrated through the map's own [`ScanMap::integrate_checked`], so that
+//! integrated through the map's own [`ScanMap::integrate_checked`](crate::ScanMap::integrate_checked), so that
 //! the three maps share one update each and a log changes nothing unless all
 //! of it is good.
 
-use crate::coverage_map::CoverageMap;
 use crate::error::Result;
 use crate::grid::Grid;
 use crate::log::Log;
 use crate::pose::{Pose, validate_scan};
-use crate::scan_map::{ScanBeams, ScanMap};
+use crate::scan_map::ScanBeams;
 use crate::sensor::SensorModel;
 
 /// One scan of a log as the maps take it: the sensor's world pose, the
@@ -57,7 +56,7 @@ impl PreparedScan {
 }
 
 /// Check every scan of `log` against `grid` and `model`, then hand each to
-/// `apply` (a map's [`ScanMap::integrate_checked`]), reporting the scans
+/// `apply` (a map's [`ScanMap::integrate_checked`](crate::ScanMap::integrate_checked)), reporting the scans
 /// done to `progress`. An error names its scan ([`crate::CovmapError::InScan`]).
 pub(crate) fn integrate_scans<M: SensorModel + ?Sized>(
     grid: &Grid,
@@ -84,49 +83,15 @@ pub(crate) fn integrate_scans<M: SensorModel + ?Sized>(
     Ok(updates)
 }
 
-impl CoverageMap {
-    /// [`ScanMap::integrate_log_with_progress`], each no-echo reading
-    /// occluded by the map as it stands when its scan comes: it clears only
-    /// up to the nearest cell of its footprint the map holds as covered
-    /// ([`CoverageMap::no_echo_reaches`]), as the exploration loop
-    /// integrates its scans. A no-echo reading through a wall that earlier
-    /// echoes found is then taken for a specular miss, which says nothing
-    /// of the wall or of what lies behind it.
-    ///
-    /// # Errors
-    /// As [`ScanMap::integrate_log`].
-    pub fn integrate_log_occluding<M: SensorModel + ?Sized>(
-        &mut self,
-        log: &Log,
-        model: &M,
-        progress: &mut dyn FnMut(usize),
-    ) -> Result<usize> {
-        let grid = *self.grid();
-        integrate_scans(&grid, log, model, progress, |scan| {
-            let (pose, ranges, bearings) = (scan.pose, scan.ranges, scan.bearings);
-            let mut reaches = self.no_echo_reaches(pose, ranges, bearings, model);
-            for (r, &log_reach) in reaches.iter_mut().zip(scan.no_echo_reach_m.unwrap_or(&[])) {
-                *r = r.min(log_reach);
-            }
-            let no_echo_reach_m = Some(&reaches[..]);
-            self.integrate_checked(
-                ScanBeams {
-                    no_echo_reach_m,
-                    ..scan
-                },
-                model,
-            )
-        })
-    }
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
     use crate::counting::ScanCounts;
+    use crate::coverage_map::CoverageMap;
     use crate::error::CovmapError;
     use crate::log::Bearings;
     use crate::occupancy::OccupancyGrid;
+    use crate::scan_map::ScanMap;
     use crate::sensor::{LaserModel, SonarModel};
 
     fn grid() -> Grid {

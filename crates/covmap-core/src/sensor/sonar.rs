@@ -54,7 +54,7 @@ impl SonarModel {
     /// The model `covmap learn` fits with its defaults: 13 parameters fitted
     /// by maximum likelihood on the simulated corridor drive (300 scans of
     /// the 24-sonar ring, seed 0) with no-echo readings occluded by the map
-    /// ([`crate::CoverageMap::integrate_log_occluding`]), as the exploration
+    /// ([`crate::CoverageMap::occluding`]), as the exploration
     /// loop builds its maps. Reproduced by `cargo run --release -p covmap-sim
     /// --example learn` (and checked against it by the Python tests).
     ///

@@ -281,7 +281,7 @@ impl Drive {
 
     /// How well maps of this drive built with `model` match the truth (its
     /// no-echo readings occluded by the map if `occlude_no_echo`, see
-    /// [`covmap_core::CoverageMap::integrate_log_occluding`]).
+    /// [`covmap_core::CoverageMap::occluding`]).
     pub fn score(&self, model: &AnySensorModel, occlude_no_echo: bool) -> Result<DriveScore> {
         let map = map_of_log(&self.fit_data(None), DEFAULT_BINS, model, occlude_no_echo)?;
         let mean = map.mean();

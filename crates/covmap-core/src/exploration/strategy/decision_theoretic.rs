@@ -54,7 +54,7 @@
 //! further one bin pulls ahead.
 //!
 //! The window trades distance for those cells. On the built-in corridor
-//! (seeds 0 to 3; BENCHMARKS.md, Table I) the paper's rule alone, the
+//! (seeds 0 to 3; docs/experiments.md, the stall window) the paper's rule alone, the
 //! window left out, ends the runs with no goal left at 989 to 1724 m and
 //! 0.18 to 0.27 % of the evaluation cells uncertain; a window of 20 steps
 //! ends them at 269 to 544 m (mean 444 m) and 0.57 to 1.15 %; 60 steps at
