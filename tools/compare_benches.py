@@ -3,9 +3,9 @@
     python tools/compare_benches.py OLD_REV NEW_REV [--benches integrate,gain,planning]
         [--filter REGEX] [--measurement-time 5] [--rounds 2]
 
-Each revision is checked out in a worktree under ``target/compare/`` and its
-own benches are built there (``cargo bench --no-run``; one target directory
-for both, so that the dependencies are built once). Then each bench binary
+Each revision's benches are built in a worktree of it (``cargo bench
+--no-run``, in the worktree's own target directory): an existing worktree
+whose HEAD is that commit, else a new one under ``target/compare/``. Then each bench binary
 runs with criterion's ``--bench`` flags, old and new alternately, ``--rounds``
 times, so that the machine's load falls on both alike; a benchmark's figure
 is the best of its rounds' medians. Prints a Markdown table: each benchmark's
@@ -31,16 +31,24 @@ TIME = re.compile(r"^(?P<name>\S.*?)?\s*time:\s+\[\S+ \S+ (?P<mid>\S+) (?P<unit>
 
 
 def worktree(rev: str) -> Path:
-    """A worktree of ``rev`` under target/compare/ (made once)."""
+    """A worktree whose HEAD is ``rev``: an existing one, or one made under
+    target/compare/."""
+    commit = subprocess.run(["git", "rev-parse", rev], cwd=ROOT, check=True, stdout=subprocess.PIPE, text=True).stdout.strip()
+    listing = subprocess.run(["git", "worktree", "list", "--porcelain"], cwd=ROOT, check=True, stdout=subprocess.PIPE, text=True).stdout
+    for block in listing.split("\n\n"):
+        fields = dict(line.split(" ", 1) for line in block.splitlines() if " " in line)
+        if fields.get("HEAD") == commit and Path(fields["worktree"]).is_dir():
+            return Path(fields["worktree"])
     path = ROOT / "target" / "compare" / rev
     if not path.exists():
         subprocess.run(["git", "worktree", "add", "-q", "--detach", str(path), rev], cwd=ROOT, check=True)
     return path
 
 
-def build(tree: Path, bench: str, target: Path) -> Path:
-    """Build ``bench`` in ``tree``; the path of its binary."""
-    env = {**os.environ, "CARGO_TARGET_DIR": str(target)}
+def build(tree: Path, bench: str) -> Path:
+    """Build ``bench`` in ``tree``, in its own target directory; the path of
+    its binary."""
+    env = {k: v for k, v in os.environ.items() if k != "CARGO_TARGET_DIR"}
     out = subprocess.run(
         ["cargo", "bench", "--no-run", "--bench", bench, "--message-format", "json"],
         cwd=tree,
@@ -92,12 +100,11 @@ def main() -> int:
     parser.add_argument("--measurement-time", type=float, default=5.0)
     parser.add_argument("--rounds", type=int, default=2)
     args = parser.parse_args()
-    target = Path(os.environ.get("CARGO_TARGET_DIR", ROOT / "target" / "compare" / "target"))
     revs = {rev: worktree(rev) for rev in (args.old, args.new)}
     print("| bench | benchmark | " + " | ".join(revs) + " | new / old |")
     print("| --- | --- | " + " | ".join("---:" for _ in revs) + " | ---: |")
     for bench in args.benches.split(","):
-        binaries = {rev: build(tree, bench, target) for rev, tree in revs.items()}
+        binaries = {rev: build(tree, bench) for rev, tree in revs.items()}
         best: dict[str, dict[str, float]] = {rev: {} for rev in revs}
         for _ in range(args.rounds):
             for rev, tree in revs.items():

@@ -9,7 +9,7 @@
 
 use std::sync::OnceLock;
 
-use covmap::{CoverageMap, Grid, LaserModel, Pose};
+use covmap::{CoverageMap, Grid, LaserModel, Pose, ScanMap};
 use libfuzzer_sys::fuzz_target;
 
 /// The names an entry may have: the map file's, and others.

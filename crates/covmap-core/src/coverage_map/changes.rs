@@ -14,9 +14,11 @@
 //! anew has an identity of its own, so that a cursor of another map (even
 //! one with the same grid and the same number of changes) reads as "every
 //! cell changed". The stamps cost four bytes a cell; reading the feed is
-//! one pass over them.
+//! one pass over them. A map that no reader watches (no cursor was ever
+//! taken of it, and it keeps no history) does not stamp its scans' cells:
+//! plain mapping pays nothing for the feed.
 
-use std::sync::atomic::{AtomicU64, Ordering};
+use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
 
 use super::CoverageMap;
 use crate::error::Result;
@@ -61,10 +63,22 @@ impl Clone for Identity {
     }
 }
 
+/// Whether a cursor of the map was ever taken; a clone starts unwatched
+/// (it has an identity of its own, so no cursor of it exists yet).
+#[derive(Debug, Default)]
+struct Watched(AtomicBool);
+
+impl Clone for Watched {
+    fn clone(&self) -> Self {
+        Self::default()
+    }
+}
+
 /// The change stamps of a map's cells.
 #[derive(Clone, Debug)]
 pub(super) struct ChangeStamps {
     identity: Identity,
+    watched: Watched,
     /// The version of the last change (0: none yet).
     version: u32,
     /// The version of each cell's last change, row-major.
@@ -79,9 +93,23 @@ impl ChangeStamps {
         stamps.resize(cells, 0);
         Ok(Self {
             identity: Identity::new(),
+            watched: Watched::default(),
             version: 0,
             stamps,
         })
+    }
+
+    /// Begin a scan's change: the stamper its cells are marked with, or
+    /// `None` (the version moves on all the same) if no reader watches the
+    /// map and the caller needs no stamps of its own (`needed`: the
+    /// history's first-visit marks).
+    pub(super) fn begin_watched(&mut self, needed: bool) -> Option<Stamper<'_>> {
+        if needed || *self.watched.0.get_mut() {
+            Some(self.begin())
+        } else {
+            self.version = self.version.saturating_add(1);
+            None
+        }
     }
 
     /// Begin a change: the stamper its cells are marked with.
@@ -108,6 +136,13 @@ pub(super) struct Stamper<'s> {
 }
 
 impl Stamper<'_> {
+    /// Mark the cell at row-major `index` (a store only: the update's inner
+    /// loop when no one asks which cells are new).
+    #[inline(always)]
+    pub(super) fn set(&mut self, index: usize) {
+        self.stamps[index] = self.version;
+    }
+
     /// Mark the cell at row-major `index`; true the first time this change
     /// marks it.
     #[inline(always)]
@@ -122,6 +157,7 @@ impl CoverageMap {
     /// Where the map stands now, for [`CoverageMap::changes_since`] to tell
     /// later what changed since.
     pub fn change_cursor(&self) -> ChangeCursor {
+        self.changes.watched.0.store(true, Ordering::Relaxed);
         ChangeCursor {
             map: self.changes.identity.0,
             version: self.changes.version,

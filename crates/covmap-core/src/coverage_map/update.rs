@@ -35,7 +35,7 @@ impl ScanMap for CoverageMap {
         // The changed cells are marked as the update visits them, for the
         // change feed and the history.
         let mut touches = Touches {
-            stamper: self.changes.begin(),
+            stamper: self.changes.begin_watched(self.history.is_some()),
             touched: self.history.as_deref_mut().map(History::begin_scan),
         };
         // Pick the update once per scan, so the per-cell loop is straight code.
@@ -94,7 +94,8 @@ pub(super) fn beam_reach(
 /// The cells a scan changes, marked as its update visits them: stamped for
 /// the change feed and, the first time, put on the history's list.
 struct Touches<'a> {
-    stamper: Stamper<'a>,
+    /// `None` when no reader watches the map and it keeps no history.
+    stamper: Option<Stamper<'a>>,
     touched: Option<&'a mut Vec<usize>>,
 }
 
@@ -102,10 +103,14 @@ impl Touches<'_> {
     /// Mark the cell at row-major `index` as changed by the scan.
     #[inline(always)]
     fn mark(&mut self, index: usize) {
-        if self.stamper.mark(index)
-            && let Some(touched) = self.touched.as_deref_mut()
-        {
-            touched.push(index);
+        match (&mut self.stamper, self.touched.as_deref_mut()) {
+            (None, _) => {}
+            (Some(stamper), None) => stamper.set(index),
+            (Some(stamper), Some(touched)) => {
+                if stamper.mark(index) {
+                    touched.push(index);
+                }
+            }
         }
     }
 }

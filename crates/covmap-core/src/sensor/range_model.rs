@@ -12,14 +12,11 @@ use crate::error::{Result, check_parameter};
 /// The struct of the range model, its presets, its serde form and its
 /// per-parameter access, from the declaration's entries.
 macro_rules! range_model_struct {
-    ([ $(
-        $(#[doc = $doc:literal])*
-        $name:ident {
-            unit: $unit:expr, sonar: $sonar:expr, laser: $laser:expr,
-            valid: $valid:expr, expected: $expected:expr,
-            fit: $fit:expr, absent: $absent:expr $(,)?
-        }
-    )* ]) => {
+    // Only the presets' values are read here; the rest of an entry goes
+    // to `parameter_table!`.
+    ([ $( $(#[doc = $doc:literal])* $name:ident {
+        unit: $unit:expr, sonar: $sonar:expr, laser: $laser:expr, $($rest:tt)*
+    } )* ]) => {
         /// The parameters shared by every range sensor: the inverse model
         /// along one direction (see the [module documentation](super)).
         /// Declared once, with their defaults, checks and fit bounds, in
