@@ -103,7 +103,7 @@ def main() -> None:
     share, both = agreement(cmap, tree, args.resolution)
     rows, cols = grid.shape
     print(f"log            {args.log.name}: {len(log)} scans of {log.beams} beams")
-    print(f"grid           {cols} x {rows} cells of {args.resolution:g} m")
+    print(f"grid           {rows} x {cols} cells (rows x columns) of {args.resolution:g} m")
     print(f"covmap         {covmap_s:.3f} s (CoverageMap.integrate_log, fastest of {args.repeat})")
     print(f"octomap        {octomap_s:.3f} s (OcTree.insertPointCloud per scan, fastest of {args.repeat})")
     print(f"ratio          {octomap_s / covmap_s:.1f}x")

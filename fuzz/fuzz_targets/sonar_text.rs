@@ -17,8 +17,11 @@ fuzz_target!(|data: &[u8]| {
             .map(|d| d.to_radians())
             .collect(),
         length_unit_m: 0.001,
+        range_unit_m: 0.001,
         angle_unit_rad: std::f64::consts::PI / 1800.0,
+        min_range_m: 0.17,
         max_range_m: 5.0,
+        no_echo: Some(5110.0),
     };
     let cursor = std::io::Cursor::new;
     let _ = Log::read_sonar_text(

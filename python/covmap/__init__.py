@@ -34,6 +34,7 @@ from __future__ import annotations
 from covmap import plot
 from covmap import _errors
 from covmap._errors import *  # noqa: F403 (the error classes, listed in _errors.__all__)
+from covmap._custom import CustomStrategy, StrategyView
 from covmap._exploration import ExplorationErrors, ExplorationResult, Step, Timing
 from covmap._executors import dask_client
 from covmap._sweep import RunSummary, SweepFailure, sweep
@@ -85,6 +86,7 @@ __all__ = [
     "Building",
     "Candidates",
     "CoverageMap",
+    "CustomStrategy",
     "Door",
     "Exploration",
     "ExplorationErrors",
@@ -105,6 +107,7 @@ __all__ = [
     "SonarRing",
     "Step",
     "Strategy",
+    "StrategyView",
     "SweepFailure",
     "Timing",
     "World",

@@ -33,6 +33,7 @@ __all__ = [
     "InvalidExecutorError",
     "InvalidRangeError",
     "InvalidSpecError",
+    "InvalidGoalError",
     "InvalidStartError",
     "InvalidTypeError",
     "InvalidValueError",
@@ -183,6 +184,13 @@ class InvalidStartError(CovmapError, ValueError):
     """An exploration cannot start where asked (the robot's disc overlaps an
     obstacle), or the robot fits nowhere to start; the message gives the
     position and the reason."""
+
+
+class InvalidGoalError(CovmapError, ValueError):
+    """A goal given to an exploration run (``Exploration.step(goal=...)``,
+    a custom strategy's answer) that the robot cannot go to: not finite,
+    off the map, or not reachable on the map it has built; the message gives
+    the goal and the reason. The run is as it was."""
 
 
 class RobotError(CovmapError, RuntimeError):

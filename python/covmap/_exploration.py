@@ -17,6 +17,7 @@ from covmap import _state
 if TYPE_CHECKING:
     import numpy.typing as npt
 
+    from covmap._custom import CustomStrategy
     from covmap._native import CoverageMap, Grid, OccupancyGrid, Strategy
 
 __all__ = ["ExplorationErrors", "ExplorationResult", "Step", "Timing"]
@@ -104,7 +105,7 @@ class ExplorationResult:
     ``[row, col]``.
     """
 
-    strategy: Strategy
+    strategy: Strategy | CustomStrategy
     """The strategy that chose the goals."""
     seed: int
     """The seed of every random draw."""
@@ -196,13 +197,14 @@ class ExplorationResult:
 def outcome_fields() -> dict[str, _state.Check]:
     """The checks of what a run's result and its summary share: how it
     ended, its figures and its timing (:mod:`covmap._state`)."""
+    from covmap._custom import CustomStrategy
     from covmap._native import Strategy
 
     count = _state.integer(0, 2**63 - 1)
     seconds = _state.number(0.0)
     fraction = _state.number(0.0, 1.0)
     return {
-        "strategy": _state.instance(Strategy),
+        "strategy": _state.instance((Strategy, CustomStrategy)),
         "seed": _state.integer(0, 2**64 - 1),
         "termination": _state.one_of(_state.TERMINATIONS),
         "path_length_m": _state.number(0.0),

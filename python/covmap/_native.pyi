@@ -15,6 +15,7 @@ import numpy as np
 import numpy.typing as npt
 from typing_extensions import Self
 
+from covmap._custom import CustomStrategy, StrategyView
 from covmap._exploration import ExplorationResult, Step
 from covmap.experiments.fig3 import Fig3Result
 
@@ -535,14 +536,21 @@ class Log:
         *,
         bearings_deg: _Readings,
         length_unit_m: float = 1.0,
+        range_unit_m: float | None = None,
         angle_unit_rad: float = 1.0,
+        min_range_m: float = 0.0,
         max_range_m: float,
+        no_echo: float | None = None,
     ) -> Log:
         """The sonar log of two text files read in step: ``poses_path`` lines
         ``timestamp x y theta``, ``measurements_path`` lines ``timestamp r_0
-        … r_{B-1}`` (plain or gzip). Lengths are in units of
-        ``length_unit_m`` metres, the heading in ``angle_unit_rad`` radians;
-        ``bearings_deg`` gives each column's sonar, degrees from the heading.
+        … r_{B-1}`` (plain or gzip). ``bearings_deg`` gives each column's
+        sonar, degrees from the heading. The poses' ``x`` and ``y`` are in
+        units of ``length_unit_m`` metres, the ranges in units of
+        ``range_unit_m`` (default: ``length_unit_m``), the heading in
+        ``angle_unit_rad`` radians. A reading equal to ``no_echo`` (in the
+        file's units), or at or above ``max_range_m``, has no echo; one below
+        ``min_range_m`` is dropped (NaN); a negative one is an error.
         """
     @staticmethod
     def from_laser_scans(
@@ -1590,6 +1598,22 @@ class Strategy:
     @staticmethod
     def frontier() -> Strategy:
         """Nearest-frontier exploration on the occupancy grid."""
+    @staticmethod
+    def custom(
+        choose: Callable[[StrategyView], Any], *, name: str | None = None, alpha: float = 0.5
+    ) -> CustomStrategy:
+        """A strategy written in Python: ``choose(view)`` is called before each
+        step with a ``StrategyView`` (the maps, the pose, the reachable
+        region, the candidate viewpoints with their expected gains and path
+        costs, whether the paper's rule holds) and returns the goal,
+        ``(x, y, theta)`` or the index of a candidate, or ``None`` when it is
+        done. ``name`` names it in results (default: ``choose``'s name);
+        ``alpha`` weighs the candidates' utilities it sees (eq. 14). Returns
+        a ``CustomStrategy``, which ``explore``, ``Exploration``, ``sweep``
+        and the benchmark take beside the built-in strategies (``sweep``
+        needs a ``choose`` that pickles: a function defined at the top level
+        of a module).
+        """
     @property
     def name(self) -> Literal["coverage", "counting", "frontier"]:
         """``"coverage"``, ``"counting"`` or ``"frontier"``."""
@@ -1614,7 +1638,7 @@ class Strategy:
 
 def explore(
     world: World,
-    strategy: Strategy,
+    strategy: Strategy | CustomStrategy,
     *,
     start: _Pose | None = None,
     seed: int = 0,
@@ -1676,7 +1700,7 @@ class Exploration:
     def __new__(
         cls,
         world: World,
-        strategy: Strategy,
+        strategy: Strategy | CustomStrategy,
         *,
         start: _Pose | None = None,
         seed: int = 0,
@@ -1691,10 +1715,43 @@ class Exploration:
         max_path_m: float = 10000.0,
         max_steps: int = 20000,
     ) -> Exploration: ...
-    def step(self) -> Step | None:
-        """Take one step: a ``Step``, or ``None`` once the run is over."""
+    def step(self, goal: _Pose | None = None) -> Step | None:
+        """Take one step: a ``Step``, or ``None`` once the run is over. With
+        ``goal`` (``(x, y, theta)``), a step to that goal, whatever the
+        strategy: the path to it planned on the coverage map as the coverage
+        strategy plans, then the drive, its scans and the scan at the goal.
+        A goal that is not finite, lies off the map or that the robot cannot
+        reach on its map raises ``InvalidGoalError`` and leaves the run as it
+        was. Without it, a custom strategy's ``choose`` is asked (it may
+        end the run: ``None``).
+        """
     def run(self) -> ExplorationResult:
         """Step to the end of the run; returns ``result()``."""
+    def finish(self) -> Literal["certain", "stagnated", "no_goal", "limit"]:
+        """End the run now, on the caller's word: by the paper's rule where it
+        holds (``"certain"``, ``"stagnated"``), else ``"no_goal"``. Returns
+        how the run ended (as it was, for a run already over).
+        """
+    def region(self) -> npt.NDArray[np.bool_]:
+        """The region the robot can reach on its coverage map now: bool ``(rows,
+        cols)``, the cells the paper's rule is checked on.
+        """
+    def rule(self) -> Literal["certain", "stagnated"] | None:
+        """Whether the paper's rule holds now on ``region()``: ``"certain"``
+        (every cell below ``epsilon``), ``"stagnated"`` (every cell certain or
+        stagnated, some stagnated), ``None`` (some cell neither).
+        """
+    def viewpoints(self, alpha: float = 0.5) -> Plan:
+        """The candidate viewpoints the coverage strategy weighs now: a ``Plan``
+        whose ``candidates`` hold every candidate's pose, expected gain
+        (nats), path cost (metres) and eq. 14's utility for ``alpha``, and
+        whose ``pose`` is the planner's choice (GIL released).
+        """
+    def path_to(self, goal: _Pose) -> npt.NDArray[np.float64] | None:
+        """The path a step to ``goal`` would take: cell centres from the
+        robot's cell, ``(K, 2)``; ``None`` where the robot cannot reach it on
+        its map.
+        """
     def result(self) -> ExplorationResult:
         """The run so far as an ``ExplorationResult`` (its ``termination`` is
         ``None`` while the run goes on).
@@ -1742,5 +1799,5 @@ class Exploration:
     def grid(self) -> Grid:
         """The grid of the maps."""
     @property
-    def strategy(self) -> Strategy:
-        """The strategy."""
+    def strategy(self) -> Strategy | CustomStrategy:
+        """The strategy: a ``Strategy``, or the ``CustomStrategy`` given."""

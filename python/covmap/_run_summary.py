@@ -20,6 +20,7 @@ if TYPE_CHECKING:
     import numpy.typing as npt
 
     from covmap._exploration import ExplorationResult
+    from covmap._custom import CustomStrategy
     from covmap._native import Building, Strategy
 
 __all__ = ["RunSummary", "explore_keywords", "summarise"]
@@ -45,7 +46,7 @@ class RunSummary:
     world: str
     """The world: its name as the spec gave it, a ``Building``'s name, or the
     ``repr`` of the ``World`` given."""
-    strategy: Strategy
+    strategy: Strategy | CustomStrategy
     """The strategy that chose the goals."""
     seed: int
     """The seed of every random draw."""

@@ -80,6 +80,7 @@ from covmap._run_summary import RunSummary, explore_keywords, summarise
 if TYPE_CHECKING:
     from collections.abc import Mapping, Sequence
 
+    from covmap._custom import CustomStrategy
     from covmap._native import Building, Strategy, World
 
 __all__ = [
@@ -125,21 +126,33 @@ class _Run:
     index: int
     world: World
     world_label: str
-    strategy: Strategy
+    strategy: Strategy | CustomStrategy
     seed: int
     options: dict[str, Any]
     building: Building | None = None
 
 
-def strategy_of(value: Any) -> Strategy:
+def strategy_of(value: Any) -> Strategy | CustomStrategy:
     """A strategy from a spec: a ``Strategy``; ``"coverage"``,
-    ``"counting"`` or ``"frontier"`` (the defaults); or a dict with
-    ``"name"`` and the keywords of that static method. Raises
-    ``InvalidTypeError`` or ``InvalidParameterError`` naming what is wrong."""
+    ``"counting"`` or ``"frontier"`` (the defaults); a dict with
+    ``"name"`` and the keywords of that static method; or a
+    ``CustomStrategy`` that pickles (its runs go to other processes).
+    Raises ``InvalidTypeError`` or ``InvalidParameterError`` naming what is
+    wrong."""
+    from covmap._custom import CustomStrategy
     from covmap._errors import InvalidParameterError, InvalidTypeError
     from covmap._native import Strategy
 
     if isinstance(value, Strategy):
+        return value
+    if isinstance(value, CustomStrategy):
+        try:
+            pickle.dumps(value)
+        except Exception as e:  # noqa: BLE001 (pickling raises whatever the object's parts raise)
+            raise InvalidParameterError(
+                f"{value!r} does not pickle, and a sweep's runs go to other processes (local cores or Dask "
+                f"workers): define choose at the top level of a module ({type(e).__name__}: {e})"
+            ) from None
         return value
     builders: dict[str, Callable[..., Strategy]] = {
         "coverage": Strategy.coverage,

@@ -74,11 +74,64 @@ def test_the_intel_log_maps(tmp_path: Path, shared_data: Callable[[str], Path]) 
     assert agreement > 0.95
 
 
-def test_the_sonar_ring_maps(tmp_path: Path, shared_data: Callable[[str], Path]) -> None:
+SONAR_8RING = (
+    "--bearings=-90,-37.5,-22.5,-7.5,7.5,22.5,37.5,90",
+    "--length-unit", "0.001", "--angle-unit", "0.1deg", "--min-range", "0.17", "--max-range", "5",
+    "--no-echo", "5110",
+)  # fmt: skip
+"""The sonar-8ring data set described as ``covmap map --help`` shows it."""
+
+
+def test_the_sonar_ring_maps_as_its_options_describe_it(tmp_path: Path, shared_data: Callable[[str], Path]) -> None:
     poses, meas = shared_data("sonar-8ring/poses.txt"), shared_data("sonar-8ring/measurement.txt")
-    result = run_cli("map", str(poses), "--measurements", str(meas), "--resolution", "0.1", "--out", str(tmp_path))
+    args = ("map", str(poses), "--measurements", str(meas), "--resolution", "0.1")
+    result = run_cli(*args, *SONAR_8RING, "--out", str(tmp_path / "a"))
     assert result.returncode == 0, result.stdout + result.stderr
     assert "413 of 8 beams, max range 5 m, sonar model" in result.stdout
+    # Progress off a terminal: plain lines that count the 413 scans, once a map.
+    assert "\r" not in result.stderr and "\x1b" not in result.stderr
+    assert "scans into the coverage map 413/413" in result.stderr
+    assert "scans into the occupancy grid 413/413" in result.stderr
+    # The bearings from a file, the heading's unit as radians: the same map.
+    bearings = tmp_path / "bearings.txt"
+    bearings.write_text("-90 -37.5 -22.5 -7.5\n7.5 22.5 37.5 90\n")
+    described = [a if not a.startswith("--bearings") else f"--bearings={bearings}" for a in SONAR_8RING]
+    described[described.index("0.1deg")] = repr(math.pi / 1800)
+    again = run_cli(*args, *described, "--out", str(tmp_path / "b"))
+    assert again.returncode == 0, again.stdout + again.stderr
+    first = covmap.CoverageMap.load(tmp_path / "a" / "coverage.npz")
+    second = covmap.CoverageMap.load(tmp_path / "b" / "coverage.npz")
+    np.testing.assert_array_equal(first.histograms, second.histograms)
+    help_text = run_cli("map", "--help").stdout
+    assert "--no-echo" in help_text and "--bearings" in help_text and "0.1deg" in help_text
+
+
+@pytest.mark.parametrize(
+    ("drop", "says"),
+    [("--bearings", "bearings_deg"), ("--max-range", "max_range_m")],
+)
+def test_a_sonar_text_log_without_its_description_is_refused(
+    tmp_path: Path, shared_data: Callable[[str], Path], drop: str, says: str
+) -> None:
+    poses, meas = shared_data("sonar-8ring/poses.txt"), shared_data("sonar-8ring/measurement.txt")
+    options = [a for a in SONAR_8RING if not a.startswith(drop)]
+    if drop == "--max-range":
+        options.remove("5")
+    result = run_cli("map", str(poses), "--measurements", str(meas), *options, "--out", str(tmp_path))
+    assert result.returncode == 2
+    assert says in result.stderr and drop in result.stderr and "Traceback" not in result.stderr
+    assert not (tmp_path / "coverage.npz").exists()
+
+
+@pytest.mark.parametrize(
+    "option",
+    ["--bearings=x,1", "--bearings=/no/such/file", "--angle-unit=grad", "--angle-unit=0",
+     "--length-unit=-1", "--min-range=nan", "--no-echo=inf"],
+)  # fmt: skip
+def test_a_bad_sonar_description_is_a_usage_error(tmp_path: Path, option: str) -> None:
+    result = run_cli("map", "p.txt", "--measurements", "m.txt", option, "--out", str(tmp_path))
+    assert result.returncode == 2 and "Traceback" not in result.stderr
+    assert option.split("=")[0] in result.stderr
 
 
 @pytest.mark.parametrize("bag_format", FORMATS)

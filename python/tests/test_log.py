@@ -220,6 +220,38 @@ def test_sonar_ring_reads_as_split_by_hand(shared_data: Callable[[str], Path]) -
     np.testing.assert_allclose(log.poses, np.column_stack([p[:, 1:3] / 1000, np.radians(p[:, 3] / 10)]))
     np.testing.assert_allclose(log.ranges, m[:, 1:] / 1000)
     np.testing.assert_array_equal(log.timestamps, p[:, 0])
+    # The data set's own description: 5110 is no echo, readings below
+    # 170 mm are not valid.
+    described = covmap.Log.from_sonar_text(
+        poses_path,
+        meas_path,
+        bearings_deg=SONAR_BEARINGS_DEG,
+        length_unit_m=0.001,
+        angle_unit_rad=math.pi / 1800,
+        min_range_m=0.17,
+        max_range_m=5.0,
+        no_echo=5110,
+    )
+    raw = m[:, 1:]
+    expected = np.where(raw == 5110, 5.0, np.where(raw < 170, np.nan, raw / 1000))
+    np.testing.assert_allclose(described.ranges, expected)
+    assert np.isnan(described.ranges).sum() == (raw < 170).sum()
+    # No reading of this data set is below 170 mm: a higher bound shows the
+    # readings below it dropped (NaN), and only those.
+    bounded = covmap.Log.from_sonar_text(
+        poses_path,
+        meas_path,
+        bearings_deg=SONAR_BEARINGS_DEG,
+        length_unit_m=0.001,
+        angle_unit_rad=math.pi / 1800,
+        min_range_m=0.5,
+        max_range_m=5.0,
+        no_echo=5110,
+    )
+    np.testing.assert_array_equal(np.isnan(bounded.ranges), raw < 500)
+    assert (raw < 500).sum() > 0
+    with pytest.raises(covmap.InvalidParameterError, match="min_range_m"):
+        covmap.Log.from_sonar_text(poses_path, meas_path, bearings_deg=[0.0] * 8, min_range_m=6.0, max_range_m=5.0)
 
 
 def test_malformed_files_name_the_file_and_line(tmp_path: Path) -> None:

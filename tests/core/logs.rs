@@ -92,8 +92,11 @@ fn the_sonar_ring_reads_its_413_steps_in_metres_and_radians() {
             .map(|d| d.to_radians())
             .collect(),
         length_unit_m: 0.001,
+        range_unit_m: 0.001,
         angle_unit_rad: std::f64::consts::PI / 1800.0,
+        min_range_m: 0.0,
         max_range_m: 5.0,
+        no_echo: None,
     };
     let log =
         Log::from_sonar_text(dir.join("poses.txt"), dir.join("measurement.txt"), &options).unwrap();

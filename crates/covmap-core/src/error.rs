@@ -125,6 +125,17 @@ pub enum CovmapError {
         /// Why the robot cannot start there.
         reason: String,
     },
+    /// A goal given to a run ([`Exploration::step_to`](crate::exploration::Exploration::step_to))
+    /// that the robot cannot go to; the run is as it was.
+    #[error("invalid goal ({x}, {y}): {reason}")]
+    InvalidGoal {
+        /// x in metres.
+        x: f64,
+        /// y in metres.
+        y: f64,
+        /// Why the robot cannot go there.
+        reason: String,
+    },
     /// The robot failed: its scan source or its motion could not do what the
     /// exploration loop asked (a sensor or drive error, of a real robot or a
     /// simulator).

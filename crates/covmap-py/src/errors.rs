@@ -28,6 +28,8 @@ pub(crate) enum Exception {
     InvalidHistory,
     /// A start pose the robot cannot take, or none found (a `ValueError`).
     InvalidStart,
+    /// A goal given to a run that the robot cannot go to (a `ValueError`).
+    InvalidGoal,
     /// The robot's scan source or motion failed during a run.
     Robot,
     /// An array argument has the wrong number of dimensions or shape.
@@ -67,6 +69,7 @@ impl Exception {
             Self::InvalidHistogram => "InvalidHistogramError",
             Self::InvalidHistory => "InvalidHistoryError",
             Self::InvalidStart => "InvalidStartError",
+            Self::InvalidGoal => "InvalidGoalError",
             Self::Robot => "RobotError",
             Self::ArrayShape => "ArrayShapeError",
             Self::ArrayDtype => "ArrayDtypeError",
@@ -98,6 +101,7 @@ impl Exception {
             CovmapError::InvalidHistogram(_) => Self::InvalidHistogram,
             CovmapError::InvalidHistory { .. } => Self::InvalidHistory,
             CovmapError::InvalidStart { .. } => Self::InvalidStart,
+            CovmapError::InvalidGoal { .. } => Self::InvalidGoal,
             CovmapError::Robot(_) => Self::Robot,
             // A bad scan of a log is the error of what is wrong with it.
             CovmapError::InScan { source, .. } => Self::of(source),

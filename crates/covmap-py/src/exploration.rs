@@ -6,7 +6,7 @@
 
 use std::sync::Arc;
 
-use covmap::exploration::{ExplorationConfig, StepReport, Trajectory};
+use covmap::exploration::{ExplorationConfig, StepReport, Strategy, Trajectory};
 use covmap::sim::exploration::{ExplorationRun, ExploreOptions, SimExploration, SimSensor};
 use numpy::{PyArray1, PyArray2};
 use pyo3::exceptions::PyStopIteration;
@@ -20,6 +20,7 @@ use crate::errors::{Exception, OrRaise};
 use crate::grid::PyGrid;
 use crate::numbers::{Bins, Float, Int, Seed};
 use crate::occupancy::PyOccupancyGrid;
+use crate::plan::PyPlan;
 use crate::sensor::any_model;
 use crate::sim_sensor::{PyLaser, PySonarRing};
 use crate::strategy::PyStrategy;
@@ -159,28 +160,52 @@ run_keywords! { @list keywords_struct }
 
 /// A run of `strategy` in `world` set up, nothing scanned yet; every option
 /// checked first. The world is copied (the run owns what it drives through).
+/// `strategy` is a `Strategy`, or a `CustomStrategy` (`Strategy.custom`)
+/// whose goals come from Python (the run's strategy is then the core's
+/// `Strategy::Custom`).
 fn start_run(
     py: Python<'_>,
     world: &Bound<'_, PyWorld>,
     strategy: &Bound<'_, PyAny>,
     keywords: &Keywords,
-) -> PyResult<(SimExploration, PyStrategy)> {
-    let Ok(strategy) = strategy.cast::<PyStrategy>() else {
+) -> PyResult<PyExploration> {
+    let (core, custom) = if let Ok(s) = strategy.cast::<PyStrategy>() {
+        (s.get().0, false)
+    } else if strategy.is_instance(&custom_class(py)?)? {
+        (Strategy::Custom, true)
+    } else {
         return Err(Exception::InvalidType.err(
             py,
             format!(
-                "strategy must be a Strategy (Strategy.coverage(), Strategy.counting() or Strategy.frontier()), got {}",
+                "strategy must be a Strategy (Strategy.coverage(), Strategy.counting(), Strategy.frontier() or \
+                 Strategy.custom(choose)), got {}",
                 strategy.get_type()
             ),
         ));
     };
-    let strategy = *strategy.get();
     let options = keywords.options(py)?;
     let world = &world.get().0;
     let run = py
-        .detach(|| SimExploration::new(Arc::new(world.clone()), strategy.0, &options))
+        .detach(|| SimExploration::new(Arc::new(world.clone()), core, &options))
         .or_raise(py)?;
-    Ok((run, strategy))
+    Ok(PyExploration {
+        run,
+        strategy: strategy.clone().unbind(),
+        custom,
+    })
+}
+
+/// `covmap._custom`, where a custom strategy's view and answer are made.
+fn custom_module(py: Python<'_>) -> PyResult<&Bound<'_, PyModule>> {
+    static MODULE: PyOnceLock<Py<PyModule>> = PyOnceLock::new();
+    Ok(MODULE
+        .get_or_try_init(py, || py.import("covmap._custom").map(Bound::unbind))?
+        .bind(py))
+}
+
+/// `covmap._custom.CustomStrategy`.
+fn custom_class(py: Python<'_>) -> PyResult<Bound<'_, PyAny>> {
+    custom_module(py)?.getattr("CustomStrategy")
 }
 
 /// `explore`, from the keywords of [`run_keywords!`].
@@ -199,7 +224,11 @@ macro_rules! explore_function {
             strategy: &Bound<'py, PyAny>,
             $($param)*
         ) -> PyResult<Bound<'py, PyAny>> {
-            let (mut run, strategy) = start_run(py, &world, strategy, &$keywords)?;
+            let exploration = start_run(py, &world, strategy, &$keywords)?;
+            if exploration.custom {
+                return PyExploration::run(&Bound::new(py, exploration)?);
+            }
+            let PyExploration { mut run, strategy, .. } = exploration;
             let epsilon = run.exploration().config().epsilon;
             let run = py
                 .detach(move || {
@@ -207,7 +236,7 @@ macro_rules! explore_function {
                     run.into_result()
                 })
                 .or_raise(py)?;
-            result_object(py, strategy, epsilon, run)
+            result_object(py, strategy.bind(py), epsilon, run)
         }
     };
 }
@@ -256,7 +285,11 @@ run_keywords! { explore_function! {
 #[pyclass(name = "Exploration", module = "covmap._native")]
 pub(crate) struct PyExploration {
     run: SimExploration,
-    strategy: PyStrategy,
+    /// The strategy as given: a `Strategy`, or a `CustomStrategy`.
+    strategy: Py<PyAny>,
+    /// Whether `strategy` is a `CustomStrategy`, whose `choose` picks each
+    /// goal.
+    custom: bool,
 }
 
 /// `Exploration`'s methods, its constructor from the keywords of
@@ -277,8 +310,7 @@ macro_rules! exploration_methods {
                 strategy: &Bound<'py, PyAny>,
                 $($param)*
             ) -> PyResult<Self> {
-                let (run, strategy) = start_run(py, &world, strategy, &$keywords)?;
-                Ok(Self { run, strategy })
+                start_run(py, &world, strategy, &$keywords)
             }
 
             $($methods)*
@@ -288,20 +320,111 @@ macro_rules! exploration_methods {
 
 run_keywords! { exploration_methods! { methods {
 
-    /// Take one step: a ``Step``, or ``None`` once the run is over.
-    fn step<'py>(&mut self, py: Python<'py>) -> PyResult<Option<Bound<'py, PyAny>>> {
-        let run = &mut self.run;
-        match py.detach(|| run.step()).or_raise(py)? {
-            Some(report) => step_object(py, &report).map(Some),
-            None => Ok(None),
+    /// Take one step: a ``Step``, or ``None`` once the run is over. With
+    /// ``goal`` (``(x, y, theta)``), a step to that goal, whatever the
+    /// strategy: the path to it planned on the coverage map as the coverage
+    /// strategy plans, then the drive, its scans and the scan at the goal.
+    /// A goal that is not finite, lies off the map or that the robot cannot
+    /// reach on its map raises ``InvalidGoalError`` and leaves the run as it
+    /// was. Without it, a custom strategy's ``choose`` is asked (it may
+    /// end the run: ``None``).
+    #[pyo3(signature = (goal=None), text_signature = "($self, goal=None)")]
+    fn step<'py>(
+        slf: &Bound<'py, Self>,
+        goal: Option<&Bound<'py, PyAny>>,
+    ) -> PyResult<Option<Bound<'py, PyAny>>> {
+        let py = slf.py();
+        let goal = match goal {
+            Some(g) => Some(convert::pose(g)?),
+            None if slf.borrow().custom => {
+                let ready = {
+                    let mut this = slf.borrow_mut();
+                    let run = &mut this.run;
+                    py.detach(|| run.begin()).or_raise(py)?
+                };
+                if !ready {
+                    return Ok(None);
+                }
+                let strategy = slf.borrow().strategy.clone_ref(py);
+                let answer = custom_module(py)?.call_method1("decide", (slf, strategy))?;
+                if answer.is_none() {
+                    let mut this = slf.borrow_mut();
+                    this.run.finish().or_raise(py)?;
+                    return Ok(None);
+                }
+                Some(convert::pose(&answer)?)
+            }
+            None => None,
+        };
+        let mut this = slf.borrow_mut();
+        let run = &mut this.run;
+        let report = match goal {
+            Some(goal) => py.detach(|| run.step_to(goal)),
+            None => py.detach(|| run.step()),
         }
+        .or_raise(py)?;
+        report.map(|r| step_object(py, &r)).transpose()
     }
 
     /// Step to the end of the run; returns ``result()``.
-    fn run<'py>(&mut self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
-        let run = &mut self.run;
-        py.detach(|| run.run()).or_raise(py)?;
-        self.result(py)
+    fn run<'py>(slf: &Bound<'py, Self>) -> PyResult<Bound<'py, PyAny>> {
+        let py = slf.py();
+        if slf.borrow().custom {
+            while Self::step(slf, None)?.is_some() {}
+        } else {
+            let mut this = slf.borrow_mut();
+            let run = &mut this.run;
+            py.detach(|| run.run()).or_raise(py)?;
+        }
+        slf.borrow().result(py)
+    }
+
+    /// End the run now, on the caller's word: by the paper's rule where it
+    /// holds (``"certain"``, ``"stagnated"``), else ``"no_goal"``. Returns
+    /// how the run ended (as it was, for a run already over).
+    fn finish(&mut self, py: Python<'_>) -> PyResult<&'static str> {
+        Ok(self.run.finish().or_raise(py)?.as_str())
+    }
+
+    /// The region the robot can reach on its coverage map now: bool ``(rows,
+    /// cols)``, the cells the paper's rule is checked on.
+    fn region<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray2<bool>>> {
+        let region = self.run.exploration().region().or_raise(py)?;
+        cell_array(py, self.grid_ref(), region)
+    }
+
+    /// Whether the paper's rule holds now on ``region()``: ``"certain"``
+    /// (every cell below ``epsilon``), ``"stagnated"`` (every cell certain or
+    /// stagnated, some stagnated), ``None`` (some cell neither).
+    fn rule(&self, py: Python<'_>) -> PyResult<Option<&'static str>> {
+        Ok(self.run.exploration().rule().or_raise(py)?.map(|t| t.as_str()))
+    }
+
+    /// The candidate viewpoints the coverage strategy weighs now: a ``Plan``
+    /// whose ``candidates`` hold every candidate's pose, expected gain
+    /// (nats), path cost (metres) and eq. 14's utility for ``alpha``, and
+    /// whose ``pose`` is the planner's choice (GIL released).
+    #[pyo3(signature = (alpha=Float(0.5)), text_signature = "($self, alpha=0.5)")]
+    fn viewpoints(&self, py: Python<'_>, alpha: Float) -> PyResult<PyPlan> {
+        let run = self.run.exploration();
+        py.detach(|| run.viewpoints(alpha.0)).map(PyPlan).or_raise(py)
+    }
+
+    /// The path a step to ``goal`` would take: cell centres from the
+    /// robot's cell, ``(K, 2)``; ``None`` where the robot cannot reach it on
+    /// its map.
+    fn path_to<'py>(&self, py: Python<'py>, goal: &Bound<'py, PyAny>) -> PyResult<Option<Bound<'py, PyArray2<f64>>>> {
+        let goal = convert::pose(goal)?;
+        let grid = self.grid_ref();
+        let Some(index) = grid
+            .world_to_cell(goal.x_m, goal.y_m)
+            .and_then(|c| grid.index(c).ok())
+        else {
+            return Ok(None);
+        };
+        let run = self.run.exploration();
+        let paths = py.detach(|| run.paths()).or_raise(py)?;
+        Ok(paths.reachable(index).then(|| rows_array(py, &paths.path_to(index))))
     }
 
     /// The run so far as an ``ExplorationResult`` (its ``termination`` is
@@ -309,14 +432,14 @@ run_keywords! { exploration_methods! { methods {
     fn result<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
         let run = &self.run;
         let result = py.detach(|| run.result()).or_raise(py)?;
-        result_object(py, self.strategy, run.exploration().config().epsilon, result)
+        result_object(py, self.strategy.bind(py), run.exploration().config().epsilon, result)
     }
 
     fn __iter__(slf: PyRef<'_, Self>) -> PyRef<'_, Self> {
         slf
     }
-    fn __next__<'py>(&mut self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
-        self.step(py)?
+    fn __next__<'py>(slf: &Bound<'py, Self>) -> PyResult<Bound<'py, PyAny>> {
+        Self::step(slf, None)?
             .ok_or_else(|| PyStopIteration::new_err(()))
     }
 
@@ -382,22 +505,22 @@ run_keywords! { exploration_methods! { methods {
     fn grid(&self) -> PyGrid {
         PyGrid(*self.grid_ref())
     }
-    /// The strategy.
+    /// The strategy: a ``Strategy``, or the ``CustomStrategy`` given.
     #[getter]
-    fn strategy(&self) -> PyStrategy {
-        self.strategy
+    fn strategy(&self, py: Python<'_>) -> Py<PyAny> {
+        self.strategy.clone_ref(py)
     }
 
-    fn __repr__(&self) -> String {
+    fn __repr__(&self, py: Python<'_>) -> PyResult<String> {
         let e = self.run.exploration();
-        format!(
+        Ok(format!(
             "<Exploration: {}, {} steps, {} scans, {:.2} m, {}>",
-            self.strategy.__repr__(),
+            self.strategy.bind(py).repr()?,
             e.steps(),
             e.scans(),
             e.path_length_m(),
             e.termination().map_or("running", |t| t.as_str())
-        )
+        ))
     }
 } } }
 
@@ -442,7 +565,7 @@ fn scanned_array<'py>(py: Python<'py>, trajectory: &Trajectory) -> Bound<'py, Py
 /// A simulated run as an `ExplorationResult`.
 fn result_object<'py>(
     py: Python<'py>,
-    strategy: PyStrategy,
+    strategy: &Bound<'py, PyAny>,
     epsilon: f64,
     run: ExplorationRun,
 ) -> PyResult<Bound<'py, PyAny>> {

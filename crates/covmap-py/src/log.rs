@@ -150,25 +150,34 @@ impl PyLog {
 
     /// The sonar log of two text files read in step: ``poses_path`` lines
     /// ``timestamp x y theta``, ``measurements_path`` lines ``timestamp r_0
-    /// … r_{B-1}`` (plain or gzip). Lengths are in units of
-    /// ``length_unit_m`` metres, the heading in ``angle_unit_rad`` radians;
-    /// ``bearings_deg`` gives each column's sonar, degrees from the heading.
+    /// … r_{B-1}`` (plain or gzip). ``bearings_deg`` gives each column's
+    /// sonar, degrees from the heading. The poses' ``x`` and ``y`` are in
+    /// units of ``length_unit_m`` metres, the ranges in units of
+    /// ``range_unit_m`` (default: ``length_unit_m``), the heading in
+    /// ``angle_unit_rad`` radians. A reading equal to ``no_echo`` (in the
+    /// file's units), or at or above ``max_range_m``, has no echo; one below
+    /// ``min_range_m`` is dropped (NaN); a negative one is an error.
     #[staticmethod]
     #[pyo3(
         signature = (
             poses_path, measurements_path, *, bearings_deg, length_unit_m=Float(1.0),
-            angle_unit_rad=Float(1.0), max_range_m
+            range_unit_m=None, angle_unit_rad=Float(1.0), min_range_m=Float(0.0), max_range_m,
+            no_echo=None
         ),
-        text_signature = "(poses_path, measurements_path, *, bearings_deg, length_unit_m=1.0, angle_unit_rad=1.0, max_range_m)"
+        text_signature = "(poses_path, measurements_path, *, bearings_deg, length_unit_m=1.0, range_unit_m=None, angle_unit_rad=1.0, min_range_m=0.0, max_range_m, no_echo=None)"
     )]
+    #[allow(clippy::too_many_arguments)]
     fn from_sonar_text(
         py: Python<'_>,
         poses_path: PathBuf,
         measurements_path: PathBuf,
         bearings_deg: &Bound<'_, PyAny>,
         length_unit_m: Float,
+        range_unit_m: Option<Float>,
         angle_unit_rad: Float,
+        min_range_m: Float,
         max_range_m: Float,
+        no_echo: Option<Float>,
     ) -> PyResult<Self> {
         let options = SonarTextOptions {
             bearings_rad: convert::readings(bearings_deg, "bearings_deg", covmap::sim::MAX_BEAMS)?
@@ -176,8 +185,11 @@ impl PyLog {
                 .map(f64::to_radians)
                 .collect(),
             length_unit_m: length_unit_m.0,
+            range_unit_m: range_unit_m.unwrap_or(length_unit_m).0,
             angle_unit_rad: angle_unit_rad.0,
+            min_range_m: min_range_m.0,
             max_range_m: max_range_m.0,
+            no_echo: no_echo.map(|v| v.0),
         };
         py.detach(|| Log::from_sonar_text(&poses_path, &measurements_path, &options))
             .map(Self)

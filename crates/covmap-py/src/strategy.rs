@@ -40,7 +40,7 @@ impl std::hash::Hash for PyStrategy {
                 n,
                 discount_beyond_m,
             } => (0.0, n, discount_beyond_m),
-            Strategy::Frontier => (0.0, 0, None),
+            Strategy::Frontier | Strategy::Custom => (0.0, 0, None),
         };
         let bits = |v: f64| (if v == 0.0 { 0.0f64 } else { v }).to_bits();
         (self.0.name(), bits(alpha), n, discount.map(bits)).hash(state);
@@ -113,6 +113,36 @@ impl PyStrategy {
         }
     }
 
+    /// A strategy written in Python: ``choose(view)`` is called before each
+    /// step with a ``StrategyView`` (the maps, the pose, the reachable
+    /// region, the candidate viewpoints with their expected gains and path
+    /// costs, whether the paper's rule holds) and returns the goal,
+    /// ``(x, y, theta)`` or the index of a candidate, or ``None`` when it is
+    /// done. ``name`` names it in results (default: ``choose``'s name);
+    /// ``alpha`` weighs the candidates' utilities it sees (eq. 14). Returns
+    /// a ``CustomStrategy``, which ``explore``, ``Exploration``, ``sweep``
+    /// and the benchmark take beside the built-in strategies (``sweep``
+    /// needs a ``choose`` that pickles: a function defined at the top level
+    /// of a module).
+    #[staticmethod]
+    #[pyo3(
+        signature = (choose, *, name=None, alpha=Float(0.5)),
+        text_signature = "(choose, *, name=None, alpha=0.5)"
+    )]
+    fn custom<'py>(
+        py: Python<'py>,
+        choose: &Bound<'py, PyAny>,
+        name: Option<&Bound<'py, PyAny>>,
+        alpha: Float,
+    ) -> PyResult<Bound<'py, PyAny>> {
+        let options = pyo3::types::PyDict::new(py);
+        options.set_item("name", name)?;
+        options.set_item("alpha", alpha.0)?;
+        py.import("covmap._custom")?
+            .getattr("CustomStrategy")?
+            .call((choose,), Some(&options))
+    }
+
     pub(crate) fn __repr__(&self) -> String {
         match self.0 {
             Strategy::Coverage { alpha } => format!("Strategy.coverage(alpha={})", alpha.py_repr()),
@@ -124,6 +154,9 @@ impl PyStrategy {
                 discount_beyond_m.py_repr()
             ),
             Strategy::Frontier => "Strategy.frontier()".to_owned(),
+            // Never a `Strategy` of Python's: a custom strategy is a
+            // `CustomStrategy`.
+            Strategy::Custom => "Strategy.custom(...)".to_owned(),
         }
     }
 
@@ -140,7 +173,7 @@ impl PyStrategy {
                 n,
                 discount_beyond_m,
             } => (n, discount_beyond_m).into_pyobject(py)?,
-            Strategy::Frontier => PyTuple::empty(py),
+            Strategy::Frontier | Strategy::Custom => PyTuple::empty(py),
         };
         Ok((build, args))
     }

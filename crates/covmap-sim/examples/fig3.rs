@@ -51,7 +51,7 @@ fn run(out: &std::path::Path, seed: u64) -> Result<(), Box<dyn std::error::Error
     let r = fig3(seed)?;
     let (rows, cols) = r.grid.shape();
     println!(
-        "Fig. 3, seed {seed}: {} poses, {} sonar readings, grid {cols} x {rows} at {} m, {} cells reached",
+        "Fig. 3, seed {seed}: {} poses, {} sonar readings, grid {rows} x {cols} cells (rows x columns) at {} m, {} cells reached",
         r.poses.len(),
         r.readings,
         r.grid.resolution_m(),

@@ -103,6 +103,68 @@ entropy = _within(_number, lambda v: 0.0 < v <= 10.0, "an entropy in nats, more 
 """The entropy below which a cell is certain, nats."""
 
 
+unit = _within(_number, lambda v: 0.0 < v <= 1e6 and v == v, "metres per unit, more than 0 and at most 1e6")
+"""Metres per length unit of a file (0.001 for millimetres)."""
+
+reading_bound = _within(
+    _number, lambda v: 0.0 <= v <= MAX_LENGTH_M, f"a distance in metres from 0 to {MAX_LENGTH_M:g}"
+)
+"""The shortest valid reading, metres."""
+
+reading = _within(_number, lambda v: abs(v) <= 1e300, "a finite number")
+"""A reading as a file writes it."""
+
+MAX_BEARINGS = 4096
+"""The most bearings a sonar log's description may list."""
+
+
+def angle_unit(text: str) -> float:
+    """Radians per angle unit: ``rad``, ``deg``, a number (radians), or a
+    number followed by ``deg`` (``0.1deg``: tenths of a degree)."""
+    import math
+
+    word = text.strip().lower()
+    factor, scale = (word[:-3], math.pi / 180.0) if word.endswith("deg") else (word.removesuffix("rad"), 1.0)
+    try:
+        value = (float(factor) if factor else 1.0) * scale
+    except ValueError:
+        raise argparse.ArgumentTypeError(
+            f"expected rad, deg, a number of radians or a number of degrees with deg (0.1deg), got {text}"
+        ) from None
+    if not 0.0 < value <= 2.0 * math.pi:
+        raise argparse.ArgumentTypeError(f"expected an angle unit of more than 0 and at most a turn, got {text}")
+    return value
+
+
+def bearings(text: str) -> list[float]:
+    """Bearings in degrees: numbers separated by commas, or the path of a
+    file of numbers (separated by commas or white space)."""
+    source, path = text, Path(text)
+    if path.is_file():
+        try:
+            with open(path, encoding="utf-8") as f:
+                source = f.read(65536 + 1)
+        except (OSError, UnicodeDecodeError) as e:
+            raise argparse.ArgumentTypeError(f"{text}: cannot read the bearings: {e}") from None
+        if len(source) > 65536:
+            raise argparse.ArgumentTypeError(f"{text}: more than 64 KB is not a list of bearings")
+    words = source.replace(",", " ").split()
+    if not 1 <= len(words) <= MAX_BEARINGS:
+        raise argparse.ArgumentTypeError(f"expected from 1 to {MAX_BEARINGS} bearings, got {len(words)} in {text[:80]}")
+    values = []
+    for w in words:
+        try:
+            v = float(w)
+        except ValueError:
+            raise argparse.ArgumentTypeError(
+                f"expected degrees separated by commas or a file of them, got {w[:80]!r} in {text[:80]}"
+            ) from None
+        if not abs(v) <= 360.0:
+            raise argparse.ArgumentTypeError(f"expected a bearing from -360 to 360 degrees, got {w[:80]}")
+        values.append(v)
+    return values
+
+
 def start_pose(text: str) -> tuple[float, float, float]:
     """A start ``X,Y`` or ``X,Y,THETA`` (metres, radians), finite."""
     import math

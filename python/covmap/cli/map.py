@@ -26,7 +26,12 @@ DESCRIPTION = (
     "occupancy-grid baseline over a grid that holds the log, and write to --out: "
     "coverage.npz (the whole posterior, CoverageMap.load reads it), map.yaml + map.pgm "
     "(the ML map for ROS map_server), occupancy.yaml + occupancy.pgm (the baseline), and "
-    "the pictures maps.png (ML, mean, entropy and the baseline). Prints a summary."
+    "the pictures maps.png (ML, mean, entropy and the baseline). Prints a summary. "
+    "A plain-text sonar log says nothing of its units or sonars: give them (--bearings, --max-range, "
+    "and where they are not metres and radians --length-unit, --range-unit, --angle-unit; --min-range "
+    "and --no-echo for the readings that are not echoes). The sonar-8ring data set, for example: "
+    "--bearings=-90,-37.5,-22.5,-7.5,7.5,22.5,37.5,90 --length-unit 0.001 --angle-unit 0.1deg "
+    "--min-range 0.17 --max-range 5 --no-echo 5110."
 )
 """What ``covmap map --help`` says the command does."""
 
@@ -41,7 +46,53 @@ def add_arguments(command: argparse.ArgumentParser) -> None:
         help="the log's format (default: sonar-text with --measurements, rosbag for a .bag file "
         "or a directory, else carmen)",
     )
-    command.add_argument("--measurements", type=Path, default=None, help="a sonar-text log's measurements file")
+    sonar = command.add_argument_group("plain-text sonar logs (--format sonar-text; see covmap.Log.from_sonar_text)")
+    sonar.add_argument("--measurements", type=Path, default=None, help="the log's measurements file")
+    sonar.add_argument(
+        "--bearings",
+        type=_options.bearings,
+        default=None,
+        metavar="DEG,...|FILE",
+        help="each measurement column's sonar, degrees from the heading: a list separated by commas "
+        "(--bearings=-90,0,90) or a file of numbers; required",
+    )
+    sonar.add_argument(
+        "--length-unit",
+        type=_options.unit,
+        default=1.0,
+        metavar="M",
+        help="metres per unit of the poses' x and y (0.001: millimetres; default 1)",
+    )
+    sonar.add_argument(
+        "--range-unit",
+        type=_options.unit,
+        default=None,
+        metavar="M",
+        help="metres per unit of the ranges (default: --length-unit)",
+    )
+    sonar.add_argument(
+        "--angle-unit",
+        type=_options.angle_unit,
+        default=1.0,
+        metavar="UNIT",
+        help="the heading's unit: rad, deg, a number of radians, or a number of degrees with deg "
+        "(0.1deg: tenths of a degree); default rad",
+    )
+    sonar.add_argument(
+        "--min-range",
+        type=_options.reading_bound,
+        default=0.0,
+        metavar="M",
+        help="readings shorter than this are dropped, metres (default 0)",
+    )
+    sonar.add_argument(
+        "--no-echo",
+        type=_options.reading,
+        default=None,
+        metavar="VALUE",
+        help="the reading, in the file's units, a sonar writes when it heard no echo (default: none; "
+        "readings at or above --max-range have none either)",
+    )
     command.add_argument(
         "--laser",
         choices=("front", "rear"),
@@ -72,7 +123,10 @@ def add_arguments(command: argparse.ArgumentParser) -> None:
         help="the grid holds every beam up to this far, metres (default 10)",
     )
     command.add_argument(
-        "--max-range", type=_options.distance, default=None, help="override the log's maximum range, metres"
+        "--max-range",
+        type=_options.distance,
+        default=None,
+        help="the log's maximum range, metres (a sonar-text log's, required; else overrides the log's)",
     )
     _options.add_out(command, NAME)
 
@@ -109,23 +163,36 @@ def run(args: argparse.Namespace) -> int:
         base_frame=args.base_frame,
         fixed_frame=args.fixed_frame,
         laser=args.laser,
+        bearings_deg=args.bearings,
+        length_unit_m=args.length_unit,
+        range_unit_m=args.range_unit,
+        angle_unit_rad=args.angle_unit,
+        min_range_m=args.min_range,
+        no_echo=args.no_echo,
     )
     # A bag's sensor_msgs/Range log is one beam along the sensor's axis.
     one_sonar = log_format == "rosbag" and log.beams == 1
     sensor: mapping.Sensor = args.sensor or ("sonar" if log_format == "sonar-text" or one_sonar else "laser")
     args.out.mkdir(parents=True, exist_ok=True)
-    with Progress(2 * len(log), "scans") as progress:
+    # One count of the log's scans for each map: the coverage map's, then
+    # the occupancy grid's (the callback starts again from the first scan).
+    names = iter(("scans into the coverage map", "scans into the occupancy grid"))
+    shown = Progress(len(log), next(names))
+    try:
         last = 0
 
-        def show(done: int, total: int) -> None:
-            # Called for the coverage map's scans, then the occupancy grid's.
-            nonlocal last
-            last = 0 if done < last else last
+        def show(done: int, _total: int) -> None:
+            nonlocal last, shown
+            if done < last:
+                shown.__exit__(None, None, None)
+                shown, last = Progress(len(log), next(names, "scans")), 0
             for _ in range(done - last):
-                progress.update("coverage map" if progress.count < total else "occupancy grid")
+                shown.update()
             last = done
 
         result = mapping.run(log, sensor=sensor, resolution_m=args.resolution, reach_m=args.reach, progress=show)
+    finally:
+        shown.__exit__(None, None, None)
     print(f"log {args.log} ({log_format})")
     print(mapping.summary(result))
     print(f"agreement    {mapping.agreement(result):.3f} of the cells both maps know")

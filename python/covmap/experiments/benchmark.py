@@ -35,7 +35,10 @@ from covmap.buildings import split_of
 if TYPE_CHECKING:
     from collections.abc import Mapping, Sequence
 
+    from covmap._custom import CustomStrategy
     from covmap._native import Building
+
+    StrategyLike = str | Strategy | CustomStrategy
 
 __all__ = [
     "CONFIGURATIONS",
@@ -54,6 +57,7 @@ __all__ = [
     "sensor_of",
     "specs",
     "speed_table",
+    "strategy_of",
     "summary_table",
 ]
 
@@ -65,7 +69,9 @@ STRATEGIES: dict[str, Strategy] = {
 }
 """The strategies of the benchmark by label: Table I's rows (coverage maps
 with alpha 0.5, scan counting to 1 and to 50 discounted beyond 2 m) and
-nearest frontiers."""
+nearest frontiers. The benchmark also takes strategies as objects, a
+``Strategy`` or a strategy of one's own (``Strategy.custom``): labelled by
+their name (``"custom:NAME"`` for a custom one)."""
 
 SENSORS = ("sonar", "laser")
 """The sensors by name: the 24-sonar ring and the 361-beam SICK laser."""
@@ -317,7 +323,7 @@ class StrategySummary:
 def specs(
     buildings: Sequence[Building],
     *,
-    strategies: Sequence[str] = tuple(STRATEGIES),
+    strategies: Sequence[StrategyLike] = tuple(STRATEGIES),
     sensors: Sequence[str] = ("sonar",),
     seeds: Sequence[int] = (0,),
     sensor_options: Mapping[str, Mapping[str, Any]] | None = None,
@@ -344,9 +350,7 @@ def specs(
     for b in buildings:
         if not isinstance(b, Building):
             raise InvalidTypeError(f"buildings must be Buildings (covmap.buildings.building), got {type(b).__name__}")
-    unknown = [s for s in strategies if not isinstance(s, str) or s not in STRATEGIES]
-    if unknown:
-        raise InvalidParameterError(f"unknown strategies {unknown}: expected some of {', '.join(STRATEGIES)}")
+    chosen = [strategy_of(s) for s in strategies]
     for name in sensors:
         sensor_of(name)
     def extent(b: Building) -> float:
@@ -359,7 +363,7 @@ def specs(
     return [
         {
             "world": buildings[i],
-            "strategy": STRATEGIES[strategy],
+            "strategy": strategy,
             "seed": seed,
             "sensor": sensor_of(sensor),
             **options,
@@ -368,15 +372,43 @@ def specs(
         for i in order
         for sensor in sensors
         if extent(buildings[i]) <= largest.get(sensor, math.inf)
-        for strategy in strategies
+        for _, strategy in chosen
         for seed in seeds
     ]
+
+
+def strategy_of(strategy: StrategyLike) -> tuple[str, Strategy | CustomStrategy]:
+    """A benchmark's strategy and its label: a label of :data:`STRATEGIES`,
+    or a ``Strategy`` or ``Strategy.custom`` object (labelled by its name;
+    one of :data:`STRATEGIES` by its label there). Anything else raises
+    :class:`~covmap.InvalidParameterError`; a custom strategy that does not
+    pickle is refused by :func:`covmap.sweep` before anything runs."""
+    from covmap._custom import CustomStrategy
+
+    if isinstance(strategy, str):
+        if strategy not in STRATEGIES:
+            raise InvalidParameterError(
+                f"unknown strategy {strategy[:80]!r}: expected one of {', '.join(STRATEGIES)}, "
+                "a Strategy or Strategy.custom(...)"
+            )
+        return strategy, STRATEGIES[strategy]
+    if isinstance(strategy, CustomStrategy):
+        return f"custom:{strategy.name}", strategy
+    if isinstance(strategy, Strategy):
+        for label, known in STRATEGIES.items():
+            if known == strategy:
+                return label, strategy
+        return repr(strategy).removeprefix("Strategy."), strategy
+    raise InvalidParameterError(
+        f"a benchmark's strategy is a label ({', '.join(STRATEGIES)}), a Strategy or Strategy.custom(...), "
+        f"got {type(strategy).__name__}"
+    )
 
 
 def run(
     buildings: Sequence[Building],
     *,
-    strategies: Sequence[str] = tuple(STRATEGIES),
+    strategies: Sequence[StrategyLike] = tuple(STRATEGIES),
     sensors: Sequence[str] = ("sonar",),
     seeds: Sequence[int] = (0,),
     sensor_options: Mapping[str, Mapping[str, Any]] | None = None,
@@ -405,10 +437,9 @@ def run(
         **options,
     )
     summaries = sweep(all_specs, executor=executor, progress=progress)
-    by_strategy = {s: label for label, s in STRATEGIES.items()}
     runs = []
     for spec, summary in zip(all_specs, summaries):
-        label = by_strategy.get(spec["strategy"], repr(spec["strategy"]))
+        label, _ = strategy_of(spec["strategy"])
         sensor = "laser" if isinstance(spec["sensor"], Laser) else "sonar"
         runs.append(BenchmarkRun.of(label, sensor, summary))
     per_sensor = {} if sensor_options is None else {k: dict(v) for k, v in sensor_options.items()}

@@ -20,10 +20,8 @@ import numpy as np
 from covmap._native import CoverageMap, Grid, LaserModel, Log, OccupancyGrid, SonarModel
 
 if TYPE_CHECKING:
+    from collections.abc import Sequence
     from pathlib import Path
-
-SONAR_8RING_BEARINGS_DEG = (-90.0, -37.5, -22.5, -7.5, 7.5, 22.5, 37.5, 90.0)
-"""The bearings of the ``sonar-8ring`` data set's sonars, degrees."""
 
 Format = Literal["carmen", "sonar-text", "rosbag"]
 Sensor = Literal["laser", "sonar"]
@@ -34,10 +32,13 @@ def read_log(
     *,
     log_format: Format,
     measurements: Path | None = None,
-    bearings_deg: tuple[float, ...] = SONAR_8RING_BEARINGS_DEG,
-    length_unit_m: float = 0.001,
-    angle_unit_rad: float = math.pi / 1800,
+    bearings_deg: Sequence[float] | None = None,
+    length_unit_m: float = 1.0,
+    range_unit_m: float | None = None,
+    angle_unit_rad: float = 1.0,
+    min_range_m: float = 0.0,
     max_range_m: float | None = None,
+    no_echo: float | None = None,
     topic: str | None = None,
     odom_topic: str | None = None,
     base_frame: str | None = None,
@@ -48,8 +49,10 @@ def read_log(
     file with its ``measurements`` file, or (``"rosbag"``) a ROS bag's
     ``topic`` as ``Log.from_bag`` reads it (with ``odom_topic``,
     ``base_frame`` and ``fixed_frame``); a CARMEN log's ``laser`` is its
-    front or its rear laser; the sonar defaults are the
-    ``sonar-8ring`` data set's (millimetres, tenths of a degree, 5 m)."""
+    front or its rear laser. A sonar-text log is described by
+    ``bearings_deg`` and ``max_range_m`` (both required), its units and
+    the readings that are not echoes, as :meth:`covmap.Log.from_sonar_text`
+    takes them."""
     if log_format == "carmen":
         return Log.from_carmen(path, max_range_m=max_range_m, laser=laser)
     if log_format == "rosbag":
@@ -61,20 +64,34 @@ def read_log(
             fixed_frame=fixed_frame,
             max_range_m=max_range_m,
         )
-    if measurements is None:
-        from covmap._errors import InvalidParameterError
+    from covmap._errors import InvalidParameterError
 
-        raise InvalidParameterError(
-            f"{path}: a sonar-text log is a poses file and its measurements file: give measurements "
-            "(covmap map POSES --format sonar-text --measurements FILE)"
+    missing = [
+        (name, option)
+        for name, option, value in (
+            ("measurements", "--measurements FILE", measurements),
+            ("bearings_deg", "--bearings DEG,...", bearings_deg),
+            ("max_range_m", "--max-range M", max_range_m),
         )
+        if value is None
+    ]
+    if missing:
+        raise InvalidParameterError(
+            f"{path}: a sonar-text log is a poses file and its measurements file, and says nothing of its "
+            f"sonars: give {', '.join(n for n, _ in missing)} (covmap map POSES --format sonar-text "
+            f"{' '.join(o for _, o in missing)})"
+        )
+    assert measurements is not None and bearings_deg is not None and max_range_m is not None
     return Log.from_sonar_text(
         path,
         measurements,
         bearings_deg=list(bearings_deg),
         length_unit_m=length_unit_m,
+        range_unit_m=range_unit_m,
         angle_unit_rad=angle_unit_rad,
-        max_range_m=5.0 if max_range_m is None else max_range_m,
+        min_range_m=min_range_m,
+        max_range_m=max_range_m,
+        no_echo=no_echo,
     )
 
 
@@ -132,7 +149,7 @@ def summary(r: MappingRun) -> str:
     known = int((data >= 0).sum())
     lines = [
         f"scans        {len(r.log)} of {r.log.beams} beams, max range {r.log.max_range_m:g} m, {r.sensor} model",
-        f"grid         {cols} x {rows} cells of {r.grid.resolution:g} m over [{x0:.2f}, {x1:.2f}] x [{y0:.2f}, {y1:.2f}] m",
+        f"grid         {rows} x {cols} cells (rows x columns) of {r.grid.resolution:g} m over [{x0:.2f}, {x1:.2f}] x [{y0:.2f}, {y1:.2f}] m",
         f"coverage map {r.coverage_s:.2f} s; {known} cells known ({100 * known / data.size:.1f} %), "
         f"{int((data >= 65).sum())} occupied",
         f"occupancy    {r.occupancy_s:.2f} s; {int(r.occupancy.observed().sum())} cells observed, "

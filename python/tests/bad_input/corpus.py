@@ -323,6 +323,19 @@ WRITTEN: list[Case] = [
     Case("building from /dev/zero", "covmap.Building.from_file('/dev/zero')", "CovmapError", None, "/dev/zero", alone=True),
     Case("benchmark of no buildings", "covmap.experiments.benchmark.run([], progress=False)", "InvalidValueError", "ValueError", "buildings"),
     Case("benchmark of an unknown strategy", "covmap.experiments.benchmark.run([building], strategies=['greedy'], progress=False)", "InvalidParameterError", "ValueError", "greedy"),
+    # Strategies of one's own and goals of the caller's: typed errors naming
+    # the value, the run as it was.
+    Case("custom strategy of a goal off the map", "covmap.Exploration(small, covmap.Strategy.custom(lambda v: (1e9, 1e9)), resolution=0.1).step()", "InvalidGoalError", "ValueError", "outside the map"),
+    Case("custom strategy of a nan goal", "covmap.Exploration(small, covmap.Strategy.custom(lambda v: (math.nan, 0.5)), resolution=0.1).step()", "InvalidGoalError", "ValueError", "finite"),
+    Case("custom strategy of a goal in an obstacle", "covmap.Exploration(w, covmap.Strategy.custom(lambda v: (0.0, 0.0)), resolution=0.1).step()", "InvalidGoalError", "ValueError", "cannot reach"),
+    Case("custom strategy of a str goal", "covmap.Exploration(small, covmap.Strategy.custom(lambda v: 'north'), resolution=0.1).step()", "InvalidTypeError", "TypeError", "str"),
+    Case("custom strategy of a huge index", "covmap.Exploration(w, covmap.Strategy.custom(lambda v: 10**30), resolution=0.1).step()", "InvalidGoalError", "ValueError", "candidate"),
+    Case("custom strategy of a goal of 10**6 numbers", "covmap.Exploration(small, covmap.Strategy.custom(lambda v: np.zeros(10**6)), resolution=0.1).step()", "InvalidGoalError", "ValueError", "shape"),
+    Case("custom strategy of no function", "covmap.Strategy.custom(3)", "InvalidTypeError", "TypeError", "choose"),
+    Case("custom strategy that does not pickle, in a sweep", "covmap.sweep([{'world': small, 'strategy': covmap.Strategy.custom(lambda v: None), 'resolution': 0.1}], progress=False)", "InvalidSpecError", "ValueError", "does not pickle"),
+    Case("step to a goal off the map", "covmap.Exploration(small, strategy, resolution=0.1).step(goal=(1e9, 0.0, 0.0))", "InvalidGoalError", "ValueError", "outside the map"),
+    Case("step to an infinite goal", "covmap.Exploration(small, strategy, resolution=0.1).step(goal=(math.inf, 0.0, 0.0))", "CovmapError"),
+    Case("benchmark of a strategy of no kind", "covmap.experiments.benchmark.run([building], strategies=[3], progress=False)", "InvalidParameterError", "ValueError", "int"),
     Case("benchmark of too many runs", "covmap.experiments.benchmark.run([building] * 10**4, seeds=range(10**4), progress=False)", "InvalidValueError", "ValueError", "runs"),
 ]
 

@@ -118,7 +118,7 @@ pub struct Exploration<S, M> {
     pub(super) map: CoverageMap,
     pub(super) occupancy: OccupancyGrid,
     /// The coverage map's read-outs, kept up to date from its change feed.
-    kept: Bookkeeping,
+    pub(super) kept: Bookkeeping,
     pub(super) pose: Pose,
     pub(super) trajectory: Trajectory,
     pub(super) totals: Totals,
@@ -126,7 +126,7 @@ pub struct Exploration<S, M> {
     pub(super) since_scan_m: f64,
     trace: Trace,
     /// Goals (row-major cells) the robot could make no headway towards.
-    failed_goals: Vec<usize>,
+    pub(super) failed_goals: Vec<usize>,
     /// Every cell the robot has run into, in the order it did.
     pub(super) contact_cells: Vec<Cell>,
     /// The cells the robot's centre has driven through, row-major (the
@@ -246,15 +246,7 @@ impl<S: ScanSource, M: Motion> Exploration<S, M> {
     /// An error of the scan source, the motion or the strategy, passed on.
     /// The run can go on after it; the scan that failed was not integrated.
     pub fn step(&mut self) -> Result<Option<StepReport>> {
-        if self.totals.termination.is_some() {
-            return Ok(None);
-        }
-        if self.totals.scans == 0 {
-            self.look_around()?;
-            self.take_in_changes();
-        }
-        if self.at_path_limit() || self.totals.steps >= self.config.max_steps {
-            self.totals.termination = Some(Termination::Limit);
+        if !self.begin()? {
             return Ok(None);
         }
 
@@ -265,15 +257,50 @@ impl<S: ScanSource, M: Motion> Exploration<S, M> {
             chooser.decide(&inputs)?
         };
         let planning_s = started.elapsed().as_secs_f64();
-        self.totals.timing.planning_s += planning_s;
-        let (goal, path) = match decision {
+        match decision {
             NextGoal::Done(termination) => {
+                self.totals.timing.planning_s += planning_s;
                 self.totals.termination = Some(termination);
-                return Ok(None);
+                Ok(None)
             }
-            NextGoal::Goal { pose, path } => (pose, path),
-        };
+            NextGoal::Goal { pose, path } => self.go(pose, path, planning_s).map(Some),
+        }
+    }
 
+    /// Before a step: the first scans where the robot stands (if it has
+    /// taken none), then whether the run may take a step (`false` once it
+    /// is over; reaching a limit ends it). A strategy outside the loop
+    /// calls it before it looks at the maps.
+    ///
+    /// # Errors
+    /// An error of the scan source, passed on.
+    pub fn begin(&mut self) -> Result<bool> {
+        if self.totals.termination.is_some() {
+            return Ok(false);
+        }
+        if self.totals.scans == 0 {
+            self.look_around()?;
+            self.take_in_changes();
+        }
+        if self.at_path_limit() || self.totals.steps >= self.config.max_steps {
+            self.totals.termination = Some(Termination::Limit);
+            return Ok(false);
+        }
+        Ok(true)
+    }
+
+    /// Steps 2 to 4 of a step to `goal` along `path`, chosen in
+    /// `planning_s` seconds: drive, scan and integrate, learn, record.
+    ///
+    /// # Errors
+    /// An error of the scan source or the motion, passed on.
+    pub(super) fn go(
+        &mut self,
+        goal: Pose,
+        path: Vec<[f64; 2]>,
+        planning_s: f64,
+    ) -> Result<StepReport> {
+        self.totals.timing.planning_s += planning_s;
         // 2.-4. Drive through the world, scanning and integrating on the way.
         let drive = self.follow(&path, &goal)?;
         self.take_in_changes();
@@ -307,7 +334,7 @@ impl<S: ScanSource, M: Motion> Exploration<S, M> {
             .push(self.kept.uncertain_fraction());
         self.trace.contact.push(drive.contact_m.is_some());
         self.trace.planning_s.push(planning_s);
-        Ok(Some(report))
+        Ok(report)
     }
 
     /// Steps until the run is over; how it ended.
@@ -475,130 +502,5 @@ fn assemble(
 }
 
 #[cfg(test)]
-mod tests {
-    use super::*;
-    use crate::exploration::Travel;
-    use crate::sensor::LaserModel;
-
-    /// A room `[0, 4] x [0, 3]` m with a pane `[2.2, 2.6] x [0.9, 2.1]` the
-    /// sensor sees through and the robot runs into: the runs of
-    /// [`every_step_keeps_the_loops_read_outs`] scan, drive and touch.
-    const PANE: [f64; 4] = [2.2, 0.9, 2.6, 2.1];
-
-    /// Exact laser ranges to the room's walls.
-    struct RoomRing(Vec<f64>);
-    impl ScanSource for RoomRing {
-        fn bearings(&self) -> &[f64] {
-            &self.0
-        }
-        fn scan(&mut self, p: &Pose) -> Result<Vec<f64>> {
-            let to = |v: f64, high: f64, at: f64| match v {
-                v if v > 1e-12 => (high - at) / v,
-                v if v < -1e-12 => -at / v,
-                _ => f64::INFINITY,
-            };
-            Ok(self
-                .0
-                .iter()
-                .map(|b| {
-                    let (s, c) = (p.theta_rad + b).sin_cos();
-                    to(c, 4.0, p.x_m).min(to(s, 3.0, p.y_m))
-                })
-                .collect())
-        }
-    }
-
-    /// A disc of 0.25 m stopped by the walls and the pane, in steps of a
-    /// millimetre; the contact is the nearest point of what stopped it.
-    struct Bumper;
-    impl Motion for Bumper {
-        fn drive(&mut self, from: [f64; 2], to: [f64; 2]) -> Result<Travel> {
-            const R: f64 = 0.25;
-            let nearest = |[x, y]: [f64; 2]| -> ([f64; 2], f64) {
-                let [x0, y0, x1, y1] = PANE;
-                let pane = [x.clamp(x0, x1), y.clamp(y0, y1)];
-                [pane, [0.0, y], [4.0, y], [x, 0.0], [x, 3.0]]
-                    .into_iter()
-                    .map(|q| (q, (q[0] - x).hypot(q[1] - y)))
-                    .fold(
-                        ([0.0; 2], f64::INFINITY),
-                        |a, b| if b.1 < a.1 { b } else { a },
-                    )
-            };
-            let length = (to[0] - from[0]).hypot(to[1] - from[1]);
-            let steps = (length / 1e-3).ceil() as usize;
-            for k in 1..=steps {
-                let t = k as f64 / steps as f64;
-                let at = [
-                    from[0] + t * (to[0] - from[0]),
-                    from[1] + t * (to[1] - from[1]),
-                ];
-                let (contact, gap) = nearest(at);
-                if gap < R {
-                    return Ok(Travel {
-                        travelled_m: (k - 1) as f64 / steps as f64 * length,
-                        contact_m: Some(contact),
-                    });
-                }
-            }
-            Ok(Travel {
-                travelled_m: length,
-                contact_m: None,
-            })
-        }
-    }
-
-    /// After every step, the read-outs the loop keeps from the map's change
-    /// feed are the map's, bit for bit, the uncertain cells counted anew,
-    /// and every cell the robot ran into is held certainly covered, for
-    /// every strategy, in runs that scan, drive and run into the pane.
-    #[test]
-    fn every_step_keeps_the_loops_read_outs() {
-        let bearings: Vec<f64> = (0..90)
-            .map(|i| i as f64 * std::f64::consts::TAU / 90.0)
-            .collect();
-        let grid = Grid::covering(-0.5, -0.5, 4.5, 3.5, 0.05).unwrap();
-        for strategy in [
-            Strategy::coverage(0.5).unwrap(),
-            Strategy::counting(3, Some(2.0)).unwrap(),
-            Strategy::frontier(),
-        ] {
-            let mut setup = ExplorationSetup::new(grid, Pose::new(1.0, 1.5, 0.0), strategy);
-            setup.model = AnySensorModel::Laser(LaserModel::default());
-            setup.config.max_path_m = 40.0;
-            let mut run = Exploration::new(setup, RoomRing(bearings.clone()), Bumper).unwrap();
-            while run.step().unwrap().is_some() {
-                let step = run.steps();
-                let (entropy, ml) = (run.map.entropy(), run.map.ml());
-                let bits = |v: &[f32]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
-                assert_eq!(
-                    bits(&run.kept.entropy),
-                    bits(&entropy),
-                    "{strategy:?}, step {step}"
-                );
-                assert_eq!(bits(&run.kept.ml), bits(&ml), "{strategy:?}, step {step}");
-                let uncertain = entropy.iter().filter(|&&e| f64::from(e) > 0.65).count();
-                let fraction = uncertain as f64 / entropy.len() as f64;
-                assert_eq!(
-                    run.uncertain_fraction(),
-                    fraction,
-                    "{strategy:?}, step {step}"
-                );
-                assert!(uncertain > 0 && uncertain < entropy.len());
-                for &cell in &run.contact_cells {
-                    let i = grid.index(cell).unwrap();
-                    assert!(
-                        ml[i] == 1.0 && entropy[i] < 1e-6,
-                        "{strategy:?}, step {step}"
-                    );
-                }
-            }
-            assert!(
-                run.totals.contacts > 0 && run.steps() > 3,
-                "{strategy:?}: {} contacts, {} steps",
-                run.totals.contacts,
-                run.steps()
-            );
-        }
-    }
-}
+#[path = "exploration_tests.rs"]
+mod tests;

@@ -133,6 +133,7 @@ mod region;
 mod result;
 mod sensor;
 mod source;
+mod steering;
 mod strategy;
 #[cfg(test)]
 mod test_maps;

@@ -5,8 +5,8 @@ use std::sync::Arc;
 use std::time::Instant;
 
 use covmap_core::exploration::{
-    Exploration, ExplorationResult, ExplorationSetup, StepReport, Strategy, Termination,
-    high_entropy_fraction, mean_absolute_error,
+    Exploration, ExplorationResult, ExplorationSetup, ExplorationStrategy, StepReport, Strategy,
+    Termination, high_entropy_fraction, mean_absolute_error,
 };
 use covmap_core::{Grid, Pose, SensorModel};
 
@@ -101,6 +101,29 @@ impl SimExploration {
     /// value), a start off the grid or in an obstacle, a world too small
     /// for the robot anywhere.
     pub fn new(world: Arc<World>, strategy: Strategy, options: &ExploreOptions) -> Result<Self> {
+        Self::set_up(world, strategy, None, options)
+    }
+
+    /// [`SimExploration::new`], the goals chosen by `chooser`, a strategy
+    /// of the caller's ([`ExplorationStrategy`]); the result reports it as
+    /// [`Strategy::Custom`].
+    ///
+    /// # Errors
+    /// As [`SimExploration::new`].
+    pub fn with_strategy(
+        world: Arc<World>,
+        chooser: Box<dyn ExplorationStrategy>,
+        options: &ExploreOptions,
+    ) -> Result<Self> {
+        Self::set_up(world, Strategy::Custom, Some(chooser), options)
+    }
+
+    fn set_up(
+        world: Arc<World>,
+        strategy: Strategy,
+        chooser: Option<Box<dyn ExplorationStrategy>>,
+        options: &ExploreOptions,
+    ) -> Result<Self> {
         let started = Instant::now();
         options.validate()?;
         strategy.validate()?;
@@ -133,8 +156,12 @@ impl SimExploration {
         };
         let source = WorldScans::new(Arc::clone(&world), options.sensor.clone(), options.seed);
         let motion = WorldMotion::new(world, robot);
+        let exploration = match chooser {
+            Some(chooser) => Exploration::with_strategy(setup, chooser, source, motion)?,
+            None => Exploration::new(setup, source, motion)?,
+        };
         Ok(Self {
-            exploration: Exploration::new(setup, source, motion)?,
+            exploration,
             start,
             seed: options.seed,
             truth,
@@ -157,6 +184,31 @@ impl SimExploration {
     /// As [`Exploration::step`].
     pub fn run(&mut self) -> Result<Termination> {
         Ok(self.exploration.run()?)
+    }
+
+    /// The first scans, if none were taken; whether the run may step
+    /// ([`Exploration::begin`]).
+    ///
+    /// # Errors
+    /// As [`Exploration::begin`].
+    pub fn begin(&mut self) -> Result<bool> {
+        Ok(self.exploration.begin()?)
+    }
+
+    /// One step to a goal of the caller's ([`Exploration::step_to`]).
+    ///
+    /// # Errors
+    /// As [`Exploration::step_to`].
+    pub fn step_to(&mut self, goal: Pose) -> Result<Option<StepReport>> {
+        Ok(self.exploration.step_to(goal)?)
+    }
+
+    /// End the run on the caller's word ([`Exploration::finish`]).
+    ///
+    /// # Errors
+    /// As [`Exploration::finish`].
+    pub fn finish(&mut self) -> Result<Termination> {
+        Ok(self.exploration.finish()?)
     }
 
     /// The loop: its maps, pose, trajectory, state.

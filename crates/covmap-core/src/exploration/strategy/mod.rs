@@ -89,6 +89,14 @@ pub enum Strategy {
     },
     /// Nearest-frontier exploration on the occupancy grid.
     Frontier,
+    /// A strategy outside the loop: the caller chooses each goal
+    /// ([`Exploration::step_to`](super::Exploration::step_to)) and says when
+    /// it is done ([`Exploration::finish`](super::Exploration::finish)); the
+    /// loop's own [`Exploration::step`](super::Exploration::step) refuses to
+    /// choose for it. (A strategy in Rust drives the loop itself, through
+    /// [`ExplorationStrategy`] and
+    /// [`Exploration::with_strategy`](super::Exploration::with_strategy).)
+    Custom,
 }
 
 impl Strategy {
@@ -123,12 +131,13 @@ impl Strategy {
         Self::Frontier
     }
 
-    /// `"coverage"`, `"counting"` or `"frontier"`.
+    /// `"coverage"`, `"counting"`, `"frontier"` or `"custom"`.
     pub fn name(&self) -> &'static str {
         match self {
             Self::Coverage { .. } => "coverage",
             Self::Counting { .. } => "counting",
             Self::Frontier => "frontier",
+            Self::Custom => "custom",
         }
     }
 
@@ -156,7 +165,7 @@ impl Strategy {
                     None => Ok(()),
                 }
             }
-            Self::Frontier => Ok(()),
+            Self::Frontier | Self::Custom => Ok(()),
         }
     }
 }
@@ -280,6 +289,23 @@ impl Strategy {
                 Box::new(scan_counting::ScanCounting::new(n, config, grid))
             }
             Strategy::Frontier => Box::new(nearest_frontier::NearestFrontier::new(grid)),
+            Strategy::Custom => Box::new(Outside),
+        })
+    }
+}
+
+/// The chooser of [`Strategy::Custom`]: the goals come from outside the
+/// loop, so it has none of its own.
+struct Outside;
+
+impl ExplorationStrategy for Outside {
+    fn decide(&mut self, _: &DecisionInputs<'_>) -> Result<NextGoal> {
+        Err(crate::error::CovmapError::InvalidSetting {
+            name: "strategy",
+            reason:
+                "a custom strategy chooses its goals outside the loop: give each step its goal \
+                     (Exploration::step_to), or end the run (Exploration::finish)"
+                    .into(),
         })
     }
 }

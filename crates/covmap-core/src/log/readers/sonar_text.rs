@@ -10,20 +10,70 @@ use crate::error::{CovmapError, Result, check_parameter};
 use crate::log::{Bearings, Log};
 use crate::pose::Pose;
 
-/// What a plain-text sonar log does not say about itself.
+/// What a plain-text sonar log does not say about itself: its units, its
+/// sonars' bearings, and which readings are echoes.
+///
+/// A reading (in the file's units) is, in the [`Log`]:
+///
+/// | reading | in the log |
+/// | --- | --- |
+/// | equal to `no_echo` | no echo (the maximum range) |
+/// | from `min_range_m` to `max_range_m` | the range |
+/// | at or above `max_range_m` | no echo |
+/// | below `min_range_m` | dropped (NaN; integrating skips it) |
+/// | negative (and not `no_echo`) | an error naming the line |
 #[derive(Clone, Debug, PartialEq)]
 pub struct SonarTextOptions {
     /// Every sonar's bearing, radians relative to the robot's heading, in the
     /// order of the measurement columns.
     pub bearings_rad: Vec<f64>,
-    /// Metres per length unit of the files (0.001 for millimetres).
+    /// Metres per length unit of the poses file's `x` and `y` (0.001 for
+    /// millimetres).
     pub length_unit_m: f64,
-    /// Radians per angle unit of the pose file (`pi / 1800` for tenths of a
-    /// degree).
+    /// Metres per length unit of the measurements file's ranges.
+    pub range_unit_m: f64,
+    /// Radians per angle unit of the pose file's heading (`pi / 1800` for
+    /// tenths of a degree).
     pub angle_unit_rad: f64,
+    /// The shortest valid reading, metres: shorter ones are dropped.
+    pub min_range_m: f64,
     /// The sonars' maximum range, metres: a reading at or above it has no
     /// echo.
     pub max_range_m: f64,
+    /// The reading, in the file's units, that a sonar writes when it heard
+    /// no echo (5110 in a log whose sonars write 5110 mm for none), if any.
+    pub no_echo: Option<f64>,
+}
+
+impl SonarTextOptions {
+    /// Options for `bearings_rad` and readings up to `max_range_m`, with
+    /// every length in metres, the heading in radians, no minimum range and
+    /// no no-echo value.
+    pub fn new(bearings_rad: Vec<f64>, max_range_m: f64) -> Self {
+        SonarTextOptions {
+            bearings_rad,
+            length_unit_m: 1.0,
+            range_unit_m: 1.0,
+            angle_unit_rad: 1.0,
+            min_range_m: 0.0,
+            max_range_m,
+            no_echo: None,
+        }
+    }
+
+    /// One reading of the file as the log holds it (see the type's
+    /// documentation); `Err` for a negative one.
+    fn convert(&self, raw: f64) -> std::result::Result<f64, String> {
+        if self.no_echo == Some(raw) {
+            return Ok(self.max_range_m);
+        }
+        if raw < 0.0 {
+            return Err(format!("the reading {raw} is negative"));
+        }
+        // At or above the maximum range the log reads it as no echo.
+        let r = raw * self.range_unit_m;
+        Ok(if r >= self.min_range_m { r } else { f64::NAN })
+    }
 }
 
 impl Log {
@@ -76,10 +126,20 @@ impl Log {
 fn check(o: &SonarTextOptions) -> Result<()> {
     for (name, v) in [
         ("length_unit_m", o.length_unit_m),
+        ("range_unit_m", o.range_unit_m),
         ("angle_unit_rad", o.angle_unit_rad),
         ("max_range_m", o.max_range_m),
     ] {
         check_parameter(v.is_finite() && v > 0.0, name, v, "positive and finite")?;
+    }
+    check_parameter(
+        o.min_range_m.is_finite() && o.min_range_m >= 0.0 && o.min_range_m < o.max_range_m,
+        "min_range_m",
+        o.min_range_m,
+        "a finite distance from 0 to below max_range_m (metres)",
+    )?;
+    if let Some(v) = o.no_echo {
+        check_parameter(v.is_finite(), "no_echo", v, "a finite reading")?;
     }
     match o
         .bearings_rad
@@ -136,10 +196,7 @@ fn read(mut poses_in: Lines, mut ranges_in: Lines, o: &SonarTextOptions) -> Resu
             }
             for k in 0..beams {
                 let r = f.number("range")?;
-                if r < 0.0 {
-                    return Err(format!("range {k} is negative: {r}"));
-                }
-                ranges.push(r * o.length_unit_m);
+                ranges.push(o.convert(r).map_err(|e| format!("range {k}: {e}"))?);
             }
             Ok(())
         })();
@@ -150,7 +207,7 @@ fn read(mut poses_in: Lines, mut ranges_in: Lines, o: &SonarTextOptions) -> Resu
         poses.push(pose);
         times.push(t);
     }
-    let log = Log::new(
+    let log = Log::with_dropped(
         poses,
         times,
         ranges,
@@ -196,10 +253,10 @@ mod tests {
 
     fn options() -> SonarTextOptions {
         SonarTextOptions {
-            bearings_rad: vec![-1.0, 1.0],
             length_unit_m: 0.001,
+            range_unit_m: 0.001,
             angle_unit_rad: std::f64::consts::PI / 1800.0,
-            max_range_m: 5.0,
+            ..SonarTextOptions::new(vec![-1.0, 1.0], 5.0)
         }
     }
 
@@ -217,6 +274,67 @@ mod tests {
         assert!((p.theta_rad - std::f64::consts::FRAC_PI_2).abs() < 1e-12);
         assert!((log.scan_ranges(0)[1] - 5.11).abs() < 1e-12);
         assert_eq!(log.timestamps_s(), &[1.0, 2.0]);
+    }
+
+    #[test]
+    fn the_no_echo_value_and_the_valid_range_say_which_readings_are_echoes() {
+        let o = SonarTextOptions {
+            min_range_m: 0.17,
+            no_echo: Some(5110.0),
+            ..options()
+        };
+        let cursor = |s: &str| std::io::Cursor::new(s.as_bytes().to_vec());
+        let read = |o: &SonarTextOptions, m: &str| {
+            Log::read_sonar_text(cursor("1 0 0 0\n"), "p", cursor(m), "m", o)
+        };
+        let log = read(&o, "1 5110 169\n").unwrap();
+        assert_eq!(log.scan_ranges(0)[0], 5.0);
+        assert!(log.scan_ranges(0)[1].is_nan());
+        let log = read(&o, "1 170 6000\n").unwrap();
+        assert!((log.scan_ranges(0)[0] - 0.17).abs() < 1e-12);
+        assert!(log.scan_ranges(0)[1] >= log.max_range_m());
+        // A negative no-echo value is a reading like any other.
+        let minus = SonarTextOptions {
+            no_echo: Some(-1.0),
+            ..options()
+        };
+        assert_eq!(read(&minus, "1 -1 2\n").unwrap().scan_ranges(0)[0], 5.0);
+        assert!(matches!(
+            read(&o, "1 -1 2\n"),
+            Err(CovmapError::Parse { .. })
+        ));
+        // Ranges and poses in units of their own.
+        let units = SonarTextOptions {
+            range_unit_m: 0.01,
+            ..options()
+        };
+        assert!((read(&units, "1 100 2\n").unwrap().scan_ranges(0)[0] - 1.0).abs() < 1e-12);
+        for bad in [
+            SonarTextOptions {
+                min_range_m: 5.0,
+                ..options()
+            },
+            SonarTextOptions {
+                min_range_m: -0.1,
+                ..options()
+            },
+            SonarTextOptions {
+                no_echo: Some(f64::NAN),
+                ..options()
+            },
+            SonarTextOptions {
+                range_unit_m: 0.0,
+                ..options()
+            },
+        ] {
+            assert!(
+                matches!(
+                    read(&bad, "1 1 1\n"),
+                    Err(CovmapError::InvalidParameter { .. })
+                ),
+                "{bad:?}"
+            );
+        }
     }
 
     #[test]
