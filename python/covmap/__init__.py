@@ -37,6 +37,7 @@ from covmap._errors import *  # noqa: F403 (the error classes, listed in _errors
 from covmap._custom import CustomStrategy, StrategyView
 from covmap._exploration import ExplorationErrors, ExplorationResult, Step, Timing
 from covmap._executors import dask_client
+from covmap._record import record
 from covmap._sweep import RunSummary, SweepFailure, sweep
 from covmap._native import (
     DEFAULT_BINS,
@@ -118,6 +119,7 @@ __all__ = [
     "fit_sensor_model",
     "log_likelihood",
     "plot",
+    "record",
     "run_fig3",
     "run_learn",
     "sweep",

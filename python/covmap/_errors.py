@@ -33,6 +33,7 @@ __all__ = [
     "InvalidExecutorError",
     "InvalidRangeError",
     "InvalidSpecError",
+    "InvalidActionError",
     "InvalidGoalError",
     "InvalidStartError",
     "InvalidTypeError",
@@ -191,6 +192,13 @@ class InvalidGoalError(CovmapError, ValueError):
     a custom strategy's answer) that the robot cannot go to: not finite,
     off the map, or not reachable on the map it has built; the message gives
     the goal and the reason. The run is as it was."""
+
+
+class InvalidActionError(CovmapError, ValueError):
+    """An action the exploration environment (:mod:`covmap.gym`) cannot
+    take: out of the action space, masked (a lattice goal the robot cannot
+    reach on its map), or given outside an episode. The episode is as it
+    was."""
 
 
 class RobotError(CovmapError, RuntimeError):

@@ -413,15 +413,16 @@ class CoverageMap:
         a copy, which takes as much memory again). Runs with the GIL
         released.
         """
-    def save(self, path: str | PathLike[str]) -> None:
+    def save(self, path: str | PathLike[str], *, compress: bool = True) -> None:
         """Save the whole posterior (grid, bins, histograms, the entropy history
         if kept) to ``path``: a versioned ``.npz`` archive that
         ``numpy.load`` opens without covmap (``covmap_version``, ``grid`` =
         origin x, origin y, resolution, ``histograms`` (rows, cols, bins),
         ``history_entropies`` and ``history_counts``), each entry with a
-        CRC-32. Written atomically: a reader never sees half a file, and a
-        failed write leaves ``path`` as it was (``FileIOError``). Runs with
-        the GIL released.
+        CRC-32; deflated (``compress``, as ``numpy.savez_compressed``
+        writes) or stored as they are. Written atomically: a reader never
+        sees half a file, and a failed write leaves ``path`` as it was
+        (``FileIOError``). Runs with the GIL released.
         """
     def ros_occupancy(
         self, *, source: Literal["ml", "mean"] = "ml", unknown_within_nats: float = 0.05
@@ -1725,6 +1726,12 @@ class Exploration:
         was. Without it, a custom strategy's ``choose`` is asked (it may
         end the run: ``None``).
         """
+    def begin(self) -> bool:
+        """The first scans where the robot stands, if it has taken none (GIL
+        released): what a step takes first, so that the maps, ``region()``
+        and ``viewpoints()`` show the start before any step. Returns whether
+        the run may take a step (``False`` once it is over; a limit reached
+        ends it)."""
     def run(self) -> ExplorationResult:
         """Step to the end of the run; returns ``result()``."""
     def finish(self) -> Literal["certain", "stagnated", "no_goal", "limit"]:
@@ -1736,6 +1743,11 @@ class Exploration:
         """The region the robot can reach on its coverage map now: bool ``(rows,
         cols)``, the cells the paper's rule is checked on.
         """
+    def reachable(self) -> npt.NDArray[np.bool_]:
+        """The cells the robot can reach on its coverage map now, where a
+        step's goal may lie (``step(goal=...)`` accepts a goal in one):
+        bool ``(rows, cols)``. ``region()`` holds more: the cells a scan from
+        them reaches."""
     def rule(self) -> Literal["certain", "stagnated"] | None:
         """Whether the paper's rule holds now on ``region()``: ``"certain"``
         (every cell below ``epsilon``), ``"stagnated"`` (every cell certain or

@@ -170,6 +170,7 @@ def test_readme_command_table_lists_every_option() -> None:
         "map",
         "sweep",
         "table1",
+        "view",
         "world",
     ]
     for command, row in rows.items():

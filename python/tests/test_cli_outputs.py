@@ -14,6 +14,7 @@ from typing import Callable
 
 import pytest
 
+import covmap
 import covmap.cli
 from test_cli_map import square_room_log
 
@@ -24,7 +25,9 @@ def _inputs(tmp: Path) -> dict[str, Path]:
     square_room_log(log)
     specs = tmp / "study.json"
     specs.write_text('[{"world": "partial", "strategy": "frontier", "resolution": 0.1, "max_steps": 1}]')
-    return {"log": log, "specs": specs}
+    saved = tmp / "saved.npz"
+    covmap.CoverageMap(covmap.Grid(origin=(0.0, 0.0), resolution=0.1, shape=(10, 12))).save(saved)
+    return {"log": log, "specs": specs, "map": saved}
 
 
 #: Each command with settings that keep it short: its arguments, given the
@@ -42,6 +45,7 @@ COMMANDS: dict[str, Callable[[dict[str, Path], Path], list[str]]] = {
     "benchmark": lambda i, out: ["benchmark", "--buildings", "partial", "--strategies", "frontier", "--resolution", "0.1", "--max-steps", "1", "--out", str(out)],
     "sweep": lambda i, out: ["sweep", str(i["specs"]), "--out", str(out / "results.csv")],
     "map": lambda i, out: ["map", str(i["log"]), "--resolution", "0.1", "--max-range", "20", "--out", str(out)],
+    "view": lambda i, out: ["view", str(i["map"]), "--out", str(out)],
 }
 
 
@@ -95,7 +99,7 @@ def test_a_command_refuses_a_target_that_is_no_regular_file_before_it_writes(
         assert not others, f"{command} wrote {others} although {path.name} was refused"
 
 
-@pytest.mark.parametrize("command", ["fig2", "world", "sweep", "map", "gain", "explore", "benchmark"])
+@pytest.mark.parametrize("command", ["fig2", "world", "sweep", "map", "gain", "explore", "benchmark", "view"])
 def test_the_outputs_are_the_files_a_command_writes(
     tmp_path: Path, capsys: pytest.CaptureFixture[str], command: str
 ) -> None:

@@ -120,7 +120,7 @@ def test_wrong_argument_types_are_type_errors(grid: covmap.Grid, model: Any) -> 
 
 def test_every_error_class_derives_from_covmap_error() -> None:
     classes = [getattr(covmap, name) for name in covmap.__all__ if name.endswith("Error")]
-    assert len(classes) == 31
+    assert len(classes) == 32
     for cls in classes:
         assert issubclass(cls, covmap.CovmapError)
         # RobotError is no bad input: a robot's sensor or drive failed during a
@@ -137,6 +137,7 @@ def test_every_error_class_derives_from_covmap_error() -> None:
     assert issubclass(covmap.RobotError, RuntimeError) and not issubclass(covmap.RobotError, ValueError)
     assert issubclass(covmap.MainGuardError, RuntimeError) and issubclass(covmap.MapBusyError, RuntimeError)
     assert issubclass(covmap.InvalidStartError, ValueError) and issubclass(covmap.InvalidGoalError, ValueError)
+    assert issubclass(covmap.InvalidActionError, ValueError)
     assert issubclass(covmap.IntegerOverflowError, OverflowError) and issubclass(covmap.IntegerOverflowError, ValueError)
     assert issubclass(covmap.OutOfMemoryError, MemoryError)
     assert issubclass(covmap.CellOutOfBoundsError, IndexError)

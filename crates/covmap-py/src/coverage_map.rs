@@ -233,12 +233,16 @@ impl PyCoverageMap {
     /// ``numpy.load`` opens without covmap (``covmap_version``, ``grid`` =
     /// origin x, origin y, resolution, ``histograms`` (rows, cols, bins),
     /// ``history_entropies`` and ``history_counts``), each entry with a
-    /// CRC-32. Written atomically: a reader never sees half a file, and a
-    /// failed write leaves ``path`` as it was (``FileIOError``). Runs with
-    /// the GIL released.
-    fn save(&self, py: Python<'_>, path: std::path::PathBuf) -> PyResult<()> {
+    /// CRC-32; deflated (``compress``, as ``numpy.savez_compressed``
+    /// writes) or stored as they are. Written atomically: a reader never
+    /// sees half a file, and a failed write leaves ``path`` as it was
+    /// (``FileIOError``). Runs with the GIL released.
+    #[pyo3(signature = (path, *, compress=true), text_signature = "($self, path, *, compress=True)")]
+    fn save(&self, py: Python<'_>, path: std::path::PathBuf, compress: bool) -> PyResult<()> {
         let map = &self.0;
-        let bytes = py.detach(|| map.to_file_bytes()).or_raise(py)?;
+        let bytes = py
+            .detach(|| map.to_file_bytes_with(compress))
+            .or_raise(py)?;
         py.detach(|| covmap::sim::write_atomic(&path, &bytes))
             .or_raise(py)
     }

@@ -366,6 +366,16 @@ run_keywords! { exploration_methods! { methods {
         report.map(|r| step_object(py, &r)).transpose()
     }
 
+    /// The first scans where the robot stands, if it has taken none (GIL
+    /// released): what a step takes first, so that the maps, ``region()``
+    /// and ``viewpoints()`` show the start before any step. Returns whether
+    /// the run may take a step (``False`` once it is over; a limit reached
+    /// ends it).
+    fn begin(&mut self, py: Python<'_>) -> PyResult<bool> {
+        let run = &mut self.run;
+        py.detach(|| run.begin()).or_raise(py)
+    }
+
     /// Step to the end of the run; returns ``result()``.
     fn run<'py>(slf: &Bound<'py, Self>) -> PyResult<Bound<'py, PyAny>> {
         let py = slf.py();
@@ -391,6 +401,17 @@ run_keywords! { exploration_methods! { methods {
     fn region<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray2<bool>>> {
         let region = self.run.exploration().region().or_raise(py)?;
         cell_array(py, self.grid_ref(), region)
+    }
+
+    /// The cells the robot can reach on its coverage map now, where a
+    /// step's goal may lie (``step(goal=...)`` accepts a goal in one):
+    /// bool ``(rows, cols)``. ``region()`` holds more: the cells a scan from
+    /// them reaches.
+    fn reachable<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray2<bool>>> {
+        let run = self.run.exploration();
+        let paths = py.detach(|| run.paths()).or_raise(py)?;
+        let cells = self.grid_ref().len();
+        cell_array(py, self.grid_ref(), (0..cells).map(|i| paths.reachable(i)).collect())
     }
 
     /// Whether the paper's rule holds now on ``region()``: ``"certain"``

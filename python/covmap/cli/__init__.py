@@ -16,12 +16,12 @@ from typing import TYPE_CHECKING
 
 from covmap._errors import CovmapError
 from covmap._native import __version__
-from covmap.cli import _options, benchmark, explore, fig1, fig2, fig3, fig7, gain, learn, map, sweep, table1, world
+from covmap.cli import _options, benchmark, explore, fig1, fig2, fig3, fig7, gain, learn, map, sweep, table1, view, world
 
 if TYPE_CHECKING:
     from collections.abc import Sequence
 
-COMMANDS = (fig1, fig2, world, fig3, learn, gain, explore, table1, fig7, benchmark, sweep, map)
+COMMANDS = (fig1, fig2, world, fig3, learn, gain, explore, table1, fig7, benchmark, sweep, map, view)
 """The command modules, in the order ``covmap --help`` lists them."""
 
 

@@ -92,6 +92,13 @@ def add_arguments(command: argparse.ArgumentParser) -> None:
         help="entropy below which a cell is certain, nats, more than 0 (default 0.65)",
     )
     _options.add_out(command, NAME)
+    command.add_argument(
+        "--record",
+        type=Path,
+        metavar="FILE.rrd",
+        help="also write a recording for the Rerun viewer: every step's maps, robot, beams, goal and the "
+        "candidates' gains (needs covmap[rerun]; open it with: rerun FILE.rrd)",
+    )
     _options.add_run_limits(command)
     command.add_argument(
         "--frames",
@@ -126,7 +133,7 @@ def outputs(args: argparse.Namespace) -> list[Path]:
     from covmap.plot.exploration import exploration_paths
 
     stem = f"{file_name(args.world)}-{args.strategy}"
-    return saved_paths(args.out, stem) + exploration_paths(args.out, stem)
+    return saved_paths(args.out, stem) + exploration_paths(args.out, stem) + ([args.record] if args.record else [])
 
 
 def run(args: argparse.Namespace) -> int:
@@ -140,10 +147,18 @@ def run(args: argparse.Namespace) -> int:
     building = _options.world_building(args)
     sensor = SonarRing() if args.sensor == "sonar" else Laser.sick_361()
     name = file_name(building.name)
+    recorder = None
+    if args.record is not None:
+        from covmap._record import Recorder, exploration_frame
 
     with Progress(None, "step") as progress:
 
         def show(run_: Exploration, step: Step) -> None:
+            nonlocal recorder
+            if args.record is not None:
+                if recorder is None:
+                    recorder = Recorder(args.record, run_.map.grid, building.world)
+                exploration_frame(recorder, run_, step, sensor, building.world)
             progress.update(
                 f"{run_.path_length_m:.1f} m, {run_.scans} scans, "
                 f"{100.0 * run_.uncertain_fraction:.1f} % uncertain"
@@ -162,6 +177,8 @@ def run(args: argparse.Namespace) -> int:
             epsilon=args.epsilon,
             **_options.run_limits(args),
         )
+    if recorder is not None:
+        recorder.close()
     print(exploration.summary(result, building=building))
     stem = f"{name}-{result.result.strategy.name}"
     for path in exploration.save(result, args.out, stem):

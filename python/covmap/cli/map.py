@@ -13,6 +13,10 @@ from covmap._progress import Progress
 if TYPE_CHECKING:
     from covmap.experiments import mapping
 
+RECORDED_SCANS = 2000
+"""About the most scans a ``--record`` recording draws (every k-th of a
+longer log)."""
+
 NAME = "map"
 """The command's name: ``covmap map``."""
 
@@ -129,6 +133,13 @@ def add_arguments(command: argparse.ArgumentParser) -> None:
         help="the log's maximum range, metres (a sonar-text log's, required; else overrides the log's)",
     )
     _options.add_out(command, NAME)
+    command.add_argument(
+        "--record",
+        type=Path,
+        metavar="FILE.rrd",
+        help="also write a recording for the Rerun viewer: the robot's path and every scan's beams over the "
+        "scans, the maps' layers at the end (needs covmap[rerun]; open it with: rerun FILE.rrd)",
+    )
 
 
 def default_format(args: argparse.Namespace) -> mapping.Format:
@@ -144,7 +155,7 @@ def outputs(args: argparse.Namespace) -> list[Path]:
     """The files the command writes: the posterior, both map_server pairs
     (YAML, then its PGM) and the pictures."""
     names = ("coverage.npz", "map.yaml", "map.pgm", "occupancy.yaml", "occupancy.pgm", "maps.png")
-    return [args.out / name for name in names]
+    return [args.out / name for name in names] + ([args.record] if args.record is not None else [])
 
 
 def run(args: argparse.Namespace) -> int:
@@ -152,6 +163,10 @@ def run(args: argparse.Namespace) -> int:
     from covmap.experiments import mapping
     from covmap.plot import plot_mapping
 
+    if args.record is not None:
+        from covmap._record import _rerun
+
+        _rerun()  # the extra is there, before anything runs
     log_format = args.format or default_format(args)
     log = mapping.read_log(
         args.log,
@@ -196,11 +211,16 @@ def run(args: argparse.Namespace) -> int:
     print(f"log {args.log} ({log_format})")
     print(mapping.summary(result))
     print(f"agreement    {mapping.agreement(result):.3f} of the cells both maps know")
-    coverage, map_yaml, _, occupancy_yaml, _, maps = outputs(args)
+    coverage, map_yaml, _, occupancy_yaml, _, maps = outputs(args)[:6]
     result.coverage.save(coverage)
     result.coverage.to_ros_map(map_yaml)
     result.occupancy.to_ros_map(occupancy_yaml)
     plot_mapping(result, maps)
+    if args.record is not None:
+        from covmap._record import record_log
+
+        # At most about 2000 scans drawn: a long log's recording stays small.
+        record_log(args.record, log, result.coverage, every=max(1, len(log) // RECORDED_SCANS))
     for path in outputs(args):
         print(f"wrote {path}")
     return 0

@@ -13,6 +13,7 @@ from covmap.plot.figures import _figure_file
 if TYPE_CHECKING:
     from pathlib import Path
 
+    from covmap._native import CoverageMap
     from covmap.experiments.mapping import MappingRun
 
 
@@ -34,4 +35,24 @@ def plot_mapping(run: MappingRun, path: Path) -> list[Path]:
         for ax, (values, seen, title, vmin, vmax) in zip(axes.flat, panels):
             plot_map(values, grid, ax, observed=seen, title=title, vmin=vmin, vmax=vmax, colorbar=True)
             plot_trajectory(run.log.poses, ax)
+    return [path]
+
+
+def plot_posterior(cmap: CoverageMap, path: Path) -> list[Path]:
+    """Draw a coverage map's ML coverage, mean and entropy side by side
+    (as :func:`plot_mapping` draws them) into ``path`` (PNG); returns the
+    files written."""
+    grid = cmap.grid
+    observed = cmap.observed()
+    panels = (
+        (cmap.ml(), observed, "maximum likelihood", 0.0, 1.0),
+        (cmap.mean(), observed, "mean", 0.0, 1.0),
+        (cmap.entropy(), None, "entropy [nats]", 0.0, math.log(cmap.bins)),
+    )
+    rows, cols = grid.shape
+    width = 6.0
+    height = max(2.5, width * rows / max(cols, 1))
+    with _figure_file(path, 1, 3, figsize=(3 * width, height)) as (_, axes):
+        for ax, (values, seen, title, vmin, vmax) in zip(axes.flat, panels):
+            plot_map(values, grid, ax, observed=seen, title=title, vmin=vmin, vmax=vmax, colorbar=True)
     return [path]

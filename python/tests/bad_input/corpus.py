@@ -336,6 +336,18 @@ WRITTEN: list[Case] = [
     Case("step to a goal off the map", "covmap.Exploration(small, strategy, resolution=0.1).step(goal=(1e9, 0.0, 0.0))", "InvalidGoalError", "ValueError", "outside the map"),
     Case("step to an infinite goal", "covmap.Exploration(small, strategy, resolution=0.1).step(goal=(math.inf, 0.0, 0.0))", "CovmapError"),
     Case("benchmark of a strategy of no kind", "covmap.experiments.benchmark.run([building], strategies=[3], progress=False)", "InvalidParameterError", "ValueError", "int"),
+    # Recordings for the Rerun viewer: a path that cannot be written, refused before the run.
+    Case("recording to a directory", "covmap.record(tmp, small, strategy, resolution=0.1, max_steps=1)", "FileIOError", "OSError", needs="rerun"),
+    Case("recording into a missing folder", "covmap.record(os.path.join(tmp, 'no', 'r.rrd'), small, strategy, resolution=0.1, max_steps=1)", "FileIOError", "OSError", "no directory", needs="rerun"),
+    Case("recording to a fifo", "p = os.path.join(tmp, 'r.rrd')\nos.mkfifo(p)\ncovmap.record(p, small, strategy, resolution=0.1, max_steps=1)", "FileIOError", "OSError", alone=True, needs="rerun"),
+    Case("recording of a bad option", "covmap.record(os.path.join(tmp, 'r.rrd'), small, strategy, resolution=-1.0)", "InvalidParameterError", "ValueError", "resolution", needs="rerun"),
+    # The Gymnasium environment: bad options and actions, typed errors, the episode as it was.
+    Case("gym environment of a bad action kind", "import covmap.gym\ncovmap.gym.ExploreEnv(w, action='joystick')", "InvalidParameterError", "ValueError", "action", needs="gymnasium"),
+    Case("gym environment of a nan alpha", "import covmap.gym\ncovmap.gym.ExploreEnv(w, alpha=math.nan)", "InvalidParameterError", "ValueError", "alpha", needs="gymnasium"),
+    Case("gym action out of range", "import covmap.gym\ne = covmap.gym.ExploreEnv(w, size=8, resolution=0.1)\ne.reset(seed=0)\ne.step(10**30)", "InvalidActionError", "ValueError", "action", needs="gymnasium"),
+    Case("gym action of a str", "import covmap.gym\ne = covmap.gym.ExploreEnv(w, size=8, resolution=0.2)\ne.reset(seed=0)\ne.step('left')", "InvalidActionError", "ValueError", needs="gymnasium"),
+    Case("gym goal action of nan", "import covmap.gym\ne = covmap.gym.ExploreEnv(w, action='goal', size=8, resolution=0.2)\ne.reset(seed=0)\ne.step([math.nan, 0.5])", "InvalidActionError", "ValueError", needs="gymnasium"),
+    Case("gym step before reset", "import covmap.gym\ncovmap.gym.ExploreEnv(w, size=8, resolution=0.2).step(0)", "InvalidActionError", "ValueError", "reset", needs="gymnasium"),
     Case("benchmark of too many runs", "covmap.experiments.benchmark.run([building] * 10**4, seeds=range(10**4), progress=False)", "InvalidValueError", "ValueError", "runs"),
 ]
 

@@ -1,8 +1,15 @@
 //! numpy's `.npz` files as far as the map file needs them: a zip archive of
-//! stored (uncompressed) entries, each a little-endian, C-ordered `.npy`
-//! array. The reader takes any archive numpy writes with `np.savez` and
-//! refuses, with a reason, whatever it cannot check: compressed entries,
-//! zip64, a CRC-32 that does not match, lengths that run past the end.
+//! entries stored or deflated, each a little-endian, C-ordered `.npy`
+//! array. The reader takes any archive numpy writes with `np.savez` or
+//! `np.savez_compressed` and refuses, with a reason, whatever it cannot
+//! check: other compression methods, zip64, a CRC-32 that does not match,
+//! lengths that run past the end.
+//!
+//! A deflated entry is inflated only up to the size its headers declare,
+//! and no entry may declare more than [`MAX_INFLATION`] times its
+//! compressed bytes (deflate itself reaches about 1032 at most), nor the
+//! entries together more than [`MAX_MAP_FILE_BYTES`]: the work of a read
+//! stays bounded by the file's size.
 //!
 //! Its work is bounded by the file's size: every entry's name and headers
 //! are checked first (the names among those the caller knows, no name
@@ -113,12 +120,30 @@ fn shape_after(header: &str) -> Option<Vec<usize>> {
 /// (its offsets and sizes are 32-bit).
 pub const MAX_MAP_FILE_BYTES: u64 = u32::MAX as u64;
 
+/// The most bytes a deflated entry may declare for each of its compressed
+/// bytes: deflate's own limit (about 1032) with room to spare.
+pub const MAX_INFLATION: u64 = 1100;
+
+/// zip's compression methods that covmap reads: stored and deflated.
+const STORED: u16 = 0;
+const DEFLATED: u16 = 8;
+
 /// A zip archive of `entries`, each stored as it is.
+///
+/// # Errors
+/// As [`zip_with`].
+#[cfg(test)]
+pub(crate) fn zip(entries: &[(&str, Vec<u8>)]) -> Result<Vec<u8>, String> {
+    zip_with(entries, false)
+}
+
+/// A zip archive of `entries`, each deflated (`deflate`) or stored as it
+/// is.
 ///
 /// # Errors
 /// If an entry or the archive would pass [`MAX_MAP_FILE_BYTES`] (zip64 is
 /// not written).
-pub(crate) fn zip(entries: &[(&str, Vec<u8>)]) -> Result<Vec<u8>, String> {
+pub(crate) fn zip_with(entries: &[(&str, Vec<u8>)], deflate: bool) -> Result<Vec<u8>, String> {
     let too_big = || "the archive would pass 4 GiB, more than a zip file without zip64 holds";
     let mut out = Vec::new();
     let mut central = Vec::new();
@@ -126,15 +151,21 @@ pub(crate) fn zip(entries: &[(&str, Vec<u8>)]) -> Result<Vec<u8>, String> {
         let offset = u32::try_from(out.len()).map_err(|_| too_big())?;
         let size = u32::try_from(data.len()).map_err(|_| too_big())?;
         let crc = crc32fast::hash(data);
+        let (method, packed) = if deflate {
+            (DEFLATED, std::borrow::Cow::Owned(deflated(data)?))
+        } else {
+            (STORED, std::borrow::Cow::Borrowed(&data[..]))
+        };
+        let packed_size = u32::try_from(packed.len()).map_err(|_| too_big())?;
         let head = |sig: u32, out: &mut Vec<u8>, central_entry: bool| {
             out.extend_from_slice(&sig.to_le_bytes());
             if central_entry {
                 out.extend_from_slice(&20u16.to_le_bytes()); // made by
             }
-            for v in [20u16, 0, 0, 0, DOS_DATE] {
+            for v in [20u16, 0, method, 0, DOS_DATE] {
                 out.extend_from_slice(&v.to_le_bytes());
             }
-            for v in [crc, size, size] {
+            for v in [crc, packed_size, size] {
                 out.extend_from_slice(&v.to_le_bytes());
             }
             out.extend_from_slice(&(name.len() as u16).to_le_bytes());
@@ -142,7 +173,7 @@ pub(crate) fn zip(entries: &[(&str, Vec<u8>)]) -> Result<Vec<u8>, String> {
         };
         head(LOCAL, &mut out, false);
         out.extend_from_slice(name.as_bytes());
-        out.extend_from_slice(data);
+        out.extend_from_slice(&packed);
         head(CENTRAL, &mut central, true);
         for v in [0u16, 0, 0] {
             central.extend_from_slice(&v.to_le_bytes()); // comment, disk, internal
@@ -168,6 +199,38 @@ pub(crate) fn zip(entries: &[(&str, Vec<u8>)]) -> Result<Vec<u8>, String> {
     Ok(out)
 }
 
+/// `data` deflated (raw deflate, as zip holds it), at zlib's default level.
+fn deflated(data: &[u8]) -> Result<Vec<u8>, String> {
+    use std::io::Write as _;
+    let mut encoder = flate2::write::DeflateEncoder::new(
+        Vec::with_capacity(data.len() / 4),
+        flate2::Compression::default(),
+    );
+    encoder
+        .write_all(data)
+        .and_then(|()| encoder.finish())
+        .map_err(|e| format!("deflating an entry failed: {e}"))
+}
+
+/// A deflated entry's bytes inflated, exactly `size` of them, else why
+/// not; never more than `size` bytes are produced.
+fn inflated(packed: &[u8], size: usize, name: &str) -> Result<Vec<u8>, String> {
+    use std::io::Read as _;
+    let mut out = Vec::with_capacity(size.min(packed.len().saturating_mul(8)));
+    let mut decoder = flate2::read::DeflateDecoder::new(packed).take(size as u64 + 1);
+    decoder
+        .read_to_end(&mut out)
+        .map_err(|e| format!("entry {name}: its deflated bytes do not inflate ({e})"))?;
+    if out.len() != size {
+        return Err(format!(
+            "entry {name}: inflates to {}{} bytes where its headers say {size}",
+            out.len().min(size),
+            if out.len() > size { " or more" } else { "" }
+        ));
+    }
+    Ok(out)
+}
+
 /// The `N` bytes of `b` from `at`, if it holds them.
 fn le_bytes<const N: usize>(b: &[u8], at: usize) -> Option<[u8; N]> {
     b.get(at..at.checked_add(N)?)?.try_into().ok()
@@ -185,21 +248,29 @@ fn u32_at(b: &[u8], at: usize) -> Result<u32, String> {
         .ok_or_else(|| format!("the archive ends at byte {} inside a record", b.len()))
 }
 
+/// An archive's entries, each by name: stored data borrowed from the
+/// archive, deflated data inflated.
+pub(crate) type Entries<'a> = Vec<(String, std::borrow::Cow<'a, [u8]>)>;
+
 /// One entry of a zip archive's central directory, its headers checked.
 struct Entry {
     name: String,
     crc: u32,
     /// Where its local header starts.
     local: usize,
-    /// Its data.
+    /// Its data as the archive holds it.
     data: std::ops::Range<usize>,
+    /// Whether the data is deflated.
+    deflated: bool,
+    /// The size of its data once inflated.
+    size: usize,
 }
 
 /// The entries of a zip archive, in the order of its central directory,
 /// each named in `known` (at most once) and checked against its CRC-32.
 /// Names and headers are checked for every entry before any CRC is
 /// computed, and entries whose bytes overlap are refused.
-pub(crate) fn unzip<'a>(b: &'a [u8], known: &[&str]) -> Result<Vec<(String, &'a [u8])>, String> {
+pub(crate) fn unzip<'a>(b: &'a [u8], known: &[&str]) -> Result<Entries<'a>, String> {
     if b.is_empty() {
         return Err("the file is empty".into());
     }
@@ -222,6 +293,7 @@ pub(crate) fn unzip<'a>(b: &'a [u8], known: &[&str]) -> Result<Vec<(String, &'a 
         ));
     }
     let mut entries: Vec<Entry> = Vec::with_capacity(count);
+    let mut declared = 0u64;
     let mut at = cd_offset;
     for _ in 0..count {
         if u32_at(b, at)? != CENTRAL {
@@ -245,10 +317,29 @@ pub(crate) fn unzip<'a>(b: &'a [u8], known: &[&str]) -> Result<Vec<(String, &'a 
         if entries.iter().any(|e| e.name == name) {
             return Err(format!("entry {name} appears twice"));
         }
-        if method != 0 || csize != usize_ {
-            return Err(format!(
-                "entry {name} is compressed (covmap writes stored entries)"
-            ));
+        match method {
+            STORED if csize == usize_ => {}
+            STORED => return Err(format!("entry {name} is stored, but its sizes differ")),
+            DEFLATED => {
+                if u64::from(usize_) > MAX_INFLATION * u64::from(csize) + 1024 {
+                    return Err(format!(
+                        "entry {name} declares {usize_} bytes from {csize} deflated ones, more than \
+                         deflate gives"
+                    ));
+                }
+                declared += u64::from(usize_);
+                if declared > MAX_MAP_FILE_BYTES {
+                    return Err(format!(
+                        "the entries declare more than {MAX_MAP_FILE_BYTES} bytes in all"
+                    ));
+                }
+            }
+            _ => {
+                return Err(format!(
+                    "entry {name} is compressed by method {method} (covmap reads stored and \
+                     deflated entries)"
+                ));
+            }
         }
         if u32_at(b, local)? != LOCAL {
             return Err(format!("entry {name}: no local header at byte {local}"));
@@ -270,6 +361,8 @@ pub(crate) fn unzip<'a>(b: &'a [u8], known: &[&str]) -> Result<Vec<(String, &'a 
             crc,
             local,
             data,
+            deflated: method == DEFLATED,
+            size: usize_ as usize,
         });
         at += 46 + name_len + skip;
     }
@@ -291,10 +384,15 @@ pub(crate) fn unzip<'a>(b: &'a [u8], known: &[&str]) -> Result<Vec<(String, &'a 
     }
     let mut checked = Vec::with_capacity(entries.len());
     for e in entries {
-        let data = b
+        let held = b
             .get(e.data)
             .ok_or_else(|| format!("entry {} runs past the end", e.name))?;
-        if crc32fast::hash(data) != e.crc {
+        let data = if e.deflated {
+            std::borrow::Cow::Owned(inflated(held, e.size, &e.name)?)
+        } else {
+            std::borrow::Cow::Borrowed(held)
+        };
+        if crc32fast::hash(&data) != e.crc {
             return Err(format!(
                 "entry {}: CRC-32 mismatch, the bytes changed",
                 e.name
@@ -322,12 +420,12 @@ mod tests {
         let archive = zip(&entries).unwrap();
         let back = unzip(&archive, &["a.npy", "b.npy"]).unwrap();
         assert_eq!(back.len(), 2);
-        let a = parse_npy(back[0].1).unwrap();
+        let a = parse_npy(&back[0].1).unwrap();
         assert_eq!(
             (a.descr.as_str(), &a.shape[..], a.data),
             ("<f4", &[3][..], &values[..])
         );
-        assert_eq!(parse_npy(back[1].1).unwrap().shape, vec![1, 1]);
+        assert_eq!(parse_npy(&back[1].1).unwrap().shape, vec![1, 1]);
         assert_eq!(
             entries[0].1.len() % 64,
             values.len() % 64,
@@ -343,7 +441,7 @@ mod tests {
             let mut bad = archive.clone();
             bad[i] ^= 0x10;
             let ok =
-                unzip(&bad, &["x.npy"]).and_then(|e| parse_npy(e[0].1).map(|a| a.data.to_vec()));
+                unzip(&bad, &["x.npy"]).and_then(|e| parse_npy(&e[0].1).map(|a| a.data.to_vec()));
             // A flip may land where zip keeps nothing checked (the version a
             // tool needs, a date): the data then still read intact.
             if let Ok(read) = ok {
@@ -353,6 +451,49 @@ mod tests {
         for cut in 0..archive.len() {
             assert!(unzip(&archive[..cut], &["x.npy"]).is_err(), "cut at {cut}");
         }
+    }
+
+    #[test]
+    fn deflated_archives_round_trip_and_every_flip_and_cut_is_refused() {
+        let data: Vec<u8> = (0..4000u32).flat_map(|v| (v % 7).to_le_bytes()).collect();
+        let entries = vec![("x.npy", npy("<u4", &[1000], &data))];
+        let archive = zip_with(&entries, true).unwrap();
+        assert!(archive.len() < data.len() / 4, "{} bytes", archive.len());
+        let back = unzip(&archive, &["x.npy"]).unwrap();
+        assert_eq!(&back[0].1[..], &entries[0].1[..]);
+        for i in 0..archive.len() {
+            let mut bad = archive.clone();
+            bad[i] ^= 0x10;
+            if let Ok(read) = unzip(&bad, &["x.npy"]) {
+                assert_eq!(
+                    &read[0].1[..],
+                    &entries[0].1[..],
+                    "byte {i} flipped, wrong data read"
+                );
+            }
+        }
+        for cut in 0..archive.len() {
+            assert!(unzip(&archive[..cut], &["x.npy"]).is_err(), "cut at {cut}");
+        }
+    }
+
+    #[test]
+    fn a_deflated_entry_that_claims_more_than_deflate_gives_is_refused_unread() {
+        let archive = zip_with(&[("x.npy", vec![0u8; 1 << 20])], true).unwrap();
+        let (packed, size) = (u32_at(&archive, 18).unwrap(), u32_at(&archive, 22).unwrap());
+        assert!(u64::from(size) <= MAX_INFLATION * u64::from(packed));
+        // The central directory's sizes claimed 4000 times the bytes held.
+        let mut bomb = archive.clone();
+        let central = archive.len() - 22 - (46 + 5);
+        bomb[central + 24..central + 28].copy_from_slice(&(packed * 4000).to_le_bytes());
+        let error = unzip(&bomb, &["x.npy"]).unwrap_err();
+        assert!(error.contains("more than deflate gives"), "{error}");
+        // A size within the bound but not the real one: refused after at
+        // most that many bytes.
+        let mut short = archive.clone();
+        short[central + 24..central + 28].copy_from_slice(&(size / 2).to_le_bytes());
+        let error = unzip(&short, &["x.npy"]).unwrap_err();
+        assert!(error.contains("inflates to"), "{error}");
     }
 
     /// An archive of `entries` as `zip` writes it, but each local header

@@ -19,7 +19,8 @@ fn invalid(reason: impl Into<String>) -> CovmapError {
 
 impl CoverageMap {
     /// The whole posterior as a map file: a `.npz` archive (numpy's
-    /// `np.load` opens it) of stored `.npy` arrays:
+    /// `np.load` opens it) of deflated `.npy` arrays (as `np.savez_compressed`
+    /// writes them):
     ///
     /// | entry | dtype, shape | holds |
     /// | --- | --- | --- |
@@ -49,6 +50,16 @@ impl CoverageMap {
     /// assert!(CoverageMap::from_file_bytes(&flipped).is_err());
     /// ```
     pub fn to_file_bytes(&self) -> Result<Vec<u8>> {
+        self.to_file_bytes_with(true)
+    }
+
+    /// The map file of [`CoverageMap::to_file_bytes`], its entries deflated
+    /// (`compress`) or stored as they are (larger, quicker to write and
+    /// read).
+    ///
+    /// # Errors
+    /// As [`CoverageMap::to_file_bytes`].
+    pub fn to_file_bytes_with(&self, compress: bool) -> Result<Vec<u8>> {
         let g = self.grid();
         let (rows, cols, bins) = (g.rows(), g.cols(), self.bins());
         let [ox, oy] = g.origin_m();
@@ -89,7 +100,7 @@ impl CoverageMap {
                 npz::npy("<u4", &[rows, cols], &bytes_of(&h.count, u32::to_le_bytes)),
             ));
         }
-        npz::zip(&entries).map_err(invalid)
+        npz::zip_with(&entries, compress).map_err(invalid)
     }
 
     /// The map a map file holds ([`CoverageMap::to_file_bytes`]), bit for
