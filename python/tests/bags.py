@@ -5,13 +5,13 @@
 from __future__ import annotations
 
 import math
-import os
 from pathlib import Path
 from types import TracebackType
 from typing import Any
 
 import numpy as np
-import pytest
+
+from extras import need_extra
 
 FORMATS = ("ros1", "ros2")
 """The bag formats every test writes."""
@@ -20,12 +20,7 @@ FORMATS = ("ros1", "ros2")
 def need_rosbags() -> None:
     """Skip with a message when rosbags is missing (a failure under
     ``CI=true``: CI installs the extra)."""
-    try:
-        import rosbags  # noqa: F401
-    except ImportError:
-        if os.environ.get("CI") == "true":
-            pytest.fail("rosbags is not installed (CI=true: CI installs covmap[rosbags])")
-        pytest.skip("rosbags is not installed: pip install 'covmap[rosbags]' to run the bag tests")
+    need_extra("rosbags", "rosbags", "the bag tests")
 
 
 def ns(t_s: float) -> int:

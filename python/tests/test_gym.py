@@ -6,27 +6,17 @@ as it was."""
 
 from __future__ import annotations
 
-import os
 from typing import Any
 
 import numpy as np
 import pytest
 
 import covmap
+from extras import need_extra
 from test_exploration import room
 
 
-def _need_gymnasium() -> Any:
-    try:
-        import gymnasium
-    except ImportError:
-        if os.environ.get("CI") == "true":
-            pytest.fail("gymnasium is not installed (CI=true: CI installs covmap[gym])")
-        pytest.skip("gymnasium is not installed: pip install 'covmap[gym]' to run the environment's tests")
-    return gymnasium
-
-
-gymnasium = _need_gymnasium()
+gymnasium = need_extra("gymnasium", "gym", "the environment's tests")
 cgym = pytest.importorskip("covmap.gym")
 
 #: A small world and short episodes: the environment's machinery, not its figures.

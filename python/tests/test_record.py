@@ -13,20 +13,11 @@ import pytest
 
 import covmap
 from cli_helpers import run_cli
+from extras import need_extra
 from test_exploration import room
 
 
-def _need_rerun() -> Any:
-    try:
-        import rerun
-    except ImportError:
-        if os.environ.get("CI") == "true":
-            pytest.fail("rerun-sdk is not installed (CI=true: CI installs covmap[rerun])")
-        pytest.skip("rerun-sdk is not installed: pip install 'covmap[rerun]' to run the recording tests")
-    return rerun
-
-
-rr = _need_rerun()
+rr = need_extra("rerun", "rerun", "the recording tests")
 
 ROOM = room()
 

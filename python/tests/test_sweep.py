@@ -21,6 +21,7 @@ import pytest
 import covmap
 import covmap._sweep as sweep_module
 from cli_helpers import PNG_SIGNATURE, run_cli
+from extras import need_extra
 from test_exploration import room
 
 ORIGINAL_RUN = sweep_module._run_pickled
@@ -51,13 +52,7 @@ def local(specs: list[dict[str, Any]]) -> list[covmap.RunSummary]:
 def need_dask() -> Any:
     """``distributed``, or a skip with a message (a failure under ``CI=true``:
     CI installs the extra)."""
-    try:
-        import distributed
-    except ImportError:
-        if os.environ.get("CI") == "true":
-            pytest.fail("dask.distributed is not installed (CI=true: CI installs covmap[dask])")
-        pytest.skip("dask.distributed is not installed: pip install 'covmap[dask]' to run the Dask tests")
-    return distributed
+    return need_extra("distributed", "dask", "the Dask tests")
 
 
 def test_summaries_follow_the_specs_and_match_explore(

@@ -3,6 +3,10 @@
 //!
 //! What they return, `ExplorationResult` and `Step`, are dataclasses of the
 //! Python package (`covmap/_exploration.py`), built here from the run.
+//!
+//! Longer than most files (about 650 lines): `Exploration`'s methods must sit
+//! in one `#[pymethods]` block (pyo3 without its `multiple-pymethods`
+//! feature), and most of the file is their documentation, which Python shows.
 
 use std::sync::Arc;
 
