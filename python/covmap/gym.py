@@ -225,6 +225,7 @@ class ExploreEnv(gymnasium.Env[Observation, Any]):
         self._info: dict[str, Any] = {}
         self._entropy: float = 0.0
         self._observation: Observation | None = None
+        self._frame: tuple[float, float, float] | None = None
 
     # The episode.
 
@@ -250,6 +251,9 @@ class ExploreEnv(gymnasium.Env[Observation, Any]):
         else:
             world = self._building(int(draws[0]))
         self._run = covmap.Exploration(world, covmap.Strategy.coverage(self._alpha), seed=int(draws[1]), **self._options)
+        grid = self._run.map.grid
+        cells = -(-max(grid.rows, grid.cols) // self._size) * self._size
+        self._frame = (*grid.origin, cells * grid.resolution)
         self._steps = 0
         self._run.begin()
         self._observe()
@@ -338,12 +342,10 @@ class ExploreEnv(gymnasium.Env[Observation, Any]):
     # What the agent sees.
 
     def _square(self) -> tuple[float, float, float]:
-        """The observation's square: its origin and side, metres."""
-        assert self._run is not None
-        grid = self._run.map.grid
-        x0, y0 = grid.origin
-        cells = -(-max(grid.rows, grid.cols) // self._size) * self._size
-        return x0, y0, cells * grid.resolution
+        """The observation's square: its origin and side, metres (the map's
+        grid, which an episode keeps)."""
+        assert self._frame is not None
+        return self._frame
 
     def _lattice_goals(self) -> list[tuple[float, float, float]]:
         assert self._run is not None

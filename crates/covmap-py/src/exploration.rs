@@ -428,10 +428,12 @@ run_keywords! { exploration_methods! { methods {
     /// The candidate viewpoints the coverage strategy weighs now: a ``Plan``
     /// whose ``candidates`` hold every candidate's pose, expected gain
     /// (nats), path cost (metres) and eq. 14's utility for ``alpha``, and
-    /// whose ``pose`` is the planner's choice (GIL released).
+    /// whose ``pose`` is the planner's choice (GIL released). Planned as the
+    /// loop plans, the candidates' gains kept from call to call where the
+    /// map did not change under them: the plan a full computation gives.
     #[pyo3(signature = (alpha=Float(0.5)), text_signature = "($self, alpha=0.5)")]
-    fn viewpoints(&self, py: Python<'_>, alpha: Float) -> PyResult<PyPlan> {
-        let run = self.run.exploration();
+    fn viewpoints(&mut self, py: Python<'_>, alpha: Float) -> PyResult<PyPlan> {
+        let run = &mut self.run;
         py.detach(|| run.viewpoints(alpha.0)).map(PyPlan).or_raise(py)
     }
 

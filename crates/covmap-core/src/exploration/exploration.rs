@@ -41,6 +41,7 @@ use crate::error::{CovmapError, Result};
 use crate::grid::{Cell, Grid};
 use crate::histogram::DEFAULT_BINS;
 use crate::occupancy::{OccupancyGrid, OccupancyModel};
+use crate::planner::PlanningCache;
 use crate::pose::{Pose, check_bearings, check_pose};
 use crate::sensor::SensorModel;
 
@@ -132,6 +133,9 @@ pub struct Exploration<S, M> {
     /// The cells the robot's centre has driven through, row-major (the
     /// start's cell and every cell a straight leg crossed).
     pub(super) driven: Vec<bool>,
+    /// What [`Exploration::viewpoints`] keeps from call to call (the
+    /// candidates' gains where the map did not change under them).
+    pub(super) viewpoint_cache: PlanningCache,
 }
 
 impl<S: ScanSource, M: Motion> Exploration<S, M> {
@@ -232,6 +236,7 @@ impl<S: ScanSource, M: Motion> Exploration<S, M> {
             since_scan_m: 0.0,
             trace: Trace::default(),
             failed_goals: Vec::new(),
+            viewpoint_cache: PlanningCache::new(),
             contact_cells: Vec::new(),
             driven: (0..grid.len()).map(|i| i == start_cell).collect(),
         })

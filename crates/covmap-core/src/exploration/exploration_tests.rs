@@ -2,6 +2,7 @@
 
 use super::*;
 use crate::exploration::Travel;
+use crate::planner::{Planner, PlannerConfig};
 use crate::sensor::LaserModel;
 
 /// A room `[0, 4] x [0, 3]` m with a pane `[2.2, 2.6] x [0.9, 2.1]` the
@@ -216,4 +217,35 @@ fn a_goal_the_robot_cannot_go_to_leaves_the_run_as_it_was() {
     assert_eq!(run.rule().unwrap(), None);
     assert_eq!(run.finish().unwrap(), Termination::NoGoal);
     assert_eq!(run.step_to(Pose::new(1.5, 1.5, 0.0)).unwrap(), None);
+}
+
+/// The candidates a steered run weighs, kept from call to call, are a
+/// fresh plan's, bit for bit, after every step.
+#[test]
+fn viewpoints_kept_from_call_to_call_are_a_fresh_plan() {
+    let mut run = room_run(Strategy::Custom);
+    run.begin().unwrap();
+    for _ in 0..4 {
+        let kept = run.viewpoints(0.5).unwrap();
+        let fresh = Planner::new(PlannerConfig {
+            alpha: 0.5,
+            robot_radius_m: run.config.robot_radius_m,
+            candidate_stride_m: run.config.candidate_stride_m,
+            min_travel_m: run.config.min_travel_m,
+            epsilon: run.config.epsilon,
+            ..PlannerConfig::default()
+        })
+        .unwrap()
+        .next_viewpoint(&run.map, &run.pose, &run.bearings, run.model.as_dyn())
+        .unwrap();
+        let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+        assert_eq!(bits(&kept.candidates.gains), bits(&fresh.candidates.gains));
+        assert_eq!(
+            bits(&kept.candidates.utilities),
+            bits(&fresh.candidates.utilities)
+        );
+        assert_eq!(kept.pose, fresh.pose);
+        let Some(goal) = kept.pose else { break };
+        run.step_to(goal).unwrap();
+    }
 }

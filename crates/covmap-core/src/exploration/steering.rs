@@ -74,11 +74,14 @@ impl<S: ScanSource, M: Motion> Exploration<S, M> {
     /// The candidate viewpoints the coverage strategy weighs now, each with
     /// its expected gain, path cost and eq. 14's utility for `alpha`, and
     /// the one the planner would choose (without the loop's memory of
-    /// goals that failed or gained too little).
+    /// goals that failed or gained too little). Planned as the loop plans,
+    /// keeping the candidates' gains from call to call where the map did
+    /// not change under them ([`Planner::next_viewpoint_cached`]): the plan
+    /// a full computation gives, bit for bit.
     ///
     /// # Errors
     /// [`CovmapError::InvalidParameter`] for an `alpha` outside `[0, 1]`.
-    pub fn viewpoints(&self, alpha: f64) -> Result<Plan> {
+    pub fn viewpoints(&mut self, alpha: f64) -> Result<Plan> {
         let planner = Planner::new(PlannerConfig {
             alpha,
             robot_radius_m: self.config.robot_radius_m,
@@ -87,7 +90,13 @@ impl<S: ScanSource, M: Motion> Exploration<S, M> {
             epsilon: self.config.epsilon,
             ..PlannerConfig::default()
         })?;
-        planner.next_viewpoint(&self.map, &self.pose, &self.bearings, self.model.as_dyn())
+        planner.next_viewpoint_cached(
+            &mut self.viewpoint_cache,
+            &self.map,
+            &self.pose,
+            &self.bearings,
+            self.model.as_dyn(),
+        )
     }
 
     /// Whether the paper's rule holds now: every cell of the region the

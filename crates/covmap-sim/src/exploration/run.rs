@@ -211,6 +211,15 @@ impl SimExploration {
         Ok(self.exploration.finish()?)
     }
 
+    /// The candidate viewpoints the coverage strategy weighs now
+    /// ([`Exploration::viewpoints`]).
+    ///
+    /// # Errors
+    /// As [`Exploration::viewpoints`].
+    pub fn viewpoints(&mut self, alpha: f64) -> Result<covmap_core::planner::Plan> {
+        Ok(self.exploration.viewpoints(alpha)?)
+    }
+
     /// The loop: its maps, pose, trajectory, state.
     pub fn exploration(&self) -> &WorldExploration {
         &self.exploration
