@@ -1731,7 +1731,8 @@ class Exploration:
         released): what a step takes first, so that the maps, ``region()``
         and ``viewpoints()`` show the start before any step. Returns whether
         the run may take a step (``False`` once it is over; a limit reached
-        ends it)."""
+        ends it).
+        """
     def run(self) -> ExplorationResult:
         """Step to the end of the run; returns ``result()``."""
     def finish(self) -> Literal["certain", "stagnated", "no_goal", "limit"]:
@@ -1747,7 +1748,8 @@ class Exploration:
         """The cells the robot can reach on its coverage map now, where a
         step's goal may lie (``step(goal=...)`` accepts a goal in one):
         bool ``(rows, cols)``. ``region()`` holds more: the cells a scan from
-        them reaches."""
+        them reaches.
+        """
     def rule(self) -> Literal["certain", "stagnated"] | None:
         """Whether the paper's rule holds now on ``region()``: ``"certain"``
         (every cell below ``epsilon``), ``"stagnated"`` (every cell certain or
@@ -1757,7 +1759,9 @@ class Exploration:
         """The candidate viewpoints the coverage strategy weighs now: a ``Plan``
         whose ``candidates`` hold every candidate's pose, expected gain
         (nats), path cost (metres) and eq. 14's utility for ``alpha``, and
-        whose ``pose`` is the planner's choice (GIL released).
+        whose ``pose`` is the planner's choice (GIL released). Planned as the
+        loop plans, the candidates' gains kept from call to call where the
+        map did not change under them: the plan a full computation gives.
         """
     def path_to(self, goal: _Pose) -> npt.NDArray[np.float64] | None:
         """The path a step to ``goal`` would take: cell centres from the
