@@ -463,11 +463,11 @@ class PaperPolicy:
         return info["paper_action"]
 
 
-def episode(env: ExploreEnv, policy: Any, seed: int) -> dict[str, Any]:
+def episode(env: ExploreEnv, policy: Any, seed: int, options: dict[str, Any] | None = None) -> dict[str, Any]:
     """One episode of ``policy`` (a function of the observation and info)
-    from ``reset(seed=seed)``: its return, steps, path, how it ended and
-    the uncertain share at the end."""
-    observation, info = env.reset(seed=seed)
+    from ``reset(seed=seed, options=options)``: its return, steps, path,
+    how it ended, the uncertain share at the end and the start pose."""
+    observation, info = env.reset(seed=seed, options=options)
     total, steps, done = 0.0, 0, info.get("termination") is not None
     while not done:
         observation, reward, terminated, truncated, info = env.step(policy(observation, info))
@@ -479,6 +479,7 @@ def episode(env: ExploreEnv, policy: Any, seed: int) -> dict[str, Any]:
         "path_m": env._run.path_length_m,
         "termination": info["termination"],
         "uncertain_share": info["uncertain_share"],
+        "start": env._run.trajectory[0],
     }
 
 

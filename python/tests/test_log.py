@@ -206,14 +206,9 @@ def test_carmen_logs_read_as_split_by_hand(
 
 def test_sonar_ring_reads_as_split_by_hand(shared_data: Callable[[str], Path]) -> None:
     poses_path, meas_path = shared_data("sonar-8ring/poses.txt"), shared_data("sonar-8ring/measurement.txt")
-    log = covmap.Log.from_sonar_text(
-        poses_path,
-        meas_path,
-        bearings_deg=SONAR_BEARINGS_DEG,
-        length_unit_m=0.001,
-        angle_unit_rad=math.pi / 1800,
-        max_range_m=5.0,
-    )
+    # The data set's units: millimetres, tenths of a degree.
+    units = {"bearings_deg": SONAR_BEARINGS_DEG, "length_unit_m": 0.001, "angle_unit_rad": math.pi / 1800}
+    log = covmap.Log.from_sonar_text(poses_path, meas_path, **units, max_range_m=5.0)
     p = np.loadtxt(poses_path)
     m = np.loadtxt(meas_path)
     assert len(log) == len(p) == 413
@@ -223,14 +218,7 @@ def test_sonar_ring_reads_as_split_by_hand(shared_data: Callable[[str], Path]) -
     # The data set's own description: 5110 is no echo, readings below
     # 170 mm are not valid.
     described = covmap.Log.from_sonar_text(
-        poses_path,
-        meas_path,
-        bearings_deg=SONAR_BEARINGS_DEG,
-        length_unit_m=0.001,
-        angle_unit_rad=math.pi / 1800,
-        min_range_m=0.17,
-        max_range_m=5.0,
-        no_echo=5110,
+        poses_path, meas_path, **units, min_range_m=0.17, max_range_m=5.0, no_echo=5110
     )
     raw = m[:, 1:]
     expected = np.where(raw == 5110, 5.0, np.where(raw < 170, np.nan, raw / 1000))
@@ -238,16 +226,7 @@ def test_sonar_ring_reads_as_split_by_hand(shared_data: Callable[[str], Path]) -
     assert np.isnan(described.ranges).sum() == (raw < 170).sum()
     # No reading of this data set is below 170 mm: a higher bound shows the
     # readings below it dropped (NaN), and only those.
-    bounded = covmap.Log.from_sonar_text(
-        poses_path,
-        meas_path,
-        bearings_deg=SONAR_BEARINGS_DEG,
-        length_unit_m=0.001,
-        angle_unit_rad=math.pi / 1800,
-        min_range_m=0.5,
-        max_range_m=5.0,
-        no_echo=5110,
-    )
+    bounded = covmap.Log.from_sonar_text(poses_path, meas_path, **units, min_range_m=0.5, max_range_m=5.0, no_echo=5110)
     np.testing.assert_array_equal(np.isnan(bounded.ranges), raw < 500)
     assert (raw < 500).sum() > 0
     with pytest.raises(covmap.InvalidParameterError, match="min_range_m"):

@@ -83,16 +83,20 @@ def run(
         for policy_name in policies:
             policy: Any = cgym.RandomPolicy(seed=i) if policy_name == "random" else cgym.PaperPolicy()
             started = time.perf_counter()
-            observation, info = env.reset(seed=i, options={"world": world})
-            start = env._run.trajectory[0] if env._run is not None else None
-            total, steps, done = 0.0, 0, "termination" in info
-            while not done:
-                observation, reward, terminated, truncated, info = env.step(policy(observation, info))
-                total, steps, done = total + reward, steps + 1, terminated or truncated
+            done = cgym.episode(env, policy, seed=i, options={"world": world})
             seconds = time.perf_counter() - started
-            assert env._run is not None
+            start = done["start"]
             episodes.append(
-                Episode(policy_name, name, total, steps, env._run.path_length_m, info["termination"], info["uncertain_share"], seconds)
+                Episode(
+                    policy_name,
+                    name,
+                    done["return"],
+                    done["steps"],
+                    done["path_m"],
+                    done["termination"],
+                    done["uncertain_share"],
+                    seconds,
+                )
             )
             if progress:
                 e = episodes[-1]
