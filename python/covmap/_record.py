@@ -82,7 +82,7 @@ def _target(path: str | os.PathLike[str]) -> str:
 class Recorder:
     """A recording of a map's picture over time (see the module
     documentation), written to ``path`` by :meth:`close` (or at the end of
-    a ``with`` block)."""
+    a ``with`` block; not if the block raised)."""
 
     def __init__(self, path: str | os.PathLike[str], grid: Grid, world: World | None = None) -> None:
         rr = _rerun()
@@ -103,8 +103,12 @@ class Recorder:
     def __enter__(self) -> Recorder:
         return self
 
-    def __exit__(self, *exc: object) -> None:
-        self.close()
+    def __exit__(self, error: type[BaseException] | None, *exc: object) -> None:
+        # A block that raised writes nothing: the file stays as it was.
+        if error is None:
+            self.close()
+        else:
+            self._closed = True
 
     def _pixels(self, xy: npt.ArrayLike) -> npt.NDArray[np.float64]:
         """World coordinates ``(K, 2)`` as the picture's pixel coordinates."""

@@ -107,3 +107,14 @@ def test_without_rerun_the_error_says_what_to_install(monkeypatch: pytest.Monkey
     with pytest.raises(covmap.MissingDependencyError, match=r"covmap\[rerun\]"):
         covmap.record(tmp_path / "run.rrd", ROOM, covmap.Strategy.coverage(), resolution=0.1, max_steps=2)
     assert not (tmp_path / "run.rrd").exists()
+
+
+def test_a_run_that_raises_writes_no_recording(tmp_path: Path) -> None:
+    def broken(view: covmap.StrategyView) -> None:
+        raise RuntimeError("the strategy's own error")
+
+    path = tmp_path / "run.rrd"
+    path.write_bytes(b"kept")
+    with pytest.raises(RuntimeError):
+        covmap.record(path, ROOM, covmap.Strategy.custom(broken), resolution=0.1, max_steps=3)
+    assert path.read_bytes() == b"kept"
