@@ -193,40 +193,6 @@ class _RangeModel:
         on the arc of its cone, so most cells of the arc are not what it
         hit; a weight below 1 says so, where 1 marks the whole arc covered.
         """
-    @property
-    def posterior_floor(self) -> float:
-        """The least probability an update that contradicts a cell leaves any
-        bin of its histogram, in `[0, 1/256]`: after an update whose
-        kernel's mean coverage lies on the other side of 1/2 from the
-        cell's mean before it, the cell's posterior is mixed with the
-        uniform prior, `(1 - bins p) h + p`. 0 (the default): the paper's
-        Bayes update (bins floored at 1e-30 only). Readings of one cell are
-        not independent (a sonar sees the same wall face from the same
-        places again and again), so the product of their kernels grows far
-        more confident than the evidence is; where readings disagree, that
-        confidence is likely wrong, and the floor caps what it can cost.
-        """
-    @property
-    def end_attribution(self) -> float:
-        """How far an echo's marks follow what the map already holds, in
-        `[0, 1]`. A sonar's echo comes from somewhere on the arc of its
-        cone, most likely where the map holds the most coverage: the
-        kernels of the end band and the band behind it are mixed with the
-        uniform prior by the weight `1 - a + a min(1, m / m_arc)`, `a` this
-        value, `m` the cell's mean coverage before the reading and `m_arc`
-        the largest mean coverage among the end band's cells (at least
-        1/2). 0 (the default): every cell of the arc alike, as the paper
-        reads it.
-        """
-    @property
-    def free_yield(self) -> float:
-        """How much a free-space update spares a cell the map holds covered,
-        in `[0, 1]`: the free kernel (of echoes and no-echo readings alike)
-        of a cell of mean coverage `m` is mixed with the uniform prior by
-        the weight `1 - y min(1, max(0, 2 m - 1))`, `y` this value (a
-        surface met at a grazing angle sends no echo back). 0 (the
-        default): the paper's reading.
-        """
     # end generated
     def kernel(
         self,
@@ -246,7 +212,11 @@ class _RangeModel:
         """The parameters as a dict of keyword arguments."""
     @classmethod
     def from_dict(cls, d: dict[str, float]) -> Self:
-        """The model with the parameters of ``d`` (missing ones take the defaults)."""
+        """The model with the parameters of ``d`` (missing ones take the defaults).
+        The parameters covmap removed (``posterior_floor``, ``end_attribution``,
+        ``free_yield``) may appear at 0, their old default, and are ignored;
+        any other value of them raises ``InvalidParameterError``.
+        """
     def __eq__(self, value: object, /) -> bool: ...
     def __ne__(self, value: object, /) -> bool: ...
     def __hash__(self) -> int: ...
@@ -279,9 +249,6 @@ class SonarModel(_RangeModel):
         no_echo_reach: float | None = None,
         no_echo_weight: float | None = None,
         end_weight: float | None = None,
-        posterior_floor: float | None = None,
-        end_attribution: float | None = None,
-        free_yield: float | None = None,
         opening_angle_rad: float | None = None,
         # end generated
     ) -> SonarModel: ...
@@ -290,15 +257,6 @@ class SonarModel(_RangeModel):
     def opening_angle_rad(self) -> float:
         """Full opening angle of the cone, radians, in `(0, pi)`."""
     # end generated
-    @staticmethod
-    def learned() -> SonarModel:
-        """The model ``covmap learn`` fits with its defaults (trained on the
-        corridor drive, seed 0, with no-echo readings occluded by the
-        map). Use it for maps built that way: by the exploration loop, or
-        by ``CoverageMap.integrate_log(..., occlude_no_echo=True)``.
-        ``SonarModel()`` stays the paper's model; BENCHMARKS.md compares
-        the two on unseen drives.
-        """
 
 @final
 class LaserModel(_RangeModel):
@@ -325,9 +283,6 @@ class LaserModel(_RangeModel):
         no_echo_reach: float | None = None,
         no_echo_weight: float | None = None,
         end_weight: float | None = None,
-        posterior_floor: float | None = None,
-        end_attribution: float | None = None,
-        free_yield: float | None = None,
         # end generated
     ) -> LaserModel: ...
 

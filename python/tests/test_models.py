@@ -20,9 +20,6 @@ SONAR_PARAMETERS = [
     "no_echo_reach",
     "no_echo_weight",
     "end_weight",
-    "posterior_floor",
-    "end_attribution",
-    "free_yield",
     "opening_angle_rad",
 ]
 
@@ -61,9 +58,9 @@ def test_one_override_keeps_the_other_defaults() -> None:
         {"sigma_end": 0.01},
         {"xi_min": 0.0},
         {"xi_per_m": math.inf},
-        {"end_attribution": 1.5},
-        {"free_yield": -0.1},
-        {"free_yield": math.nan},
+        {"end_weight": 1.5},
+        {"no_echo_weight": -0.1},
+        {"no_echo_reach": math.nan},
         {"opening_angle_rad": 0.0},
         {"opening_angle_rad": math.pi},
     ],
@@ -96,6 +93,21 @@ def test_dict_repr_pickle_round_trips(cls: Any) -> None:
     assert m != cls()
     with pytest.raises(TypeError):
         cls.from_dict({"no_such_parameter": 1.0})
+
+
+@pytest.mark.parametrize("cls", [covmap.SonarModel, covmap.LaserModel])
+@pytest.mark.parametrize("removed", ["posterior_floor", "end_attribution", "free_yield"])
+def test_a_removed_parameter_is_read_only_at_zero(cls: Any, removed: str) -> None:
+    """A dict stored before the parameter's removal names it at 0 (its
+    default then): ignored. Any other value describes a model covmap no
+    longer builds; and the parameter is no keyword any more."""
+    stored = {**cls().to_dict(), removed: 0.0}
+    assert cls.from_dict(stored) == cls()
+    with pytest.raises(covmap.InvalidParameterError, match=f"`{removed}`.*removed"):
+        cls.from_dict({**stored, removed: 0.05})
+    with pytest.raises(TypeError):
+        cls(**{removed: 0.0})
+    assert removed not in cls.PARAMETERS
 
 
 def test_kernel_shape_sum_and_meaning(model: Any) -> None:

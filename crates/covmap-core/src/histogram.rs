@@ -127,16 +127,6 @@ fn update_fixed<const N: usize>(h: &mut [f32], k: &[f32], floor: f32) {
     }
 }
 
-/// Mix `h` (normalised) with the uniform histogram: `(1 - w) h + w / bins`,
-/// still normalised, every bin at least `w / bins`.
-#[inline(always)]
-pub(crate) fn mix_uniform(h: &mut [f32], w: f32) {
-    let share = w / h.len() as f32;
-    for v in h.iter_mut() {
-        *v = *v * (1.0 - w) + share;
-    }
-}
-
 /// [`update`] for any bin count.
 #[inline]
 fn update_any(h: &mut [f32], k: &[f32], floor: f32) {
@@ -211,28 +201,6 @@ pub fn mean(h: &[f32]) -> f32 {
         .enumerate()
         .map(|(b, &p)| p * bin_value(b, n) as f32)
         .sum()
-}
-
-/// [`mean`] in eight lanes, so that the sum vectorises: the same value up to
-/// rounding, for the update's per-cell loop (`mean` keeps its sum order, so
-/// the mean map keeps its bits).
-#[inline]
-pub(crate) fn mean_in_lanes(h: &[f32]) -> f32 {
-    let mut lanes = [0f32; 8];
-    let chunks = h.chunks_exact(8);
-    let rest = chunks.remainder();
-    for (c, chunk) in chunks.enumerate() {
-        for (j, (lane, &p)) in lanes.iter_mut().zip(chunk).enumerate() {
-            *lane += p * (8 * c + j) as f32;
-        }
-    }
-    let base = h.len() - rest.len();
-    let tail: f32 = rest
-        .iter()
-        .enumerate()
-        .map(|(j, &p)| p * (base + j) as f32)
-        .sum();
-    (lanes.iter().sum::<f32>() + tail) / (h.len() - 1) as f32
 }
 
 #[cfg(test)]

@@ -31,6 +31,23 @@ fn kernel_array<'py, M: SensorModel + Sync>(
     Ok(k.map(|k| PyArray1::from_vec(py, k)))
 }
 
+/// `d`, a model's parameters as a dict, without the removed parameters
+/// (`covmap::sensor::REMOVED_PARAMETERS`) it names at 0, as a dict stored
+/// before their removal holds them; one at any other value raises
+/// `InvalidParameterError`.
+fn without_removed<'py>(d: &Bound<'py, PyDict>) -> PyResult<Bound<'py, PyDict>> {
+    let py = d.py();
+    let kept = d.copy()?;
+    for name in covmap::sensor::REMOVED_PARAMETERS {
+        if let Some(value) = kept.get_item(name)? {
+            let Float(value) = value.extract()?;
+            covmap::sensor::parameters::check_removed(name, value).or_raise(py)?;
+            kept.del_item(name)?;
+        }
+    }
+    Ok(kept)
+}
+
 /// The methods of a sensor model's class `$class` (wrapping the core's
 /// `$model`): one keyword argument and attribute per parameter of the range
 /// model and per parameter of the model's own (`[$own]`: entries of the
@@ -110,14 +127,18 @@ macro_rules! sensor_model_class {
                         Ok(d)
                     }
                     /// The model with the parameters of ``d`` (missing ones take the defaults).
+                    /// The parameters covmap removed (``posterior_floor``, ``end_attribution``,
+                    /// ``free_yield``) may appear at 0, their old default, and are ignored;
+                    /// any other value of them raises ``InvalidParameterError``.
                     #[classmethod]
                     fn from_dict<'py>(
                         cls: &Bound<'py, PyType>,
                         d: Bound<'py, PyDict>,
                     ) -> PyResult<Bound<'py, PyAny>> {
+                        let py = cls.py();
+                        let d = without_removed(&d)?;
                         // An unknown or non-string key is a bad value of `d`:
                         // a covmap error, as any bad setting.
-                        let py = cls.py();
                         cls.call((), Some(&d)).map_err(|e| {
                             match e.get_type(py).is(py.get_type::<pyo3::exceptions::PyTypeError>()) {
                                 true => Exception::InvalidType
@@ -173,18 +194,7 @@ pub(crate) struct PySonarModel(pub(crate) SonarModel);
 covmap::sonar_parameters!(sonar_model_class! {
     impl PySonarModel as "SonarModel" for SonarModel {
         keywords SonarKeywords;
-        more {
-            /// The model ``covmap learn`` fits with its defaults (trained on the
-            /// corridor drive, seed 0, with no-echo readings occluded by the
-            /// map). Use it for maps built that way: by the exploration loop, or
-            /// by ``CoverageMap.integrate_log(..., occlude_no_echo=True)``.
-            /// ``SonarModel()`` stays the paper's model; BENCHMARKS.md compares
-            /// the two on unseen drives.
-            #[staticmethod]
-            fn learned() -> Self {
-                Self(SonarModel::learned())
-            }
-        }
+        more {}
     }
 });
 

@@ -3,7 +3,6 @@
 mod changes;
 mod contact;
 mod history;
-mod map_reading;
 mod occlusion;
 mod storage;
 mod update;

@@ -6,7 +6,6 @@ use std::borrow::Cow;
 use super::CoverageMap;
 use super::changes::Stamper;
 use super::history::History;
-use super::map_reading::MapReading;
 use super::storage::cached_or_new;
 use crate::error::Result;
 use crate::footprint::{CellVisitor, visit};
@@ -136,22 +135,16 @@ fn apply<const N: usize, M: SensorModel + ?Sized>(
     debug_assert_eq!(data.len(), grid.len() * bins);
     let range = model.range_model();
     let footprint = model.footprint();
-    let mut terms = MapReading::of(range, grid, bins);
     let mut updates = 0;
     for (k, (&r, &bearing)) in ranges.iter().zip(bearings).enumerate() {
         let (reach, echo) = beam_reach(range, r, k, no_echo_reach_m);
         let d = r.min(range.max_range_m);
-        if let Some(terms) = terms.as_mut() {
-            terms.begin(d, echo);
-        }
-        let lookup = table.reading(d, echo);
         let mut beam = BeamUpdate::<N> {
             data,
             table,
             bins,
             floor: histogram::BIN_FLOOR,
-            terms: terms.as_mut(),
-            lookup,
+            lookup: table.reading(d, echo),
             updates: 0,
             touches: &mut *touches,
         };
@@ -164,25 +157,19 @@ fn apply<const N: usize, M: SensorModel + ?Sized>(
             &mut beam,
         );
         updates += beam.updates;
-        if let Some(terms) = terms.as_mut() {
-            // The marks of an attributed echo, now that its arc is known.
-            let kernel = |d_l| table.at(lookup.offset(d_l));
-            terms.update_marked::<N>(data, bins, kernel, histogram::BIN_FLOOR);
-        }
     }
     updates
 }
 
 /// The per-cell work of one beam: look the kernel up, multiply it in, mark
-/// the cell for the history.
+/// the cell for the history. Nothing of the cell is read before its kernel
+/// is multiplied in, so a map is the same whatever order its scans came in
+/// (but for float rounding and the bin floor).
 struct BeamUpdate<'a, 't, const N: usize> {
     data: &'a mut [f32],
     table: &'a KernelTable,
     bins: usize,
     floor: f32,
-    /// The model's terms that read the map, begun for this beam (`None`:
-    /// the paper's update, which multiplies the kernel in unread).
-    terms: Option<&'a mut MapReading>,
     lookup: ReadingLookup,
     updates: usize,
     touches: &'a mut Touches<'t>,
@@ -192,18 +179,8 @@ impl<const N: usize> CellVisitor for BeamUpdate<'_, '_, N> {
     #[inline(always)]
     fn cell(&mut self, index: usize, d_l: f64, _enter_m: f64) {
         let h = &mut self.data[index * self.bins..(index + 1) * self.bins];
-        match self.terms.as_deref_mut() {
-            None => {
-                let k = self.table.at(self.lookup.offset(d_l));
-                histogram::update_bins::<N>(h, k, self.floor);
-            }
-            Some(terms) => {
-                if !terms.defer(index, d_l, h) {
-                    let k = self.table.at(self.lookup.offset(d_l));
-                    terms.update::<N>(h, k, d_l, self.floor);
-                }
-            }
-        }
+        let k = self.table.at(self.lookup.offset(d_l));
+        histogram::update_bins::<N>(h, k, self.floor);
         self.touches.mark(index);
         self.updates += 1;
     }

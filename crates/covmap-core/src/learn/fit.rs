@@ -17,7 +17,7 @@ use crate::scan_map::ScanMap;
 use crate::sensor::SensorModel;
 
 /// The most evaluations a fit may be asked for (a day's work here at 70 ms
-/// each is about a million; a fit of 13 parameters converges in hundreds).
+/// each is about a million; a fit of a dozen parameters converges in hundreds).
 pub const MAX_EVALUATIONS: usize = 100_000;
 
 /// The most restarts a fit runs (each from its own seeded start).

@@ -39,15 +39,11 @@
 //! `end_weight`; both weights are the paper's reading (no mixing) by
 //! default.
 //!
-//! Three more parameters make the update read the map, each 0 (off, the
-//! paper's reading) by default (see [`RangeModel`]): `end_attribution` mixes
-//! an echo's marks toward the prior where the cell holds less coverage
-//! than the most covered cell of the arc, `free_yield` mixes a free-space
-//! kernel toward the prior where the cell is held covered, and
-//! `posterior_floor` mixes the prior into a histogram after a reading that
-//! contradicts it. The kernel table and [`RangeModel::kernel`] give the
-//! kernels before these terms; the expected information gain
-//! ([`crate::gain`]) predicts updates without them.
+//! The update multiplies these kernels into the cells and reads nothing of
+//! the map: a cell's histogram is the prior times the kernels of its
+//! readings, the same whatever order they came in (but for float rounding
+//! and the bin floor). Parameters that made the update read the map were
+//! removed ([`REMOVED_PARAMETERS`]).
 //!
 //! # Predicted readings, `p(d | map)`
 //! The forward model, for the expected information gain ([`crate::gain`])
@@ -78,7 +74,7 @@ pub(crate) use kernel::ReadingLookup;
 pub use laser::LaserModel;
 pub use parameters::{
     FITTABLE_RANGE_PARAMETERS, FITTABLE_SONAR_PARAMETERS, Parameter, RANGE_PARAMETERS,
-    SONAR_MODEL_PARAMETERS,
+    REMOVED_PARAMETERS, SONAR_MODEL_PARAMETERS,
 };
 pub use range_model::RangeModel;
 pub(crate) use range_model::kernel_values;

@@ -14,7 +14,9 @@
 //! callback of their own). [`sonar_parameters!`](crate::sonar_parameters)
 //! does the same for the sonar's own parameter, the cone's opening angle.
 //!
-//! Removing a parameter is removing its entry (and the code that reads it).
+//! Removing a parameter is removing its entry (and the code that reads it),
+//! and naming it in [`REMOVED_PARAMETERS`] so that models stored with it
+//! off still load.
 
 /// One parameter of a sensor model, as [`range_parameters!`](crate::range_parameters)
 /// declares it.
@@ -65,8 +67,6 @@ pub(crate) const MIN_SIGMA: f64 = 1e-6;
 /// it the kernel is uniform to far below `f32` precision anyway, and the sum
 /// that normalises it could overflow.
 pub(crate) const MAX_XI: f64 = 1e6;
-/// The largest `posterior_floor`: one bin's share of the largest histogram.
-pub(crate) const MAX_POSTERIOR_FLOOR: f64 = 1.0 / crate::histogram::MAX_BINS as f64;
 
 /// The range model's parameters, the one list (see the [module
 /// documentation](crate::sensor::parameters)): `$callback! { $($args)*
@@ -162,49 +162,6 @@ macro_rules! range_parameters {
                 valid: |v: f64| (0.0..=1.0).contains(&v),
                 expected: "a weight in [0, 1]",
                 fit: Some([0.0, 1.0]), absent: Some(1.0),
-            }
-            /// The least probability an update that contradicts a cell leaves any
-            /// bin of its histogram, in `[0, 1/256]`: after an update whose
-            /// kernel's mean coverage lies on the other side of 1/2 from the
-            /// cell's mean before it, the cell's posterior is mixed with the
-            /// uniform prior, `(1 - bins p) h + p`. 0 (the default): the paper's
-            /// Bayes update (bins floored at 1e-30 only). Readings of one cell are
-            /// not independent (a sonar sees the same wall face from the same
-            /// places again and again), so the product of their kernels grows far
-            /// more confident than the evidence is; where readings disagree, that
-            /// confidence is likely wrong, and the floor caps what it can cost.
-            posterior_floor {
-                unit: "", sonar: 0.0, laser: 0.0,
-                valid: |v: f64| (0.0..=$crate::sensor::parameters::MAX_POSTERIOR_FLOOR).contains(&v),
-                expected: "a probability in [0, 1/256]",
-                fit: Some([0.0, 1.0 / 256.0]), absent: Some(0.0),
-            }
-            /// How far an echo's marks follow what the map already holds, in
-            /// `[0, 1]`. A sonar's echo comes from somewhere on the arc of its
-            /// cone, most likely where the map holds the most coverage: the
-            /// kernels of the end band and the band behind it are mixed with the
-            /// uniform prior by the weight `1 - a + a min(1, m / m_arc)`, `a` this
-            /// value, `m` the cell's mean coverage before the reading and `m_arc`
-            /// the largest mean coverage among the end band's cells (at least
-            /// 1/2). 0 (the default): every cell of the arc alike, as the paper
-            /// reads it.
-            end_attribution {
-                unit: "", sonar: 0.0, laser: 0.0,
-                valid: |v: f64| (0.0..=1.0).contains(&v),
-                expected: "a weight in [0, 1]",
-                fit: Some([0.0, 1.0]), absent: Some(0.0),
-            }
-            /// How much a free-space update spares a cell the map holds covered,
-            /// in `[0, 1]`: the free kernel (of echoes and no-echo readings alike)
-            /// of a cell of mean coverage `m` is mixed with the uniform prior by
-            /// the weight `1 - y min(1, max(0, 2 m - 1))`, `y` this value (a
-            /// surface met at a grazing angle sends no echo back). 0 (the
-            /// default): the paper's reading.
-            free_yield {
-                unit: "", sonar: 0.0, laser: 0.0,
-                valid: |v: f64| (0.0..=1.0).contains(&v),
-                expected: "a weight in [0, 1]",
-                fit: Some([0.0, 1.0]), absent: Some(0.0),
             }
         ] }
     };
@@ -340,6 +297,31 @@ pub fn check_each(table: &[Parameter], values: &[f64]) -> crate::error::Result<(
         crate::error::check_parameter(v.is_finite() && (p.valid)(v), p.name, v, p.expected)?;
     }
     Ok(())
+}
+
+/// Parameters the range model once had and no longer has. Each made the
+/// update read the map as it integrated a reading (`posterior_floor`,
+/// `end_attribution`, `free_yield`), so that a map depended on the order
+/// of its scans; and no fit showed them better on buildings it was not
+/// fitted to. A stored model may still name one at 0, which was its off
+/// value and is the update covmap has: it is read and ignored.
+pub const REMOVED_PARAMETERS: [&str; 3] = ["posterior_floor", "end_attribution", "free_yield"];
+
+/// Errors unless `value`, of the removed parameter `name` (one of
+/// [`REMOVED_PARAMETERS`]), is 0: the only value whose model covmap still
+/// builds.
+///
+/// # Errors
+/// [`CovmapError::InvalidParameter`](crate::CovmapError::InvalidParameter)
+/// naming the parameter.
+pub fn check_removed(name: &'static str, value: f64) -> crate::error::Result<()> {
+    debug_assert!(REMOVED_PARAMETERS.contains(&name), "{name}");
+    crate::error::check_parameter(
+        value == 0.0,
+        name,
+        value,
+        "0 or nothing: the parameter was removed (it made the update read the map, so the map depended on the order of its scans)",
+    )
 }
 
 /// The parameter of `table` called `name`, and its index.

@@ -6,7 +6,9 @@ use super::KernelTable;
 use super::kernel;
 #[cfg(doc)]
 use super::parameters::Parameter;
-use super::parameters::{MAX_XI, RANGE_PARAMETERS, check_each, find};
+use super::parameters::{
+    MAX_XI, RANGE_PARAMETERS, REMOVED_PARAMETERS, check_each, check_removed, find,
+};
 use crate::error::{Result, check_parameter};
 
 /// The struct of the range model, its presets, its serde form and its
@@ -30,16 +32,26 @@ macro_rules! range_model_struct {
 
         /// A stored range model as read, every parameter optional: those
         /// absent take their [`Parameter::absent`] value, or are an error.
+        /// The removed parameters ([`REMOVED_PARAMETERS`]) are read too, to
+        /// be checked off and dropped.
         #[derive(Deserialize)]
         #[serde(deny_unknown_fields)]
         struct StoredRangeModel {
             $( $name: Option<f64>, )*
+            posterior_floor: Option<f64>,
+            end_attribution: Option<f64>,
+            free_yield: Option<f64>,
         }
 
         impl StoredRangeModel {
             /// The values read, in the order of [`RANGE_PARAMETERS`].
             fn values(&self) -> [Option<f64>; RANGE_PARAMETERS.len()] {
                 [$( self.$name ),*]
+            }
+
+            /// The removed parameters read, in the order of [`REMOVED_PARAMETERS`].
+            fn removed(&self) -> [Option<f64>; REMOVED_PARAMETERS.len()] {
+                [self.posterior_floor, self.end_attribution, self.free_yield]
             }
         }
 
@@ -68,6 +80,11 @@ crate::range_parameters!(range_model_struct! {});
 impl TryFrom<StoredRangeModel> for RangeModel {
     type Error = String;
     fn try_from(stored: StoredRangeModel) -> std::result::Result<Self, String> {
+        for (value, name) in stored.removed().into_iter().zip(REMOVED_PARAMETERS) {
+            if let Some(value) = value {
+                check_removed(name, value).map_err(|e| e.to_string())?;
+            }
+        }
         let mut model = Self::SONAR;
         let read = stored.values().into_iter().zip(&RANGE_PARAMETERS);
         for ((value, parameter), field) in read.zip(model.fields_mut()) {
@@ -286,4 +303,36 @@ pub(crate) fn kernel_values(mu: f64, sigma: f64, xi: f64, bins: usize) -> Vec<f6
     let sum: f64 = k.iter().sum();
     k.iter_mut().for_each(|v| *v /= sum);
     k
+}
+
+#[cfg(test)]
+mod tests {
+    use crate::sensor::{LaserModel, SonarModel};
+
+    #[test]
+    fn a_stored_model_may_name_a_removed_parameter_only_at_zero() {
+        let with = |name: &str, value: f64| {
+            let mut json = serde_json::to_value(SonarModel::default()).unwrap();
+            json[name] = value.into();
+            json
+        };
+        for name in super::REMOVED_PARAMETERS {
+            // Off, as every model stored before the removal had it by default.
+            let read: SonarModel = serde_json::from_value(with(name, 0.0)).unwrap();
+            assert_eq!(read, SonarModel::default(), "{name}");
+            let mut laser = serde_json::to_value(LaserModel::default()).unwrap();
+            laser[name] = 0.0.into();
+            assert_eq!(
+                serde_json::from_value::<LaserModel>(laser).unwrap(),
+                LaserModel::default()
+            );
+            // On: the model it describes is one covmap no longer builds.
+            let err = serde_json::from_value::<SonarModel>(with(name, 0.05))
+                .unwrap_err()
+                .to_string();
+            assert!(err.contains(name) && err.contains("removed"), "{err}");
+        }
+        // Any other unknown field is still an error.
+        assert!(serde_json::from_value::<SonarModel>(with("nonsense", 0.0)).is_err());
+    }
 }

@@ -50,42 +50,6 @@ impl Default for SonarModel {
     }
 }
 
-impl SonarModel {
-    /// The model `covmap learn` fits with its defaults: 13 parameters fitted
-    /// by maximum likelihood on the simulated corridor drive (300 scans of
-    /// the 24-sonar ring, seed 0) with no-echo readings occluded by the map
-    /// ([`crate::CoverageMap::occluding`]), as the exploration
-    /// loop builds its maps. Reproduced by `cargo run --release -p covmap-sim
-    /// --example learn` (and checked against it by the Python tests).
-    ///
-    /// Use it for maps built that way. On unseen office drives it beats the
-    /// default's likelihood and mean-map error, and keeps the faced walls
-    /// above 0.5 coverage (BENCHMARKS.md, "The sensor-model fit with no-echo
-    /// readings occluded"). In maps whose no-echo readings clear their whole
-    /// footprint, those walls fall below 0.5 under it. So the default stays
-    /// the paper's model.
-    pub fn learned() -> Self {
-        Self {
-            range: RangeModel {
-                max_range_m: 5.0,
-                band_m: 0.102100702538144,
-                sigma_min: 0.036288673889530616,
-                sigma_per_m: 0.011702332463868363,
-                sigma_end: 0.44842817427662646,
-                xi_min: 0.6672966439928844,
-                xi_per_m: 0.3343058426491916,
-                no_echo_reach: 0.935403869318932,
-                no_echo_weight: 0.9427802911546003,
-                end_weight: 0.8841802275335975,
-                posterior_floor: 0.0005375585256818079,
-                end_attribution: 0.0699352584749032,
-                free_yield: 0.07712778979285619,
-            },
-            opening_angle_rad: 0.32335088521800354,
-        }
-    }
-}
-
 impl SensorModel for SonarModel {
     fn range_model(&self) -> &RangeModel {
         &self.range
@@ -105,14 +69,6 @@ impl SensorModel for SonarModel {
 mod tests {
     use super::*;
     use crate::error::CovmapError;
-
-    #[test]
-    fn the_learned_model_is_valid_and_not_the_default() {
-        let m = SonarModel::learned();
-        m.validate().unwrap();
-        assert_ne!(m, SonarModel::default());
-        assert_eq!(m.range.max_range_m, SonarModel::default().range.max_range_m);
-    }
 
     #[test]
     fn default_is_valid_and_serde_round_trips() {
