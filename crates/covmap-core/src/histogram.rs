@@ -146,7 +146,7 @@ fn update_any(h: &mut [f32], k: &[f32], floor: f32) {
 ///
 /// Each bin's `p ln p`, summed in bin order. A bin at [`BIN_FLOOR`] (most
 /// bins of a map explored for a while: 80 % of those whose entropy a
-/// scan-counting run computes) takes its term from [`floor_term`], the
+/// scan-counting run computes) takes its term from `floor_term`, the
 /// same product computed once, and a bin at 1 (a certain cell's) the 0 its
 /// term is, so the entropy has the same bits as with every logarithm
 /// computed, and its cost is the other bins' logarithms.

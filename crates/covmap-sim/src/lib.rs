@@ -2,7 +2,7 @@
 //!
 //! The simulator of covmap: polygon worlds, their exact ground-truth coverage
 //! on any [`covmap_core::Grid`], ray casting on parry2d, simulated sonar rings
-//! and lasers whose scans feed [`covmap_core::CoverageMap::integrate`]
+//! and lasers whose scans feed [`covmap_core::ScanMap::integrate`]
 //! directly, a disc robot's collision checks, and the paper's experiments.
 //!
 //! ```

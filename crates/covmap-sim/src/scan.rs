@@ -4,7 +4,7 @@ use covmap_core::Pose;
 
 /// One simulated scan: reading `ranges_m[i]` along `pose.theta_rad +
 /// bearings_rad[i]` from the pose, ready for
-/// [`covmap_core::CoverageMap::integrate`]. A reading equal to the sensor's
+/// [`covmap_core::ScanMap::integrate`]. A reading equal to the sensor's
 /// maximum range means "no echo".
 #[derive(Clone, Debug, PartialEq)]
 pub struct Scan {

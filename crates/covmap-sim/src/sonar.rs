@@ -18,7 +18,7 @@ pub const MAX_RAYS_PER_CONE: usize = 4096;
 /// A ring of sonars and how they err.
 ///
 /// Each sensor sits at the robot's centre (so readings are measured from the
-/// pose, as [`covmap_core::CoverageMap::integrate`] expects) and looks along
+/// pose, as [`covmap_core::ScanMap::integrate`] expects) and looks along
 /// `pose.theta_rad + bearings_rad[i]`. One reading is simulated as follows:
 ///
 /// 1. `rays_per_cone` rays spread evenly across the cone (`opening_angle_rad`)

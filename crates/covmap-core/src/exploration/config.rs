@@ -91,7 +91,7 @@ impl ExplorationConfig {
     }
 
     /// Errors unless `scan_spacing_m` is at least a cell of `resolution_m`
-    /// metres divided by [`MIN_SCANS_PER_CELL`] (a tenth of a cell): the
+    /// metres divided by `MIN_SCANS_PER_CELL` (a tenth of a cell): the
     /// robot would scan more often than a map of that grid can tell apart,
     /// and a leg of a few metres could take millions of scans.
     ///

@@ -26,9 +26,9 @@ use crate::planner::{Plan, Planner, PlannerConfig, Reachability};
 use crate::pose::{Pose, check_pose};
 
 impl<S: ScanSource, M: Motion> Exploration<S, M> {
-    /// One step to `goal`, chosen by the caller (see the
-    /// [module documentation](self)): a report of the step, or `None` once
-    /// the run is over (a limit reached, or ended). At the first step the
+    /// One step to `goal`, chosen by the caller (see the documentation of
+    /// the module `exploration::steering`): a report of the step, or `None`
+    /// once the run is over (a limit reached, or ended). At the first step the
     /// robot scans where it stands first, as [`Exploration::step`] does.
     ///
     /// # Errors

@@ -34,7 +34,7 @@
 //! other candidates are, so a result depends neither on scheduling nor on
 //! the company a candidate keeps.
 //!
-//! [`CoverageMap::integrate`]: crate::CoverageMap::integrate
+//! [`CoverageMap::integrate`]: crate::ScanMap::integrate
 
 mod evaluator;
 mod exact;

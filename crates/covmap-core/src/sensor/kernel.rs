@@ -34,7 +34,7 @@ pub(crate) fn check_resolution(resolution_m: f64) -> Result<()> {
 /// the end band (each evaluated at its centre), region `BAND_SLICES + 1` is the
 /// band behind the end point (`mu = 1`; these mixed with the prior by the
 /// model's `end_weight`), and region `BAND_SLICES + 2`
-/// ([`NO_ECHO_REGION`]) the free space of a no-echo reading (region 0's
+/// (`NO_ECHO_REGION`) the free space of a no-echo reading (region 0's
 /// kernels mixed with the prior by the model's `no_echo_weight`; a weight of
 /// 1 makes no-echo readings use region 0 itself). The distance `s` is rounded
 /// to the nearest of `DISTANCE_STEPS + 1` steps; `sigma` and `xi` are linear

@@ -2,14 +2,14 @@
 //!
 //! One stream of random numbers, seeded by the seed alone, draws in order:
 //! the plan (wall thickness, corridor width, block depths, shape, rooms,
-//! doors, hall, glass fronts; [`super::layout`]), the furniture, pillars
-//! and slanted walls ([`super::furniture`]), and the building's placement
+//! doors, hall, glass fronts; `layout.rs`), the furniture, pillars
+//! and slanted walls (`furniture.rs`), and the building's placement
 //! (mirrored in x or not, x and y swapped or not). Only additions,
 //! multiplications, divisions and square roots of floating-point numbers
 //! make the geometry, so the same seed and options give the same building,
 //! bit for bit, on every machine.
 //!
-//! The walls ([`super::walls`]) are `wall_m` thick, centred on the plan's
+//! The walls (`walls.rs`) are `wall_m` thick, centred on the plan's
 //! edges; a room's floor is its rectangle within its walls' faces.
 //!
 //! Every building returned is valid ([`super::validity`]): every room is

@@ -19,7 +19,7 @@
 //!    named `"region 1"`, `"region 2"`, ...; a room's floor is its core
 //!    cells, merged into rectangles.
 //!
-//! [`enclosed_cells`]: crate::exploration::enclosed_cells
+//! [`enclosed_cells`]: crate::exploration::cells::enclosed_cells
 //!
 //! A run entered a room when the robot's centre crossed a cell of its core:
 //! a robot that only looked in from the doorway did not. Every region

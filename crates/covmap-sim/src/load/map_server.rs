@@ -225,7 +225,7 @@ impl RosMapMode {
 /// PGM of the same name, together: both are written whole to temporary
 /// files first and renamed into place only when both are complete, and if
 /// the YAML cannot be put in place the old PGM is put back, so that the
-/// pair is never half new (see [`super::write_atomic_all`]).
+/// pair is never half new (see `write_atomic_all`).
 ///
 /// # Errors
 /// [`SimError::InvalidParameter`] naming the threshold at fault unless
