@@ -4,25 +4,18 @@ pyoctomap (``pip install pyoctomap``); skipped with a message without it."""
 
 from __future__ import annotations
 
-import importlib.util
 from pathlib import Path
 from typing import Callable
 
 import pytest
 
 import covmap
-
-TOOL = Path(__file__).resolve().parents[2] / "tools" / "compare_octomap.py"
+from repo_tools import load_tool
 
 
 def test_the_intel_map_agrees_with_octomap(shared_data: Callable[[str], Path]) -> None:
     pytest.importorskip("pyoctomap", reason="pyoctomap is not installed (pip install pyoctomap)")
-    if not TOOL.is_file():
-        pytest.skip(f"{TOOL} is absent (the test runs from the repository)")
-    spec = importlib.util.spec_from_file_location("compare_octomap", TOOL)
-    assert spec is not None and spec.loader is not None
-    tool = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(tool)
+    tool = load_tool("compare_octomap")
     log = covmap.Log.from_carmen(shared_data("carmen/intel-corrected.log.gz"))[:150]
     model = covmap.LaserModel()
     grid = tool.aligned_grid(log, 0.05, 10.0)

@@ -3,27 +3,18 @@ rooms never entered and the rest, the two adding up to the run's share."""
 
 from __future__ import annotations
 
-import importlib.util
-from pathlib import Path
 from typing import Any
 
 import numpy as np
 import pytest
 
 import covmap
-
-TOOL = Path(__file__).resolve().parents[2] / "tools" / "uncertain_by_cause.py"
+from repo_tools import load_tool
 
 
 @pytest.fixture(scope="module")
 def tool() -> Any:
-    if not TOOL.is_file():
-        pytest.skip(f"{TOOL} is absent (the test runs from the repository)")
-    spec = importlib.util.spec_from_file_location("uncertain_by_cause", TOOL)
-    assert spec is not None and spec.loader is not None
-    module = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(module)
-    return module
+    return load_tool("uncertain_by_cause")
 
 
 def test_inside_reads_a_floor_of_rectangles(tool: Any) -> None:

@@ -1,0 +1,24 @@
+"""The repository's scripts under ``tools/``, loaded as modules for their
+tests (a skip where the tests run outside the repository)."""
+
+from __future__ import annotations
+
+import importlib.util
+from pathlib import Path
+from typing import Any
+
+import pytest
+
+TOOLS = Path(__file__).resolve().parents[2] / "tools"
+
+
+def load_tool(name: str) -> Any:
+    """``tools/NAME.py`` as a module, or a skip if it is absent."""
+    path = TOOLS / f"{name}.py"
+    if not path.is_file():
+        pytest.skip(f"{path} is absent (the test runs from the repository)")
+    spec = importlib.util.spec_from_file_location(name, path)
+    assert spec is not None and spec.loader is not None
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module
