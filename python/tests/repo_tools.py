@@ -4,6 +4,7 @@ tests (a skip where the tests run outside the repository)."""
 from __future__ import annotations
 
 import importlib.util
+import sys
 from pathlib import Path
 from typing import Any
 
@@ -20,5 +21,7 @@ def load_tool(name: str) -> Any:
     spec = importlib.util.spec_from_file_location(name, path)
     assert spec is not None and spec.loader is not None
     module = importlib.util.module_from_spec(spec)
+    # Registered first, as an import would: dataclasses look their module up.
+    sys.modules[name] = module
     spec.loader.exec_module(module)
     return module

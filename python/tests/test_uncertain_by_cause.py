@@ -23,10 +23,22 @@ def test_inside_reads_a_floor_of_rectangles(tool: Any) -> None:
     assert tool.inside(points, floor).tolist() == [True, False, True, False]
 
 
+def test_the_kinds_of_unsettled_histograms(tool: Any) -> None:
+    split = np.full(16, 0.05 / 14, dtype=np.float32)
+    split[3:5] = 0.475
+    conflict = np.full(16, 0.2 / 14, dtype=np.float32)
+    conflict[0], conflict[15] = 0.4, 0.4
+    broad = np.full(16, 1 / 16, dtype=np.float32)
+    is_split, is_conflict = tool.kinds(np.stack([split, conflict, broad]))
+    assert is_split.tolist() == [True, False, False]
+    assert is_conflict.tolist() == [False, True, False]
+
+
 def test_a_short_run_splits_its_whole_uncertain_share(tool: Any) -> None:
     # 20 m leaves most rooms of a small building unentered and uncertain.
     building = covmap.Building.generate(0, area_m2=120)
-    name, missed, rest, rooms, run, total = tool.split(building, 20.0)
-    assert name == building.name and "limit" in run
-    assert rooms >= 1 and missed > 0.0 and rest > 0.0
-    assert missed + rest == pytest.approx(total, abs=1e-9)
+    s = tool.split(building, 20.0)
+    assert s.building == building.name and "limit" in s.run
+    assert s.rooms_never_entered >= 1 and s.never_entered > 0.0 and s.elsewhere > 0.0
+    assert s.never_entered + s.elsewhere == pytest.approx(s.uncertain, abs=1e-9)
+    assert 0.0 <= s.split + s.conflict <= s.elsewhere + 1e-9
