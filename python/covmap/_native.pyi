@@ -437,15 +437,21 @@ class CoverageMap:
     def __reduce__(
         self,
     ) -> tuple[Any, tuple[Grid, npt.NDArray[np.float32]], _HistoryState | None]:
-        """Pickle and copy support: rebuilt from the grid and the histograms, the
-        entropy history (if kept) restored by ``__setstate__``.
+        """Pickle and copy support: rebuilt from the grid and the histograms,
+        the entropy history (if kept) and the evidence behind the histograms
+        (each cell's log-likelihoods, which hold more than the histograms
+        do) restored by ``__setstate__``, so that a copy goes on as the
+        original does.
         """
     def __setstate__(self, state: _HistoryState | None) -> None:
-        """Unpickling support: restore the entropy history saved by
-        ``__reduce__``, ``(entropies, counts)`` (float32
-        ``(rows, cols, STAGNATION_MEASUREMENTS + 1)`` and uint32
-        ``(rows, cols)``), and keep tracking it; ``None`` changes nothing.
-        After an error the map is exactly as it was.
+        """Unpickling support: restore the state ``__reduce__`` saves,
+        ``(history, evidence)``: the entropy history, ``None`` or
+        ``(entropies, counts)`` (float32 ``(rows, cols,
+        STAGNATION_MEASUREMENTS + 1)`` and uint32 ``(rows, cols)``), kept
+        tracking, and the evidence, float32 ``(rows, cols, bins)``, which must
+        give the map's histograms. ``None`` or ``(entropies, counts)`` alone
+        (what earlier versions saved) restore the history only. After an
+        error the map is exactly as it was.
         """
 
 @final

@@ -145,10 +145,14 @@ def test_from_histograms_and_pickle(scanned_map: covmap.CoverageMap) -> None:
     assert rebuilt.bins == scanned_map.bins and rebuilt.grid == scanned_map.grid
     # Stored histograms are renormalised on the way in: equal to float32 rounding.
     np.testing.assert_allclose(rebuilt.histograms, h, atol=1e-6)
-    # Without a history, none is saved and none comes back.
+    # Without a history, none is saved and none comes back; the evidence
+    # behind the histograms (log-likelihoods, each cell's largest 0) is saved.
     assert not scanned_map.tracks_history
     _, args, state = scanned_map.__reduce__()
-    assert state is None
+    history, evidence = state
+    assert history is None
+    assert evidence.dtype == np.float32 and evidence.shape == h.shape
+    assert (evidence <= 0).all() and (evidence.max(axis=-1) == 0).all()
     assert args[0] == scanned_map.grid
     for clone in (pickle.loads(pickle.dumps(scanned_map)), copy.deepcopy(scanned_map)):
         np.testing.assert_array_equal(clone.histograms, h)
@@ -171,11 +175,18 @@ def settled_map(grid: covmap.Grid, model: Any, scans: ScanSource) -> covmap.Cove
 
 
 def saved_history(cmap: covmap.CoverageMap) -> tuple[Any, Any]:
-    """The (entropies, counts) state `__reduce__` saves for a tracked map."""
-    _, _, state = cmap.__reduce__()
-    assert state is not None
-    entropies, counts = state
+    """The (entropies, counts) history `__reduce__` saves for a tracked map."""
+    history, _ = saved_state(cmap)
+    assert history is not None
+    entropies, counts = history
     return entropies, counts
+
+
+def saved_state(cmap: covmap.CoverageMap) -> tuple[Any, Any]:
+    """The (history, evidence) state `__reduce__` saves."""
+    _, _, state = cmap.__reduce__()
+    history, evidence = state
+    return history, evidence
 
 
 def test_pickle_and_copy_keep_the_entropy_history(
@@ -251,6 +262,40 @@ def test_setstate_rejects_bad_state_and_leaves_the_map_unchanged(
             np.testing.assert_array_equal(cmap.stagnated(), stagnated)
         cmap.__setstate__(None)
         assert cmap.tracks_history == tracks
+    # The evidence: of the map's shape and dtype, finite, and giving the map's
+    # histograms; with a history, neither is restored unless both are good.
+    _, evidence = saved_state(tracked)
+    nan_evidence = evidence.copy()
+    nan_evidence[3, 4, 1] = np.nan
+    other = covmap.CoverageMap(grid)
+    _, other_evidence = saved_state(other)
+    bad_evidence: list[tuple[Any, type[Exception]]] = [
+        ((None, evidence[:, :-1]), covmap.ArrayShapeError),
+        ((None, evidence.astype(np.float64)), covmap.ArrayDtypeError),
+        ((None, nan_evidence), covmap.InvalidHistogramError),
+        ((None, other_evidence), covmap.InvalidHistogramError),
+        (((entropies, counts), other_evidence), covmap.InvalidHistogramError),
+        (((nan, counts), evidence), covmap.InvalidHistoryError),
+    ]
+    untracked = covmap.CoverageMap.from_histograms(grid, tracked.histograms)
+    for cmap in (tracked, untracked):
+        histograms, measurements, tracks = cmap.histograms, cmap.measurements(), cmap.tracks_history
+        for bad_state, error in bad_evidence:
+            with pytest.raises(error):
+                cmap.__setstate__(bad_state)
+            assert cmap.tracks_history == tracks
+            np.testing.assert_array_equal(cmap.histograms, histograms)
+            np.testing.assert_array_equal(cmap.measurements(), measurements)
+    # Refused, the state changed nothing: the map goes on as one rebuilt
+    # from its histograms alone, not as the original.
+    copy_alone = covmap.CoverageMap.from_histograms(grid, tracked.histograms)
+    restored = copy.deepcopy(tracked)
+    pose, ranges, bearings = next(scans(grid, 1, seed=4, beams=90))
+    for m in (untracked, copy_alone, restored, tracked):
+        for _ in range(30):
+            m.integrate(pose, ranges, bearings, model)
+    np.testing.assert_array_equal(untracked.histograms, copy_alone.histograms)
+    np.testing.assert_array_equal(restored.histograms, tracked.histograms)
     # The typed errors are also the builtins callers catch.
     with pytest.raises(ValueError, match=r"history entropies must have shape"):
         tracked.__setstate__((entropies[:, :-1], counts))

@@ -58,6 +58,32 @@ fn three_orders() -> impl Strategy<Value = Orders> {
     })
 }
 
+/// [`three_orders`] of long runs of evidence: two to four scans, each
+/// repeated 10 to 60 times, so that the cells they share gather far more
+/// evidence (hundreds of nats) than an `f32` probability holds: where a map
+/// that floored its bins would clamp the evidence, and its result would
+/// depend on the order.
+fn three_long_orders() -> impl Strategy<Value = Orders> {
+    (
+        prop::collection::vec(scan_with_no_echoes(), 2..=4),
+        prop::collection::vec(10usize..=60, 4),
+    )
+        .prop_flat_map(|(scans, repeats)| {
+            let long: Vec<_> = scans
+                .iter()
+                .zip(&repeats)
+                .flat_map(|(scan, &n)| std::iter::repeat_n(scan.clone(), n))
+                .collect();
+            let reversed: Vec<_> = long.iter().rev().cloned().collect();
+            (
+                Just(long.clone()),
+                Just(reversed),
+                Just(long).prop_shuffle(),
+            )
+                .prop_map(|(a, b, c)| [a, b, c])
+        })
+}
+
 fn apply<S: ScanMap>(map: &mut S, scans: &[(Pose, Vec<(f64, f64)>)], model: &dyn SensorModel) {
     for (pose, beams) in scans {
         let (r, b): (Vec<f64>, Vec<f64>) = beams.iter().copied().unzip();
@@ -132,6 +158,29 @@ proptest! {
                 }
                 // Whole beams (no discount) count 1 each: exact sums.
                 prop_assert_eq!(grids[0].counts().counts(), other.counts().counts());
+            }
+        }
+    }
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 16, rng_seed: proptest::test_runner::RngSeed::Fixed(0x10_4e4a), ..ProptestConfig::default() })]
+
+    /// The same over long runs of evidence (the map keeps each cell's
+    /// evidence as a sum of log-likelihoods, which no floor clamps): the
+    /// histograms agree to within the rounding of those sums in `f32`.
+    #[test]
+    fn long_runs_of_evidence_do_not_make_a_map_depend_on_the_order_of_its_scans(orders in three_long_orders()) {
+        for model in shipped_models() {
+            let maps = orders.each_ref().map(|scans| {
+                let mut map = CoverageMap::new(grid());
+                apply(&mut map, scans, &model);
+                map
+            });
+            for other in &maps[1..] {
+                for (a, b) in maps[0].histograms().iter().zip(other.histograms()) {
+                    prop_assert!((a - b).abs() <= 1e-4, "{a} vs {b} ({model:?})");
+                }
             }
         }
     }

@@ -17,17 +17,18 @@ pub const MAX_BINS: usize = 256;
 /// model can (see BENCHMARKS.md for the measured cost of 8, 16 and 32 bins).
 pub const DEFAULT_BINS: usize = 16;
 
-/// The smallest probability a bin keeps after an update, whatever the bin
-/// count.
+/// The smallest probability a bin of a map's histogram holds, whatever the
+/// bin count.
 ///
-/// Every kernel is positive (its uniform part `xi > 0`), so in exact arithmetic
-/// no bin ever reaches 0; in `f32` a long run of identical readings would
-/// underflow. The floor stops that: no bin becomes 0, a cell can always change
-/// its mind (from the floor, a dozen contrary readings of the default models
-/// bring a bin back), and it is far enough below anything a histogram can
-/// resolve that the floor almost never acts. Where it does, it is the one place
-/// where updates stop being exactly order independent. It stays above the
-/// `f32` normal range (1.2e-38) times the smallest kernel value, so the update
+/// A map keeps each cell's evidence as log-likelihoods
+/// ([`CoverageMap::evidence`](crate::CoverageMap::evidence)), which no floor clamps; its histograms are read off
+/// them, and a bin whose probability is below the floor (beyond `f32`'s
+/// normal range, or of no use to anything that reads a histogram) is held
+/// at it there. So no bin of a histogram is 0, every `p ln p` is finite,
+/// and the floor changes nothing of what a later reading does to the
+/// cell. It stays above the `f32` normal range (1.2e-38) times the
+/// smallest kernel value, so that a histogram multiplied by a kernel
+/// without a map's evidence (as the expected gain predicts an update)
 /// never computes with subnormal numbers for sane models.
 pub const BIN_FLOOR: f32 = 1e-30;
 
@@ -138,6 +139,128 @@ fn update_any(h: &mut [f32], k: &[f32], floor: f32) {
     let inv = 1.0 / sum;
     for v in h.iter_mut() {
         *v = (*v * inv).max(floor);
+    }
+}
+
+/// `e^x` for `x <= 0` in `f32`, to within two units in the last place:
+/// `x = n ln 2 + r` with `|r| <= ln 2 / 2`, `e^r` by its Taylor polynomial of
+/// degree 6 (remainder below `1.3e-7` relative), times `2^n` put together
+/// from its bits. Below `-87` (where `e^x` leaves the normal `f32` range) it
+/// gives `e^-87`. Every step is lane-wise arithmetic, so a loop over a
+/// histogram compiles to vector code.
+#[inline(always)]
+pub(crate) fn exp_non_positive(x: f32) -> f32 {
+    const LOG2_E: f32 = std::f32::consts::LOG2_E;
+    // ln 2 in two parts, the first with few enough bits that `n * LN2_HI`
+    // is exact for every `|n| <= 126`.
+    const LN2_HI: f32 = 0.693_145_75;
+    const LN2_LO: f32 = 1.428_606_8e-6;
+    // 1.5 * 2^23: adding it rounds to an integer (to nearest, ties to even).
+    const ROUND: f32 = 12_582_912.0;
+    let x = if x > -87.0 { x } else { -87.0 };
+    let n = (x * LOG2_E + ROUND) - ROUND;
+    let r = (x - n * LN2_HI) - n * LN2_LO;
+    let p = 1.0
+        + r * (1.0
+            + r * (0.5
+                + r * (1.0 / 6.0 + r * (1.0 / 24.0 + r * (1.0 / 120.0 + r * (1.0 / 720.0))))));
+    // `n` is an integer in [-126, 0]: `2^n` is a normal number.
+    #[allow(
+        clippy::cast_possible_truncation,
+        reason = "n is an integer in [-126, 0]"
+    )]
+    let scale = f32::from_bits(((n as i32 + 127) as u32) << 23);
+    p * scale
+}
+
+/// Bayes' rule in logarithms: add the kernel's logarithms `ln_k` to the
+/// cell's log-likelihoods `l` (shifted so that the largest is 0), and write
+/// the histogram they give into `h`, each bin at least `floor`. `N` bins
+/// (`N = 0`: any number).
+///
+/// The log-likelihoods are sums, in any order the same but for rounding;
+/// the histogram is a function of them alone. No bin's evidence is cut off:
+/// a bin far below the floor in `h` keeps its place in `l`, and contrary
+/// readings bring it back exactly as far as the evidence says.
+#[inline(always)]
+pub(crate) fn update_log<const N: usize>(l: &mut [f32], h: &mut [f32], ln_k: &[f32], floor: f32) {
+    if N == 0 {
+        update_log_any(l, h, ln_k, floor)
+    } else {
+        update_log_fixed::<N>(l, h, ln_k, floor)
+    }
+}
+
+/// [`update_log`] for `N` bins (a multiple of 4), in straight vector code.
+#[inline(always)]
+fn update_log_fixed<const N: usize>(l: &mut [f32], h: &mut [f32], ln_k: &[f32], floor: f32) {
+    let (Ok(l), Ok(h), Ok(ln_k)) = (
+        <&mut [f32; N]>::try_from(l),
+        <&mut [f32; N]>::try_from(h),
+        <&[f32; N]>::try_from(ln_k),
+    ) else {
+        unreachable!("the caller passes slices of N bins")
+    };
+    let mut x = [0.0f32; N];
+    for ((x, a), b) in x.iter_mut().zip(l.iter()).zip(ln_k) {
+        *x = a + b;
+    }
+    let mut tops = [f32::NEG_INFINITY; 4];
+    for chunk in x.chunks_exact(4) {
+        for (t, &v) in tops.iter_mut().zip(chunk) {
+            *t = if v > *t { v } else { *t };
+        }
+    }
+    let top = tops[0].max(tops[1]).max(tops[2].max(tops[3]));
+    let mut e = [0.0f32; N];
+    for ((e, x), l) in e.iter_mut().zip(x.iter_mut()).zip(l.iter_mut()) {
+        *x -= top;
+        *l = *x;
+        *e = exp_non_positive(*x);
+    }
+    let mut lanes = [0.0f32; 4];
+    for chunk in e.chunks_exact(4) {
+        for (s, v) in lanes.iter_mut().zip(chunk) {
+            *s += v;
+        }
+    }
+    let inv = 1.0 / ((lanes[0] + lanes[2]) + (lanes[1] + lanes[3]));
+    for (v, e) in h.iter_mut().zip(e) {
+        let y = e * inv;
+        *v = if y > floor { y } else { floor };
+    }
+}
+
+/// [`update_log`] for any bin count.
+#[inline]
+fn update_log_any(l: &mut [f32], h: &mut [f32], ln_k: &[f32], floor: f32) {
+    let mut top = f32::NEG_INFINITY;
+    for (v, &k) in l.iter_mut().zip(ln_k) {
+        *v += k;
+        top = top.max(*v);
+    }
+    let mut sum = 0.0f32;
+    for (v, p) in l.iter_mut().zip(h.iter_mut()) {
+        *v -= top;
+        *p = exp_non_positive(*v);
+        sum += *p;
+    }
+    let inv = 1.0 / sum;
+    for p in h.iter_mut() {
+        *p = (*p * inv).max(floor);
+    }
+}
+
+/// The log-likelihoods of histogram `h` into `l`: `ln h`, shifted so that
+/// the largest is 0 (a bin at 0 gets the logarithm of the smallest positive
+/// `f32`).
+pub(crate) fn log_of(h: &[f32], l: &mut [f32]) {
+    for (v, &p) in l.iter_mut().zip(h) {
+        *v = p.max(f32::MIN_POSITIVE).ln();
+    }
+    let top = l.iter().copied().fold(f32::NEG_INFINITY, f32::max);
+    for v in l.iter_mut() {
+        *v -= top;
     }
 }
 

@@ -23,11 +23,11 @@ const _: () = assert!(DEFAULT_BINS == 16);
 type HistoryArrays<'py> = (Bound<'py, PyArray3<f32>>, Bound<'py, PyArray2<u32>>);
 
 /// What `__reduce__` returns: a constructor, its arguments and the state for
-/// `__setstate__` (the history, if kept).
+/// `__setstate__`: the entropy history (if kept) and the evidence.
 type Reduce<'py> = (
     Bound<'py, PyAny>,
     (PyGrid, Bound<'py, PyArray3<f32>>),
-    Option<HistoryArrays<'py>>,
+    (Option<HistoryArrays<'py>>, Bound<'py, PyArray3<f32>>),
 );
 
 /// A grid whose every cell holds a histogram over how much of it is covered by
@@ -329,37 +329,100 @@ impl PyCoverageMap {
             free_thresh.0,
         )
     }
-    /// Pickle and copy support: rebuilt from the grid and the histograms, the
-    /// entropy history (if kept) restored by ``__setstate__``.
+    /// Pickle and copy support: rebuilt from the grid and the histograms,
+    /// the entropy history (if kept) and the evidence behind the histograms
+    /// (each cell's log-likelihoods, which hold more than the histograms
+    /// do) restored by ``__setstate__``, so that a copy goes on as the
+    /// original does.
     fn __reduce__<'py>(&self, py: Python<'py>) -> PyResult<Reduce<'py>> {
         let rebuild = py.get_type::<Self>().getattr("from_histograms")?;
         let grid = self.0.grid();
-        let state = match self.0.history_state() {
+        let history = match self.0.history_state() {
             Some(h) => Some((
                 convert::cell_stack_array(py, grid, STAGNATION_MEASUREMENTS + 1, h.entropies)?,
                 cell_array(py, grid, h.count)?,
             )),
             None => None,
         };
-        Ok((rebuild, (self.grid(), self.histograms(py)?), state))
+        let evidence =
+            covmap::memory::try_collect(self.0.evidence().iter().copied(), "the evidence")
+                .or_raise(py)?;
+        let evidence = convert::cell_stack_array(py, grid, self.0.bins(), evidence)?;
+        Ok((
+            rebuild,
+            (self.grid(), self.histograms(py)?),
+            (history, evidence),
+        ))
     }
-    /// Unpickling support: restore the entropy history saved by
-    /// ``__reduce__``, ``(entropies, counts)`` (float32
-    /// ``(rows, cols, STAGNATION_MEASUREMENTS + 1)`` and uint32
-    /// ``(rows, cols)``), and keep tracking it; ``None`` changes nothing.
-    /// After an error the map is exactly as it was.
+    /// Unpickling support: restore the state ``__reduce__`` saves,
+    /// ``(history, evidence)``: the entropy history, ``None`` or
+    /// ``(entropies, counts)`` (float32 ``(rows, cols,
+    /// STAGNATION_MEASUREMENTS + 1)`` and uint32 ``(rows, cols)``), kept
+    /// tracking, and the evidence, float32 ``(rows, cols, bins)``, which must
+    /// give the map's histograms. ``None`` or ``(entropies, counts)`` alone
+    /// (what earlier versions saved) restore the history only. After an
+    /// error the map is exactly as it was.
     fn __setstate__(&mut self, py: Python<'_>, state: &Bound<'_, PyAny>) -> PyResult<()> {
         if state.is_none() {
             return Ok(());
         }
+        let Ok((first, second)) = state.extract::<(Bound<'_, PyAny>, Bound<'_, PyAny>)>() else {
+            let got = match state.cast::<PyTuple>() {
+                Ok(tuple) => format!("a tuple of length {}", tuple.len()),
+                Err(_) => state.get_type().to_string(),
+            };
+            return Err(Exception::InvalidType.err(
+                py,
+                format!(
+                    "state must be None, (history, evidence) or (entropies, counts), got {got}"
+                ),
+            ));
+        };
+        // (history, evidence): the history is None or a tuple; else the
+        // earlier (entropies, counts).
+        if first.is_none() || first.cast::<PyTuple>().is_ok() {
+            let grid = *self.0.grid();
+            let evidence = convert::cell_values::<f32>(
+                &second,
+                &grid,
+                "evidence",
+                "float32",
+                Some(self.0.bins()),
+            )?;
+            let before = self.0.evidence().to_vec();
+            self.0.restore_evidence(evidence).or_raise(py)?;
+            if first.is_none() {
+                return Ok(());
+            }
+            return match self.restore_history(py, &first) {
+                Ok(()) => Ok(()),
+                Err(refused) => {
+                    // The history is refused: the evidence goes back too.
+                    self.0.restore_evidence(before).or_raise(py)?;
+                    Err(refused)
+                }
+            };
+        }
+        self.restore_history(py, state)
+    }
+}
+
+impl PyCoverageMap {
+    /// Restore the entropy history from ``(entropies, counts)``; after an
+    /// error the map is exactly as it was.
+    fn restore_history(&mut self, py: Python<'_>, state: &Bound<'_, PyAny>) -> PyResult<()> {
         let Ok((entropies, counts)) = state.extract::<(Bound<'_, PyAny>, Bound<'_, PyAny>)>()
         else {
             let got = match state.cast::<PyTuple>() {
                 Ok(tuple) => format!("a tuple of length {}", tuple.len()),
                 Err(_) => state.get_type().to_string(),
             };
-            return Err(Exception::InvalidType
-                .err(py, format!("state must be None or a tuple (entropies, counts) of two numpy arrays, got {got}")));
+            return Err(Exception::InvalidType.err(
+                py,
+                format!(
+                    "the history must be a tuple (entropies, counts) of two numpy arrays, got {got}"
+                ),
+            ));
         };
         let grid = *self.0.grid();
         let depth = Some(STAGNATION_MEASUREMENTS + 1);

@@ -17,9 +17,10 @@ impl CoverageMap {
     /// The likelihood of a contact is taken as 1 for a coverage of at least
     /// [`CONTACT_COVERAGE`] and 0 below it: a bumper is far more reliable
     /// than a sonar, and a cell that lets the disc pass does not stop it.
-    /// The bins below are left at the floor
-    /// ([`BIN_FLOOR`](crate::histogram::BIN_FLOOR)), so that later readings
-    /// can still revise the cell, but only many of them: a wall no echo
+    /// The bins below get the likelihood of the floor
+    /// ([`BIN_FLOOR`](crate::histogram::BIN_FLOOR), 69 nats against them),
+    /// so that later readings can still revise the cell, but only many of
+    /// them: a wall no echo
     /// shows (a specular surface, glass) stays in the way after the robot
     /// has run into it, instead of being cleared by the next no-echo
     /// readings and planned through again. It counts as one measurement of
@@ -42,18 +43,20 @@ impl CoverageMap {
     pub fn integrate_contact(&mut self, cell: Cell) -> Result<()> {
         let i = self.grid.index(cell)?;
         let bins = self.bins;
-        let likelihood: Vec<f32> = (0..bins)
+        let ln_likelihood: Vec<f32> = (0..bins)
             .map(|b| {
                 if histogram::bin_value(b, bins) >= CONTACT_COVERAGE {
-                    1.0
+                    0.0
                 } else {
-                    histogram::BIN_FLOOR
+                    histogram::BIN_FLOOR.ln()
                 }
             })
             .collect();
-        histogram::update(
-            &mut self.data[i * bins..(i + 1) * bins],
-            &likelihood,
+        let cell = i * bins..(i + 1) * bins;
+        histogram::update_log::<0>(
+            &mut self.log[cell.clone()],
+            &mut self.data[cell],
+            &ln_likelihood,
             histogram::BIN_FLOOR,
         );
         self.changes.begin().mark(i);
@@ -98,9 +101,12 @@ impl CoverageMap {
         if unpinned.is_empty() {
             return Ok(());
         }
+        let mut ln_pinned = vec![0.0f32; bins];
+        histogram::log_of(&pinned, &mut ln_pinned);
         let mut stamper = self.changes.begin();
         for &i in &unpinned {
             self.data[i * bins..(i + 1) * bins].copy_from_slice(&pinned);
+            self.log[i * bins..(i + 1) * bins].copy_from_slice(&ln_pinned);
             stamper.mark(i);
         }
         for i in unpinned {

@@ -2,6 +2,7 @@
 
 mod changes;
 mod contact;
+mod evidence;
 mod history;
 mod occlusion;
 mod storage;

@@ -16,7 +16,13 @@ use crate::sensor::{KernelTable, RangeModel};
 ///
 /// Storage is one contiguous `f32` array, row-major over cells with the bins of
 /// a cell adjacent: cell `i`'s histogram is `[i * bins, (i + 1) * bins)`. At the
-/// default 16 bins that is one 64-byte cache line per cell.
+/// default 16 bins that is one 64-byte cache line per cell. Beside it, laid out
+/// the same way, the evidence the histograms come from: each cell's
+/// log-likelihoods, to which an update adds its kernel's logarithms; a
+/// histogram is a function of its cell's log-likelihoods alone
+/// ([`CoverageMap::evidence`]), so the map after a set of scans is the same,
+/// but for rounding, in whatever order they came (the model, section 2).
+/// The two take `8 * bins` bytes a cell, 128 at 16 bins.
 ///
 /// Invariants, after any sequence of updates: every histogram sums to 1 within
 /// `1e-5`, every bin is finite and at least [`histogram::BIN_FLOOR`].
@@ -43,6 +49,11 @@ pub struct CoverageMap {
     /// The histograms, cell-major, starting on a cache line so that a 16-bin
     /// histogram is exactly one line.
     pub(super) data: Aligned<f32>,
+    /// The evidence behind the histograms: each cell's log-likelihoods,
+    /// laid out as `data`, shifted so that each cell's largest is 0. The
+    /// update adds to them; each histogram is a function of its cell's
+    /// ([`histogram::update_log`]).
+    pub(super) log: Aligned<f32>,
     /// The last sensor model's kernels, rebuilt when the model changes.
     pub(super) table: Option<Box<KernelTable>>,
     /// Per-cell entropy history, when tracked.
@@ -62,7 +73,7 @@ impl CoverageMap {
     /// the copy.
     pub fn try_clone(&self) -> Result<Self> {
         // The history takes less than the histograms, the stamps a bin's worth a cell.
-        let floats = self.data.len() * if self.history.is_some() { 2 } else { 1 } + self.grid.len();
+        let floats = self.data.len() * if self.history.is_some() { 3 } else { 2 } + self.grid.len();
         drop(crate::memory::try_with_capacity::<f32>(
             floats,
             "a copy of the coverage map",
@@ -73,7 +84,8 @@ impl CoverageMap {
     /// A map at the uniform prior with [`DEFAULT_BINS`] bins.
     ///
     /// # Panics
-    /// If the histograms (64 bytes a cell) cannot be allocated;
+    /// If the histograms and their evidence (128 bytes a cell) cannot be
+    /// allocated;
     /// [`Self::with_bins`] returns an error instead.
     #[allow(
         clippy::expect_used,
@@ -86,8 +98,8 @@ impl CoverageMap {
 
     /// A map at the uniform prior with `bins` bins per cell (2 to 256).
     ///
-    /// Errors if the bin count is not supported, or the histograms
-    /// (`4 * bins` bytes a cell) cannot be allocated.
+    /// Errors if the bin count is not supported, or the histograms and
+    /// their evidence (`8 * bins` bytes a cell) cannot be allocated.
     pub fn with_bins(grid: Grid, bins: usize) -> Result<Self> {
         histogram::check_bins(bins)?;
         let p = 1.0 / bins as f32;
@@ -101,10 +113,21 @@ impl CoverageMap {
                 grid.len() * bins,
             )
         })?;
+        let log = Aligned::try_filled(0.0, grid.len() * bins).ok_or_else(|| {
+            memory::out_of_memory::<f32>(
+                &format!(
+                    "the evidence of a coverage map of {} x {} cells of {bins} bins",
+                    grid.rows(),
+                    grid.cols()
+                ),
+                grid.len() * bins,
+            )
+        })?;
         Ok(Self {
             grid,
             bins,
             data,
+            log,
             table: None,
             history: None,
             changes: ChangeStamps::new(grid.len())?,
@@ -116,6 +139,10 @@ impl CoverageMap {
     /// Histograms that already satisfy the map's invariants (sum within `1e-5`
     /// of 1, no bin below the floor) are kept bit for bit, so a map saved and
     /// loaded is the same map; the others are renormalised and floored.
+    /// The evidence behind each histogram is taken to be its logarithm: a
+    /// bin at the floor holds no more than the floor's 69 nats against it
+    /// (a map in memory may hold more), so a loaded map can be revised by
+    /// fewer contrary readings than the map that was saved.
     pub fn from_histograms(grid: Grid, bins: usize, mut data: Vec<f32>) -> Result<Self> {
         histogram::check_bins(bins)?;
         if data.len() != grid.len() * bins {
@@ -141,10 +168,15 @@ impl CoverageMap {
                 histogram::update(h, &uniform, floor);
             }
         }
+        let mut log = vec![0.0f32; data.len()];
+        for (h, l) in data.chunks_exact(bins).zip(log.chunks_exact_mut(bins)) {
+            histogram::log_of(h, l);
+        }
         Ok(Self {
             grid,
             bins,
             data: Aligned::from_slice(&data),
+            log: Aligned::from_slice(&log),
             table: None,
             history: None,
             changes: ChangeStamps::new(grid.len())?,

@@ -40,7 +40,7 @@ impl ScanMap for CoverageMap {
         // Pick the update once per scan, so the per-cell loop is straight code.
         let updates = with_bins!(self.bins, |N| apply::<N, M>(
             &self.grid,
-            &mut self.data,
+            (&mut self.data, &mut self.log),
             &table,
             scan,
             model,
@@ -119,7 +119,7 @@ impl Touches<'_> {
 /// serves; every cell updated marked in `touches`.
 fn apply<const N: usize, M: SensorModel + ?Sized>(
     grid: &Grid,
-    data: &mut [f32],
+    (data, log): (&mut [f32], &mut [f32]),
     table: &KernelTable,
     scan: ScanBeams<'_>,
     model: &M,
@@ -141,6 +141,7 @@ fn apply<const N: usize, M: SensorModel + ?Sized>(
         let d = r.min(range.max_range_m);
         let mut beam = BeamUpdate::<N> {
             data,
+            log,
             table,
             bins,
             floor: histogram::BIN_FLOOR,
@@ -161,12 +162,14 @@ fn apply<const N: usize, M: SensorModel + ?Sized>(
     updates
 }
 
-/// The per-cell work of one beam: look the kernel up, multiply it in, mark
-/// the cell for the history. Nothing of the cell is read before its kernel
-/// is multiplied in, so a map is the same whatever order its scans came in
-/// (but for float rounding and the bin floor).
+/// The per-cell work of one beam: look the kernel up, add its logarithms to
+/// the cell's log-likelihoods and read the histogram off them
+/// ([`histogram::update_log`]), mark the cell for the history. Nothing of
+/// the cell is read before its kernel is added in, so a map is the same
+/// whatever order its scans came in (but for float rounding).
 struct BeamUpdate<'a, 't, const N: usize> {
     data: &'a mut [f32],
+    log: &'a mut [f32],
     table: &'a KernelTable,
     bins: usize,
     floor: f32,
@@ -178,9 +181,14 @@ struct BeamUpdate<'a, 't, const N: usize> {
 impl<const N: usize> CellVisitor for BeamUpdate<'_, '_, N> {
     #[inline(always)]
     fn cell(&mut self, index: usize, d_l: f64, _enter_m: f64) {
-        let h = &mut self.data[index * self.bins..(index + 1) * self.bins];
-        let k = self.table.at(self.lookup.offset(d_l));
-        histogram::update_bins::<N>(h, k, self.floor);
+        let cell = index * self.bins..(index + 1) * self.bins;
+        let ln_k = self.table.ln_at(self.lookup.offset(d_l));
+        histogram::update_log::<N>(
+            &mut self.log[cell.clone()],
+            &mut self.data[cell],
+            ln_k,
+            self.floor,
+        );
         self.touches.mark(index);
         self.updates += 1;
     }
@@ -270,14 +278,26 @@ mod tests {
             assert!(h.iter().all(|&v| v > 0.0 && v.is_finite()));
             assert!((h.iter().sum::<f32>() - 1.0).abs() < 1e-5);
         }
-        // And a cell that has seen a million "empty" readings still changes its
-        // mind when the world changes.
+        // And the evidence of a million "empty" readings is kept, not clamped
+        // at the floor: a hundred contrary readings leave the cell empty,
+        // where a floored histogram would have turned covered (the bins at the
+        // floor hold 69 nats, less than a hundred readings bring).
         let cell = g.world_to_cell(0.5, 0.1).unwrap();
-        assert_eq!(map.ml()[g.index(cell).unwrap()], 0.0);
+        let i = g.index(cell).unwrap();
+        assert_eq!(map.ml()[i], 0.0);
         let short = vec![0.49; 100];
+        let mut floored = map.histograms()[i * 16..(i + 1) * 16].to_vec();
+        let table = map.kernel_table(&laser.range).unwrap();
+        // The cell's centre lies 0.515 m along the beam.
+        let k = table.kernel_at(0.525 - 0.01, 0.49).unwrap();
+        for _ in 0..100 {
+            crate::histogram::update(&mut floored, &k, crate::histogram::BIN_FLOOR);
+        }
+        assert!(crate::histogram::mean(&floored) > 0.5);
         map.integrate(&pose, &short, &bearings[..100], &laser)
             .unwrap();
-        assert!(map.mean()[g.index(cell).unwrap()] > 0.5);
+        assert_eq!(map.ml()[i], 0.0);
+        assert!(map.mean()[i] < 0.01);
     }
 
     #[test]

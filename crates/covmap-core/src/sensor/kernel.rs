@@ -55,6 +55,9 @@ pub struct KernelTable {
     inv_slice: f64,
     /// `[region][s][bin]`, each kernel normalised to sum 1.
     values: Vec<f32>,
+    /// The logarithm of every value of `values`, as laid out there: what
+    /// the update adds to a cell's log-likelihoods.
+    ln_values: Vec<f32>,
     /// Every value `k` in `f64`, and `k ln k`, for the entropies of updated
     /// histograms ([`crate::gain`]), from the start of a cache line (so that
     /// a 16-bin kernel's eight-value halves never straddle two).
@@ -98,6 +101,7 @@ impl KernelTable {
             *k = f64::from(v);
             *m = x_ln_x(*k);
         }
+        let ln_values = values.iter().map(|v| v.ln()).collect();
         Ok(Self {
             model: *model,
             resolution_m,
@@ -105,6 +109,7 @@ impl KernelTable {
             inv_step_s: 1.0 / step_s,
             inv_slice: 1.0 / slice,
             values,
+            ln_values,
             values_f64,
             k_ln_k,
         })
@@ -157,6 +162,13 @@ impl KernelTable {
     #[inline(always)]
     pub(crate) fn at(&self, offset: usize) -> &[f32] {
         &self.values[offset..offset + self.bins]
+    }
+
+    /// The logarithms of the kernel at a table offset from
+    /// [`ReadingLookup::offset`].
+    #[inline(always)]
+    pub(crate) fn ln_at(&self, offset: usize) -> &[f32] {
+        &self.ln_values[offset..offset + self.bins]
     }
 
     /// Every kernel in `f64`, one after the other (a kernel's offset is

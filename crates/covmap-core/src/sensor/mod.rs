@@ -39,10 +39,10 @@
 //! `end_weight`; both weights are the paper's reading (no mixing) by
 //! default.
 //!
-//! The update multiplies these kernels into the cells and reads nothing of
-//! the map: a cell's histogram is the prior times the kernels of its
-//! readings, the same whatever order they came in (but for float rounding
-//! and the bin floor). Parameters that made the update read the map were
+//! The update multiplies these kernels into the cells (adds their
+//! logarithms to the cells' log-likelihoods) and reads nothing of the map: a
+//! cell's histogram is the prior times the kernels of its readings, the same
+//! whatever order they came in (but for float rounding). Parameters that made the update read the map were
 //! removed ([`REMOVED_PARAMETERS`]).
 //!
 //! # Predicted readings, `p(d | map)`

@@ -70,8 +70,8 @@ pub struct SimExploration {
     started: Instant,
 }
 
-/// Bytes a run keeps for each cell of its grid besides the histograms'
-/// `4 * bins`: the truth, the clearances, the entropy, history and
+/// Bytes a run keeps for each cell of its grid besides the histograms' and
+/// their evidence's `8 * bins`: the truth, the clearances, the entropy, history and
 /// planning maps, the occupancy grid and counts, and the flags, rounded up.
 const RUN_BYTES_PER_CELL: usize = 128;
 
@@ -80,7 +80,7 @@ const RUN_BYTES_PER_CELL: usize = 128;
 /// of its per-cell arrays is computed, so that a grid too fine for the
 /// machine is an error, not an abort halfway through the set-up.
 fn check_run_memory(grid: &Grid, bins: usize) -> Result<()> {
-    let per_cell = RUN_BYTES_PER_CELL.saturating_add(bins.saturating_mul(4));
+    let per_cell = RUN_BYTES_PER_CELL.saturating_add(bins.saturating_mul(8));
     let bytes = grid.len().saturating_mul(per_cell);
     let what = format!(
         "an exploration on {} x {} cells of {bins} bins",
