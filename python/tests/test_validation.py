@@ -218,12 +218,15 @@ def test_an_impossible_entropy_history_is_refused(grid: covmap.Grid) -> None:
     cmap = covmap.CoverageMap(grid)
     cmap.track_history(True)
     cmap.integrate(POSE, R, B, covmap.SonarModel())
-    entropies, counts = cmap.__reduce__()[2]
+    rebuild, args, (history, evidence) = cmap.__reduce__()
+    entropies, counts = history
     entropies = entropies.copy()
     entropies.flat[0] = 100.0  # more than ln(16) nats
-    fresh = covmap.CoverageMap(grid)
+    fresh = rebuild(*args)  # the map's histograms, without its history
     with pytest.raises(covmap.InvalidHistoryError):
-        fresh.__setstate__((entropies, counts))
+        fresh.__setstate__(((entropies, counts), evidence))
+    with pytest.raises(covmap.InvalidHistoryError):
+        fresh.__setstate__((entropies, counts))  # the state saved before the evidence was kept
 
 
 def test_points_that_are_not_finite_are_invalid_values() -> None:

@@ -366,18 +366,11 @@ impl PyCoverageMap {
         if state.is_none() {
             return Ok(());
         }
-        let Ok((first, second)) = state.extract::<(Bound<'_, PyAny>, Bound<'_, PyAny>)>() else {
-            let got = match state.cast::<PyTuple>() {
-                Ok(tuple) => format!("a tuple of length {}", tuple.len()),
-                Err(_) => state.get_type().to_string(),
-            };
-            return Err(Exception::InvalidType.err(
-                py,
-                format!(
-                    "state must be None, (history, evidence) or (entropies, counts), got {got}"
-                ),
-            ));
-        };
+        let (first, second) = pair(
+            py,
+            state,
+            "state must be None, (history, evidence) or (entropies, counts)",
+        )?;
         // (history, evidence): the history is None or a tuple; else the
         // earlier (entropies, counts).
         if first.is_none() || first.cast::<PyTuple>().is_ok() {
@@ -411,19 +404,11 @@ impl PyCoverageMap {
     /// Restore the entropy history from ``(entropies, counts)``; after an
     /// error the map is exactly as it was.
     fn restore_history(&mut self, py: Python<'_>, state: &Bound<'_, PyAny>) -> PyResult<()> {
-        let Ok((entropies, counts)) = state.extract::<(Bound<'_, PyAny>, Bound<'_, PyAny>)>()
-        else {
-            let got = match state.cast::<PyTuple>() {
-                Ok(tuple) => format!("a tuple of length {}", tuple.len()),
-                Err(_) => state.get_type().to_string(),
-            };
-            return Err(Exception::InvalidType.err(
-                py,
-                format!(
-                    "the history must be a tuple (entropies, counts) of two numpy arrays, got {got}"
-                ),
-            ));
-        };
+        let (entropies, counts) = pair(
+            py,
+            state,
+            "the history must be a tuple (entropies, counts) of two numpy arrays",
+        )?;
         let grid = *self.0.grid();
         let depth = Some(STAGNATION_MEASUREMENTS + 1);
         let entropies =
@@ -433,4 +418,22 @@ impl PyCoverageMap {
             .restore_history(HistoryState { entropies, count })
             .or_raise(py)
     }
+}
+
+/// The two items of a 2-tuple, or an `InvalidTypeError` that says `expected`
+/// and what was given instead.
+fn pair<'py>(
+    py: Python<'py>,
+    value: &Bound<'py, PyAny>,
+    expected: &str,
+) -> PyResult<(Bound<'py, PyAny>, Bound<'py, PyAny>)> {
+    value
+        .extract::<(Bound<'py, PyAny>, Bound<'py, PyAny>)>()
+        .map_err(|_| {
+            let got = match value.cast::<PyTuple>() {
+                Ok(tuple) => format!("a tuple of length {}", tuple.len()),
+                Err(_) => value.get_type().to_string(),
+            };
+            Exception::InvalidType.err(py, format!("{expected}, got {got}"))
+        })
 }
