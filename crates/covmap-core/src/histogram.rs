@@ -158,18 +158,22 @@ pub(crate) fn exp_non_positive(x: f32) -> f32 {
     // 1.5 * 2^23: adding it rounds to an integer (to nearest, ties to even).
     const ROUND: f32 = 12_582_912.0;
     let x = if x > -87.0 { x } else { -87.0 };
-    let n = (x * LOG2_E + ROUND) - ROUND;
+    let rounded = x * LOG2_E + ROUND;
+    let n = rounded - ROUND;
     let r = (x - n * LN2_HI) - n * LN2_LO;
     let p = 1.0
         + r * (1.0
             + r * (0.5
                 + r * (1.0 / 6.0 + r * (1.0 / 24.0 + r * (1.0 / 120.0 + r * (1.0 / 720.0))))));
-    // `n` is an integer in [-126, 0]: `2^n` is a normal number.
-    #[allow(
-        clippy::cast_possible_truncation,
-        reason = "n is an integer in [-126, 0]"
-    )]
-    let scale = f32::from_bits(((n as i32 + 127) as u32) << 23);
+    // `n` is an integer in [-126, 0]: `2^n` is a normal number. Between
+    // 2^23 and 2^24 a float's last bit is worth 1, so `n` is the
+    // difference of the two floats' bits: integer arithmetic that stays in
+    // vector lanes (a float-to-integer cast, which Rust saturates, does not).
+    let biased = rounded
+        .to_bits()
+        .wrapping_sub(ROUND.to_bits())
+        .wrapping_add(127);
+    let scale = f32::from_bits(biased << 23);
     p * scale
 }
 
