@@ -168,23 +168,6 @@ class _RangeModel:
     def xi_per_m(self) -> float:
         """Growth of the uniform weight per metre of distance `s = min(d_l, d)`."""
     @property
-    def no_echo_reach(self) -> float:
-        """How far a no-echo reading clears its footprint, as a fraction of
-        `max_range_m`, in `(0, 1]`. 1 (the default): out to the maximum
-        range, as the paper reads it.
-        """
-    @property
-    def no_echo_weight(self) -> float:
-        """How strongly a no-echo reading clears, in `[0, 1]`: its kernel is
-        `no_echo_weight * k_free + (1 - no_echo_weight) / bins`, a mixture
-        of the free-space kernel and the uniform prior. 1 (the default):
-        the free-space kernel, as the paper reads it; 0: a no-echo reading
-        leaves the map as it was. A specular miss (a sonar pulse that
-        glanced off a wall and never came back) is a no-echo reading
-        through a wall, so a weight below 1 keeps such misses from erasing
-        walls that echoes from other angles found.
-        """
-    @property
     def end_weight(self) -> float:
         """How strongly an echo marks the cells at and behind its end point
         (the end band and the band behind it), in `[0, 1]`: their kernels
@@ -214,8 +197,9 @@ class _RangeModel:
     def from_dict(cls, d: dict[str, float]) -> Self:
         """The model with the parameters of ``d`` (missing ones take the defaults).
         The parameters covmap removed (``posterior_floor``, ``end_attribution``,
-        ``free_yield``) may appear at 0, their old default, and are ignored;
-        any other value of them raises ``InvalidParameterError``.
+        ``free_yield`` at 0; ``no_echo_reach``, ``no_echo_weight`` at 1: each at its
+        old default) may appear and are ignored; any other value of them raises
+        ``InvalidParameterError``.
         """
     def __eq__(self, value: object, /) -> bool: ...
     def __ne__(self, value: object, /) -> bool: ...
@@ -246,8 +230,6 @@ class SonarModel(_RangeModel):
         sigma_end: float | None = None,
         xi_min: float | None = None,
         xi_per_m: float | None = None,
-        no_echo_reach: float | None = None,
-        no_echo_weight: float | None = None,
         end_weight: float | None = None,
         opening_angle_rad: float | None = None,
         # end generated
@@ -280,8 +262,6 @@ class LaserModel(_RangeModel):
         sigma_end: float | None = None,
         xi_min: float | None = None,
         xi_per_m: float | None = None,
-        no_echo_reach: float | None = None,
-        no_echo_weight: float | None = None,
         end_weight: float | None = None,
         # end generated
     ) -> LaserModel: ...

@@ -176,6 +176,34 @@ def test_benchmark_command(tmp_path: Path) -> None:
     assert (tmp_path / "report" / "benchmark.png").read_bytes()[:8] == PNG_SIGNATURE
 
 
+def test_the_benchmark_command_maps_with_a_learned_model(tmp_path: Path) -> None:
+    """``--model`` (a ``covmap learn`` file) is the model the runs of its
+    sensor map with: the same runs give other maps; a model of a sensor the
+    benchmark does not run, or of a parameter covmap removed, is refused
+    before anything runs."""
+    import json
+
+    learned = tmp_path / "model.json"
+    learned.write_text(json.dumps({"sensor": "sonar", "model": {**covmap.SonarModel(end_weight=0.5).to_dict()}}))
+    args = ["benchmark", "--buildings", SMALL[0], "--strategies", "frontier", "--max-steps", "3", "--resolution", "0.1"]
+    errors = []
+    for model in (None, learned):
+        out = tmp_path / ("default" if model is None else "learned")
+        result = run_cli(*args, *([] if model is None else ["--model", str(model)]), "--out", str(out))
+        assert result.returncode == 0, result.stderr
+        assert ("end_weight=0.5" in result.stdout) == (model is not None)
+        (row,) = csv.DictReader(io.StringIO((out / "benchmark.csv").read_text()))
+        errors.append(float(row["error_coverage_map"]))
+    assert errors[0] != errors[1]
+    removed = tmp_path / "removed.json"
+    removed.write_text(json.dumps({"sensor": "sonar", "model": {"no_echo_weight": 0.5}}))
+    for model, extra, message in ((learned, ["--sensors", "laser"], "a sonar model"), (removed, [], "no_echo_weight")):
+        out = tmp_path / "refused"
+        result = run_cli(*args, *extra, "--model", str(model), "--out", str(out))
+        assert result.returncode in (1, 2) and message in result.stderr and "Traceback" not in result.stderr, result.stderr
+        assert not out.exists()
+
+
 @pytest.mark.parametrize(
     ("args", "message"),
     [

@@ -17,8 +17,6 @@ SONAR_PARAMETERS = [
     "sigma_end",
     "xi_min",
     "xi_per_m",
-    "no_echo_reach",
-    "no_echo_weight",
     "end_weight",
     "opening_angle_rad",
 ]
@@ -59,8 +57,7 @@ def test_one_override_keeps_the_other_defaults() -> None:
         {"xi_min": 0.0},
         {"xi_per_m": math.inf},
         {"end_weight": 1.5},
-        {"no_echo_weight": -0.1},
-        {"no_echo_reach": math.nan},
+        {"end_weight": math.nan},
         {"opening_angle_rad": 0.0},
         {"opening_angle_rad": math.pi},
     ],
@@ -96,17 +93,21 @@ def test_dict_repr_pickle_round_trips(cls: Any) -> None:
 
 
 @pytest.mark.parametrize("cls", [covmap.SonarModel, covmap.LaserModel])
-@pytest.mark.parametrize("removed", ["posterior_floor", "end_attribution", "free_yield"])
-def test_a_removed_parameter_is_read_only_at_zero(cls: Any, removed: str) -> None:
-    """A dict stored before the parameter's removal names it at 0 (its
-    default then): ignored. Any other value describes a model covmap no
-    longer builds; and the parameter is no keyword any more."""
-    stored = {**cls().to_dict(), removed: 0.0}
+@pytest.mark.parametrize(
+    ("removed", "off"),
+    [("posterior_floor", 0.0), ("end_attribution", 0.0), ("free_yield", 0.0), ("no_echo_reach", 1.0),
+     ("no_echo_weight", 1.0)],
+)
+def test_a_removed_parameter_is_read_only_at_its_off_value(cls: Any, removed: str, off: float) -> None:
+    """A dict stored before the parameter's removal names it at its default
+    then (its off value): ignored. Any other value describes a model covmap
+    no longer builds; and the parameter is no keyword any more."""
+    stored = {**cls().to_dict(), removed: off}
     assert cls.from_dict(stored) == cls()
     with pytest.raises(covmap.InvalidParameterError, match=f"`{removed}`.*removed"):
-        cls.from_dict({**stored, removed: 0.05})
+        cls.from_dict({**stored, removed: 0.5})
     with pytest.raises(TypeError):
-        cls(**{removed: 0.0})
+        cls(**{removed: off})
     assert removed not in cls.PARAMETERS
 
 

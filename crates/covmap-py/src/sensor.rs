@@ -32,17 +32,17 @@ fn kernel_array<'py, M: SensorModel + Sync>(
 }
 
 /// `d`, a model's parameters as a dict, without the removed parameters
-/// (`covmap::sensor::REMOVED_PARAMETERS`) it names at 0, as a dict stored
-/// before their removal holds them; one at any other value raises
-/// `InvalidParameterError`.
+/// (`covmap::sensor::REMOVED_PARAMETERS`) it names at their off values, as
+/// a dict stored before their removal holds them; one at any other value
+/// raises `InvalidParameterError`.
 fn without_removed<'py>(d: &Bound<'py, PyDict>) -> PyResult<Bound<'py, PyDict>> {
     let py = d.py();
     let kept = d.copy()?;
-    for name in covmap::sensor::REMOVED_PARAMETERS {
-        if let Some(value) = kept.get_item(name)? {
+    for removed in &covmap::sensor::REMOVED_PARAMETERS {
+        if let Some(value) = kept.get_item(removed.name)? {
             let Float(value) = value.extract()?;
-            covmap::sensor::parameters::check_removed(name, value).or_raise(py)?;
-            kept.del_item(name)?;
+            covmap::sensor::parameters::check_removed(removed, value).or_raise(py)?;
+            kept.del_item(removed.name)?;
         }
     }
     Ok(kept)
@@ -128,8 +128,9 @@ macro_rules! sensor_model_class {
                     }
                     /// The model with the parameters of ``d`` (missing ones take the defaults).
                     /// The parameters covmap removed (``posterior_floor``, ``end_attribution``,
-                    /// ``free_yield``) may appear at 0, their old default, and are ignored;
-                    /// any other value of them raises ``InvalidParameterError``.
+                    /// ``free_yield`` at 0; ``no_echo_reach``, ``no_echo_weight`` at 1: each at its
+                    /// old default) may appear and are ignored; any other value of them raises
+                    /// ``InvalidParameterError``.
                     #[classmethod]
                     fn from_dict<'py>(
                         cls: &Bound<'py, PyType>,

@@ -30,7 +30,8 @@ DESCRIPTION = (
     "the laser too (at most 300 m a laser run); runs on a Dask cluster when given one (--dask). Every "
     "run stops at 3000 m (--max-path-m, --max-steps: other limits for every run). --buildings picks other buildings: sets "
     "(default, development, test) or buildings by name (corridor, office, generated:SEED[:AREA], a world "
-    "file), separated by commas. --report CSV prints the summary of an earlier run's benchmark.csv and "
+    "file), separated by commas. --model maps with a sensor model covmap learn fitted, to judge it on "
+    "buildings it was not fitted on. --report CSV prints the summary of an earlier run's benchmark.csv and "
     "draws its figure, running nothing."
 )
 """What ``covmap benchmark --help`` says the command does."""
@@ -96,6 +97,12 @@ def add_arguments(command: argparse.ArgumentParser) -> None:
         metavar="DIR",
         help=f"where the test set's real plans are read from (default {DEFAULT_PLANS_DIR})",
     )
+    command.add_argument(
+        "--model",
+        metavar="JSON",
+        help="a sensor model file of covmap learn: the runs with its sensor map with it "
+        "(default: each sensor's default model)",
+    )
     _options.add_dask(command)
     _options.add_out(command, NAME)
     _options.add_run_limits(command)
@@ -129,11 +136,25 @@ def run(args: argparse.Namespace) -> int:
     sensors = args.sensors if args.sensors is not None else list(config.sensors)
     for name in sensors:
         benchmark.sensor_of(name)
+    model = None
+    if args.model is not None:
+        from covmap._errors import InvalidValueError
+        from covmap._native import SonarModel
+        from covmap.cli.fig2 import load_model
+
+        model = load_model(args.model)
+        kind = "sonar" if isinstance(model, SonarModel) else "laser"
+        if kind not in sensors:
+            raise InvalidValueError(
+                f"{args.model}: a {kind} model, but the benchmark runs {', '.join(sensors)} only (--sensors)"
+            )
     chosen = buildings(references, count=count, plans=config.plans or args.buildings is not None, plans_dir=args.plans)
     # The configuration's limits per sensor; --max-steps and --max-path-m
     # over all of them.
     given = _options.run_limits(args)
     sensor_options = {name: {**config.sensor_options.get(name, {"max_path_m": benchmark.MAX_PATH_M}), **given} for name in sensors}
+    if model is not None:
+        sensor_options[kind]["model"] = model
     max_extent = config.max_extent_m2 if args.full else {}
     total = len(
         benchmark.specs(chosen, strategies=args.strategies, sensors=sensors, seeds=[0], max_extent_m2=max_extent)

@@ -60,8 +60,8 @@ impl CoverageMap {
     /// How far each no-echo reading of a scan from `pose` should clear: to
     /// the nearest cell of its footprint that this map holds as covered (ML
     /// coverage above [`CONTACT_COVERAGE`]; a cell the robot ran into is
-    /// pinned so: [`CoverageMap::pin_covered`]), at most the model's
-    /// no-echo reach; echo readings get the maximum range (they ignore it).
+    /// pinned so: [`CoverageMap::pin_covered`]), at most the maximum range;
+    /// echo readings get the maximum range (they ignore it).
     /// The result is the `no_echo_reach_m` of a
     /// [`ScanBeams`](crate::ScanBeams). The scan is not validated: an
     /// invalid one gives reaches the update then refuses.
@@ -75,7 +75,7 @@ impl CoverageMap {
         let grid = self.grid();
         let (bins, histograms) = (self.bins(), self.histograms());
         let range = model.range_model();
-        let (max_range_m, no_echo_reach_m) = (range.max_range_m, range.no_echo_reach_m());
+        let max_range_m = range.max_range_m;
         let footprint = model.footprint();
         let half = 0.5 * grid.resolution_m();
         let is_covered = |i: usize| {
@@ -91,12 +91,11 @@ impl CoverageMap {
             .map(|(&r, &bearing)| {
                 let mut reach = max_range_m;
                 if r >= max_range_m && r.is_finite() && bearing.is_finite() {
-                    reach = no_echo_reach_m;
                     visit(
                         grid,
                         [pose.x_m, pose.y_m],
                         pose.theta_rad + bearing,
-                        no_echo_reach_m,
+                        max_range_m,
                         footprint,
                         &mut |i: usize, d_l: f64| {
                             if d_l - half < reach && is_covered(i) {
@@ -138,7 +137,7 @@ mod tests {
         let half = 0.5 * grid.resolution_m();
         let mut next = crate::test_rng::uniform(3);
         let sonar = SonarModel::default();
-        let limit = sonar.range.no_echo_reach_m();
+        let limit = sonar.range.max_range_m;
         let ring: Vec<f64> = (0..24).map(|k| f64::from(k) * 0.2618).collect();
         let mut stopped = 0;
         for trial in 0..40 {

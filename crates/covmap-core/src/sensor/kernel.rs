@@ -11,10 +11,8 @@ use crate::numeric::x_ln_x;
 pub const BAND_SLICES: usize = 32;
 /// Steps the distance `s = min(d_l, d)` is cut into, from 0 to `max_range_m`.
 pub const DISTANCE_STEPS: usize = 256;
-/// The table's region of no-echo kernels (see [`KernelTable`]).
-pub const NO_ECHO_REGION: usize = BAND_SLICES + 2;
 /// Regions in a table.
-const REGIONS: usize = BAND_SLICES + 3;
+const REGIONS: usize = BAND_SLICES + 2;
 
 /// Errors unless `resolution_m` is a finite cell size a grid may have (at
 /// least [`MIN_RESOLUTION_M`]).
@@ -33,17 +31,16 @@ pub(crate) fn check_resolution(resolution_m: f64) -> Result<()> {
 /// Region 0 is free space (`mu = 0`), regions `1..=BAND_SLICES` are slices of
 /// the end band (each evaluated at its centre), region `BAND_SLICES + 1` is the
 /// band behind the end point (`mu = 1`; these mixed with the prior by the
-/// model's `end_weight`), and region `BAND_SLICES + 2`
-/// (`NO_ECHO_REGION`) the free space of a no-echo reading (region 0's
-/// kernels mixed with the prior by the model's `no_echo_weight`; a weight of
-/// 1 makes no-echo readings use region 0 itself). The distance `s` is rounded
+/// model's `end_weight`). A no-echo reading's cells are free space, region 0
+/// at `d = max_range_m`. The distance `s` is rounded
 /// to the nearest of `DISTANCE_STEPS + 1` steps; `sigma` and `xi` are linear
 /// in `s`, so the quantisation moves them by at most half a step's worth.
 ///
-/// Memory: `(BAND_SLICES + 3) * (DISTANCE_STEPS + 1) * bins` kernel values,
-/// 143 920 at 16 bins: 562 KiB in `f32` for the update (of which the
-/// free-space row it reads most is 16 KiB), and twice 1.1 MiB in `f64` (the
-/// values and their `k ln k`) for the expected gain, 2.8 MiB in all.
+/// Memory: `(BAND_SLICES + 2) * (DISTANCE_STEPS + 1) * bins` kernel values,
+/// 139 808 at 16 bins: 546 KiB in `f32` and as much for their logarithms
+/// for the update (of which the free-space row it reads most is 16 KiB),
+/// and twice 1.1 MiB in `f64` (the values and their `k ln k`) for the
+/// expected gain, 3.2 MiB in all.
 #[derive(Clone, Debug)]
 pub struct KernelTable {
     model: RangeModel,
@@ -79,7 +76,7 @@ impl KernelTable {
             for step in 0..=DISTANCE_STEPS {
                 let s = step as f64 * step_s;
                 let (mu, sigma) = match region {
-                    0 | NO_ECHO_REGION => (0.0, model.sigma(s)),
+                    0 => (0.0, model.sigma(s)),
                     r if r <= BAND_SLICES => {
                         let o = -0.5 * resolution_m + (r as f64 - 0.5) * slice;
                         (0.5 + o / resolution_m, model.sigma_end)
@@ -87,9 +84,7 @@ impl KernelTable {
                     _ => (1.0, model.sigma(s)),
                 };
                 let mut k = kernel_values(mu, sigma, model.xi(s), bins);
-                if region == NO_ECHO_REGION {
-                    k = model.no_echo_mixture(k);
-                } else if region > 0 {
+                if region > 0 {
                     k = model.end_mixture(k);
                 }
                 values.extend(k.into_iter().map(|v| v as f32));
@@ -137,13 +132,7 @@ impl KernelTable {
     #[inline(always)]
     pub(crate) fn reading(&self, d: f64, echo: bool) -> ReadingLookup {
         let half = 0.5 * self.resolution_m;
-        let free_region = if echo || self.model.no_echo_is_free() {
-            0
-        } else {
-            NO_ECHO_REGION
-        };
         ReadingLookup {
-            free_first: free_region * (DISTANCE_STEPS + 1),
             // step(d_l) = min(d_l, d) / step_s, rounded.
             inv_step_s: self.inv_step_s,
             d,
@@ -201,10 +190,6 @@ impl KernelTable {
 /// computed once per beam.
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct ReadingLookup {
-    /// Index of the first kernel of the region this reading gives cells in
-    /// free space: region 0, or [`NO_ECHO_REGION`] for a no-echo reading
-    /// that is not plain free space.
-    free_first: usize,
     inv_step_s: f64,
     d: f64,
     slice_per_m: f64,
@@ -238,17 +223,17 @@ impl ReadingLookup {
     }
 
     /// [`ReadingLookup::offset`] for a cell in free space (`is_free`, or any
-    /// cell of a no-echo reading): region 0, or the no-echo region.
+    /// cell of a no-echo reading): region 0.
     #[inline(always)]
     pub(crate) fn free_offset(&self, d_l: f64) -> usize {
         self.free_kernel(d_l) * self.bins
     }
 
     /// The index of the kernel at [`ReadingLookup::free_offset`] among all
-    /// the table's kernels.
+    /// the table's kernels (region 0's come first).
     #[inline(always)]
     pub(crate) fn free_kernel(&self, d_l: f64) -> usize {
-        self.free_first + self.free_step(d_l)
+        self.free_step(d_l)
     }
 
     /// The distance step of [`ReadingLookup::free_offset`]: the index of the
@@ -273,13 +258,12 @@ mod tests {
     /// The table agrees with the exact model to within its quantisation.
     #[test]
     fn table_matches_exact_kernel() {
-        let mut weak_no_echo = SonarModel::default().range;
-        (weak_no_echo.no_echo_weight, weak_no_echo.no_echo_reach) = (0.4, 0.6);
-        weak_no_echo.end_weight = 0.3;
+        let mut weak_end = SonarModel::default().range;
+        weak_end.end_weight = 0.3;
         for model in [
             SonarModel::default().range,
             LaserModel::default().range,
-            weak_no_echo,
+            weak_end,
         ] {
             for bins in [8, 16, 33] {
                 let r = 0.05;

@@ -33,11 +33,10 @@
 //!
 //! Cells more than `band_m` behind the end point are not touched. A reading at or
 //! beyond `max_range_m` is "no echo": every cell of the footprint up to
-//! `no_echo_reach * max_range_m` gets the free kernel (with `d = max_range_m`)
-//! mixed with the uniform prior by `no_echo_weight`, and none is marked. The
-//! kernels of the end band and behind it are mixed with the prior by
-//! `end_weight`; both weights are the paper's reading (no mixing) by
-//! default.
+//! `max_range_m` gets the free kernel (with `d = max_range_m`), as the paper
+//! reads it, and none is marked. The kernels of the end band and behind it
+//! are mixed with the uniform prior by `end_weight`: the paper's kernels (no
+//! mixing) by default.
 //!
 //! The update multiplies these kernels into the cells (adds their
 //! logarithms to the cells' log-likelihoods) and reads nothing of the map: a

@@ -128,29 +128,6 @@ macro_rules! range_parameters {
                 expected: "a non-negative growth",
                 fit: Some([0.0, 1.0]), absent: None,
             }
-            /// How far a no-echo reading clears its footprint, as a fraction of
-            /// `max_range_m`, in `(0, 1]`. 1 (the default): out to the maximum
-            /// range, as the paper reads it.
-            no_echo_reach {
-                unit: "", sonar: 1.0, laser: 1.0,
-                valid: |v: f64| v > 0.0 && v <= 1.0,
-                expected: "a fraction of the maximum range in (0, 1]",
-                fit: Some([0.02, 1.0]), absent: Some(1.0),
-            }
-            /// How strongly a no-echo reading clears, in `[0, 1]`: its kernel is
-            /// `no_echo_weight * k_free + (1 - no_echo_weight) / bins`, a mixture
-            /// of the free-space kernel and the uniform prior. 1 (the default):
-            /// the free-space kernel, as the paper reads it; 0: a no-echo reading
-            /// leaves the map as it was. A specular miss (a sonar pulse that
-            /// glanced off a wall and never came back) is a no-echo reading
-            /// through a wall, so a weight below 1 keeps such misses from erasing
-            /// walls that echoes from other angles found.
-            no_echo_weight {
-                unit: "", sonar: 1.0, laser: 1.0,
-                valid: |v: f64| (0.0..=1.0).contains(&v),
-                expected: "a weight in [0, 1]",
-                fit: Some([0.0, 1.0]), absent: Some(1.0),
-            }
             /// How strongly an echo marks the cells at and behind its end point
             /// (the end band and the band behind it), in `[0, 1]`: their kernels
             /// are mixed with the uniform prior as no-echo kernels are. 1 (the
@@ -299,29 +276,68 @@ pub fn check_each(table: &[Parameter], values: &[f64]) -> crate::error::Result<(
     Ok(())
 }
 
-/// Parameters the range model once had and no longer has. Each made the
+/// A parameter the range model once had and no longer has.
+#[derive(Clone, Copy, Debug)]
+pub struct RemovedParameter {
+    /// Its name, as stored models name it.
+    pub name: &'static str,
+    /// Its off value: the value at which it left the update as covmap's
+    /// update is now. A stored model may still name it at this value.
+    pub off: f64,
+    /// What a stored model may give it, and why it was removed, as an
+    /// error states it.
+    pub expected: &'static str,
+}
+
+/// Parameters the range model once had and no longer has. Three made the
 /// update read the map as it integrated a reading (`posterior_floor`,
 /// `end_attribution`, `free_yield`), so that a map depended on the order
 /// of its scans; and no fit showed them better on buildings it was not
-/// fitted to. A stored model may still name one at 0, which was its off
-/// value and is the update covmap has: it is read and ignored.
-pub const REMOVED_PARAMETERS: [&str; 3] = ["posterior_floor", "end_attribution", "free_yield"];
+/// fitted to. Two shaped no-echo readings (`no_echo_reach`, how far one
+/// clears, as a fraction of the maximum range; `no_echo_weight`, how
+/// strongly): fitted alone to maps built as the exploration loop builds
+/// them, each stayed at its off value (1); fitted to maps whose no-echo
+/// readings clear their whole footprint, each raised the map error of a
+/// drive it was not fitted to; fitted with `end_weight`, they doubled the
+/// development runs' uncertain cells (docs/experiments.md). A stored model
+/// may still name one at its off value, which is the update covmap has: it
+/// is read and ignored.
+pub const REMOVED_PARAMETERS: [RemovedParameter; 5] = [
+    RemovedParameter {
+        name: "posterior_floor",
+        off: 0.0,
+        expected: "0 or nothing: the parameter was removed (it made the update read the map, so the map depended on the order of its scans)",
+    },
+    RemovedParameter {
+        name: "end_attribution",
+        off: 0.0,
+        expected: "0 or nothing: the parameter was removed (it made the update read the map, so the map depended on the order of its scans)",
+    },
+    RemovedParameter {
+        name: "free_yield",
+        off: 0.0,
+        expected: "0 or nothing: the parameter was removed (it made the update read the map, so the map depended on the order of its scans)",
+    },
+    RemovedParameter {
+        name: "no_echo_reach",
+        off: 1.0,
+        expected: "1 or nothing: the parameter was removed (no fit showed a no-echo reading that clears less than its whole footprint better on data it was not fitted to)",
+    },
+    RemovedParameter {
+        name: "no_echo_weight",
+        off: 1.0,
+        expected: "1 or nothing: the parameter was removed (no fit showed a no-echo reading weaker than the free-space kernel better on data it was not fitted to)",
+    },
+];
 
-/// Errors unless `value`, of the removed parameter `name` (one of
-/// [`REMOVED_PARAMETERS`]), is 0: the only value whose model covmap still
-/// builds.
+/// Errors unless `value`, of the removed parameter `removed`, is its off
+/// value: the only value whose model covmap still builds.
 ///
 /// # Errors
 /// [`CovmapError::InvalidParameter`](crate::CovmapError::InvalidParameter)
 /// naming the parameter.
-pub fn check_removed(name: &'static str, value: f64) -> crate::error::Result<()> {
-    debug_assert!(REMOVED_PARAMETERS.contains(&name), "{name}");
-    crate::error::check_parameter(
-        value == 0.0,
-        name,
-        value,
-        "0 or nothing: the parameter was removed (it made the update read the map, so the map depended on the order of its scans)",
-    )
+pub fn check_removed(removed: &RemovedParameter, value: f64) -> crate::error::Result<()> {
+    crate::error::check_parameter(value == removed.off, removed.name, value, removed.expected)
 }
 
 /// The parameter of `table` called `name`, and its index.

@@ -41,6 +41,8 @@ macro_rules! range_model_struct {
             posterior_floor: Option<f64>,
             end_attribution: Option<f64>,
             free_yield: Option<f64>,
+            no_echo_reach: Option<f64>,
+            no_echo_weight: Option<f64>,
         }
 
         impl StoredRangeModel {
@@ -51,7 +53,13 @@ macro_rules! range_model_struct {
 
             /// The removed parameters read, in the order of [`REMOVED_PARAMETERS`].
             fn removed(&self) -> [Option<f64>; REMOVED_PARAMETERS.len()] {
-                [self.posterior_floor, self.end_attribution, self.free_yield]
+                [
+                    self.posterior_floor,
+                    self.end_attribution,
+                    self.free_yield,
+                    self.no_echo_reach,
+                    self.no_echo_weight,
+                ]
             }
         }
 
@@ -80,9 +88,9 @@ crate::range_parameters!(range_model_struct! {});
 impl TryFrom<StoredRangeModel> for RangeModel {
     type Error = String;
     fn try_from(stored: StoredRangeModel) -> std::result::Result<Self, String> {
-        for (value, name) in stored.removed().into_iter().zip(REMOVED_PARAMETERS) {
+        for (value, removed) in stored.removed().into_iter().zip(&REMOVED_PARAMETERS) {
             if let Some(value) = value {
-                check_removed(name, value).map_err(|e| e.to_string())?;
+                check_removed(removed, value).map_err(|e| e.to_string())?;
             }
         }
         let mut model = Self::SONAR;
@@ -151,29 +159,13 @@ impl RangeModel {
     }
 
     /// How far along the beam a reading of `range_m` reaches, and whether it is
-    /// an echo (`false`: no echo, clear up to `no_echo_reach` of the maximum
-    /// range).
+    /// an echo (`false`: no echo, clear up to the maximum range).
     pub fn reach(&self, range_m: f64) -> (f64, bool) {
         if range_m >= self.max_range_m {
-            (self.no_echo_reach_m(), false)
+            (self.max_range_m, false)
         } else {
             (range_m + self.band_m, true)
         }
-    }
-
-    /// How far a no-echo reading clears, metres: `no_echo_reach * max_range_m`.
-    pub fn no_echo_reach_m(&self) -> f64 {
-        if self.no_echo_reach >= 1.0 {
-            self.max_range_m
-        } else {
-            self.no_echo_reach * self.max_range_m
-        }
-    }
-
-    /// Whether a no-echo reading's kernel is the free-space kernel itself
-    /// (`no_echo_weight` 1), rather than a mixture with the prior.
-    pub fn no_echo_is_free(&self) -> bool {
-        self.no_echo_weight >= 1.0
     }
 
     /// The kernel the map multiplies in for a cell at `cell_distance_m` and a
@@ -242,9 +234,7 @@ impl RangeModel {
             (1.0, self.sigma(s))
         };
         let k = kernel_values(mu, sigma, self.xi(s), bins);
-        Some(if !echo {
-            self.no_echo_mixture(k)
-        } else if o >= -half {
+        Some(if echo && o >= -half {
             self.end_mixture(k)
         } else {
             k
@@ -255,12 +245,6 @@ impl RangeModel {
     /// with the uniform prior by `end_weight` (unchanged at weight 1).
     pub(crate) fn end_mixture(&self, k: Vec<f64>) -> Vec<f64> {
         mixture(k, self.end_weight)
-    }
-
-    /// A free-space kernel `k` as a no-echo reading gives it: mixed with the
-    /// uniform prior by `no_echo_weight` (unchanged at weight 1).
-    pub(crate) fn no_echo_mixture(&self, k: Vec<f64>) -> Vec<f64> {
-        mixture(k, self.no_echo_weight)
     }
 }
 
@@ -310,18 +294,19 @@ mod tests {
     use crate::sensor::{LaserModel, SonarModel};
 
     #[test]
-    fn a_stored_model_may_name_a_removed_parameter_only_at_zero() {
+    fn a_stored_model_may_name_a_removed_parameter_only_at_its_off_value() {
         let with = |name: &str, value: f64| {
             let mut json = serde_json::to_value(SonarModel::default()).unwrap();
             json[name] = value.into();
             json
         };
-        for name in super::REMOVED_PARAMETERS {
+        for removed in super::REMOVED_PARAMETERS {
+            let (name, off) = (removed.name, removed.off);
             // Off, as every model stored before the removal had it by default.
-            let read: SonarModel = serde_json::from_value(with(name, 0.0)).unwrap();
+            let read: SonarModel = serde_json::from_value(with(name, off)).unwrap();
             assert_eq!(read, SonarModel::default(), "{name}");
             let mut laser = serde_json::to_value(LaserModel::default()).unwrap();
-            laser[name] = 0.0.into();
+            laser[name] = off.into();
             assert_eq!(
                 serde_json::from_value::<LaserModel>(laser).unwrap(),
                 LaserModel::default()

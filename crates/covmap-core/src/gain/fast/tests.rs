@@ -32,23 +32,18 @@ fn fast_equals_exact_on_a_partly_known_map() {
     laser_no_band.range.band_m = 0.0;
     let mut sonar_no_band = sonar;
     sonar_no_band.range.band_m = 0.0;
-    // No-echo readings that clear less far and less strongly than echoes'
-    // free space: kernels of their own.
-    let mut sonar_weak_no_echo = sonar;
-    (
-        sonar_weak_no_echo.range.no_echo_weight,
-        sonar_weak_no_echo.range.no_echo_reach,
-    ) = (0.3, 0.5);
-    sonar_weak_no_echo.range.end_weight = 0.2;
-    let mut laser_weak_no_echo = LaserModel::default();
-    laser_weak_no_echo.range.no_echo_weight = 0.0;
+    // Echoes that mark the end band and behind it weakly.
+    let mut sonar_weak_end = sonar;
+    sonar_weak_end.range.end_weight = 0.2;
+    let mut laser_no_end = LaserModel::default();
+    laser_no_end.range.end_weight = 0.0;
     let models: [&dyn SensorModel; 6] = [
         &sonar,
         &LaserModel::default(),
         &laser_no_band,
         &sonar_no_band,
-        &sonar_weak_no_echo,
-        &laser_weak_no_echo,
+        &sonar_weak_end,
+        &laser_no_end,
     ];
     for model in models {
         for stop_coverage in [StopCoverage::MaximumLikelihood, StopCoverage::Mean] {
@@ -110,8 +105,6 @@ fn every_arithmetic_equals_exact_on_random_maps() {
         sonar.range.max_range_m = 1.0 + 1.5 * next();
         sonar.opening_angle_rad = 0.1 + 0.8 * next();
         if case % 2 == 1 {
-            sonar.range.no_echo_weight = next();
-            sonar.range.no_echo_reach = 0.2 + 0.8 * next();
             sonar.range.end_weight = next();
         }
         let mut laser = LaserModel::default();

@@ -70,8 +70,6 @@ impl GainEvaluator<'_> {
             last_bucket: buckets.len().saturating_sub(1) as f64,
             no_echo: dist.no_echo,
             none_lookup: self.table.reading(self.range.max_range_m, false),
-            free_lookup: self.table.reading(self.range.max_range_m, true),
-            no_echo_apart: !self.range.no_echo_is_free(),
             none_reach,
         };
         // Fix the bin count at compile time for the common sizes, so that the
@@ -214,11 +212,6 @@ pub(super) struct Beam<'a> {
     no_echo: f64,
     /// The kernels of no echo.
     none_lookup: ReadingLookup,
-    /// The free-space kernels of echoes (region 0 at distance `d_l`).
-    free_lookup: ReadingLookup,
-    /// Whether no echo's kernels differ from echoes' free-space kernels
-    /// (the model's `no_echo_weight` below 1): then each gets its own gain.
-    no_echo_apart: bool,
     none_reach: f64,
 }
 
@@ -394,14 +387,7 @@ impl<const N: usize, const A: u8> CellVisitor for FastBeam<'_, N, A> {
         } else {
             0.0
         };
-        if beam.no_echo_apart {
-            if echo_free > 0.0 {
-                self.gain(i, beam.free_lookup.free_offset(d_l), echo_free, prior);
-            }
-            if no_echo > 0.0 {
-                self.gain(i, beam.none_lookup.free_offset(d_l), no_echo, prior);
-            }
-        } else if echo_free + no_echo > 0.0 {
+        if echo_free + no_echo > 0.0 {
             let offset = beam.none_lookup.free_offset(d_l);
             self.gain(i, offset, echo_free + no_echo, prior);
         }
@@ -421,12 +407,7 @@ impl<const N: usize, const A: u8> CellVisitor for FastBeam<'_, N, A> {
             return;
         };
         let beam = self.beam;
-        if beam.no_echo_apart {
-            self.free_block(first, d, n, beam.free_lookup, echo_free);
-            self.free_block(first, d, n, beam.none_lookup, no_echo);
-        } else {
-            self.free_block(first, d, n, beam.none_lookup, echo_free + no_echo);
-        }
+        self.free_block(first, d, n, beam.none_lookup, echo_free + no_echo);
     }
 }
 

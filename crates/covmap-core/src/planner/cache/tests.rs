@@ -411,7 +411,7 @@ fn errors_are_the_fresh_plans_and_change_nothing() {
 /// plans on the same map: each plan is the fresh plan, bit for bit (a
 /// cache that compared only some of the parameters kept the gains of the
 /// model before: 911 nats where a fresh evaluation gave 383 for a changed
-/// `no_echo_weight`).
+/// no-echo weight, a parameter since removed).
 #[test]
 fn a_change_of_any_sensor_parameter_recomputes_the_gains() {
     let sonar = SonarModel::default();
