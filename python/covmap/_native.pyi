@@ -171,7 +171,7 @@ class _RangeModel:
     def end_weight(self) -> float:
         """How strongly an echo marks the cells at and behind its end point
         (the end band and the band behind it), in `[0, 1]`: their kernels
-        are mixed with the uniform prior as no-echo kernels are. 1 (the
+        are mixed with the uniform prior by this weight. 1 (the
         default): the paper's kernels. A sonar's echo comes from somewhere
         on the arc of its cone, so most cells of the arc are not what it
         hit; a weight below 1 says so, where 1 marks the whole arc covered.

@@ -397,7 +397,7 @@ def test_sweep_and_model_files_that_are_no_small_regular_files_are_refused(tmp_p
     ``/dev/zero`` is no regular file, and a deeply nested file is a format
     error, not a RecursionError: for sweep specs and for fig2's model."""
     from covmap._sweep_files import read_specs
-    from covmap.cli.fig2 import load_model
+    from covmap.cli._options import load_model
 
     fifo = tmp_path / "specs.json"
     os.mkfifo(fifo)

@@ -7,7 +7,10 @@ import argparse
 from collections.abc import Iterator
 from contextlib import contextmanager
 from pathlib import Path
-from typing import Any, Callable, TypeVar
+from typing import TYPE_CHECKING, Any, Callable, TypeVar
+
+if TYPE_CHECKING:
+    from covmap._native import LaserModel, SonarModel
 
 T = TypeVar("T", int, float)
 
@@ -337,3 +340,29 @@ def executor(args: argparse.Namespace) -> Iterator[Any]:
             yield client
     else:
         yield None
+
+
+def load_model(path: str) -> SonarModel | LaserModel:
+    """The model a ``covmap learn`` JSON file holds: ``{"sensor": "sonar" |
+    "laser", "model": {...}}``."""
+    import json
+
+    from covmap._errors import InvalidValueError, quoted
+    from covmap._native import LaserModel, SonarModel
+    from covmap._read import read_small_file, too_deep
+
+    data = read_small_file(path)
+    deep = too_deep(data, "json")
+    if deep is not None:
+        raise InvalidValueError(f"{path}: not a covmap learn model file ({deep})")
+    try:
+        saved = json.loads(data)
+        kind, parameters = saved["sensor"], saved["model"]
+    except (ValueError, KeyError, TypeError) as e:
+        raise InvalidValueError(f"{path}: not a covmap learn model file ({e})") from e
+    except RecursionError:
+        raise InvalidValueError(f"{path}: not a covmap learn model file (nested too deeply)") from None
+    if kind not in ("sonar", "laser") or not isinstance(parameters, dict):
+        raise InvalidValueError(f"{path}: sensor must be 'sonar' or 'laser', got {quoted(kind)}")
+    cls = SonarModel if kind == "sonar" else LaserModel
+    return cls.from_dict(parameters)

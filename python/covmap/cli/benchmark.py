@@ -140,9 +140,8 @@ def run(args: argparse.Namespace) -> int:
     if args.model is not None:
         from covmap._errors import InvalidValueError
         from covmap._native import SonarModel
-        from covmap.cli.fig2 import load_model
 
-        model = load_model(args.model)
+        model = _options.load_model(args.model)
         kind = "sonar" if isinstance(model, SonarModel) else "laser"
         if kind not in sensors:
             raise InvalidValueError(

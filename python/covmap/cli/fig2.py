@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import json
 from typing import TYPE_CHECKING
 
 from covmap._native import LaserModel, SonarModel
@@ -38,29 +37,6 @@ def add_arguments(command: argparse.ArgumentParser) -> None:
     )
 
 
-def load_model(path: str) -> SonarModel | LaserModel:
-    """The model a ``covmap learn`` JSON file holds: ``{"sensor": "sonar" |
-    "laser", "model": {...}}``."""
-    from covmap._errors import InvalidValueError, quoted
-    from covmap._read import read_small_file, too_deep
-
-    data = read_small_file(path)
-    deep = too_deep(data, "json")
-    if deep is not None:
-        raise InvalidValueError(f"{path}: not a covmap learn model file ({deep})")
-    try:
-        saved = json.loads(data)
-        kind, parameters = saved["sensor"], saved["model"]
-    except (ValueError, KeyError, TypeError) as e:
-        raise InvalidValueError(f"{path}: not a covmap learn model file ({e})") from e
-    except RecursionError:
-        raise InvalidValueError(f"{path}: not a covmap learn model file (nested too deeply)") from None
-    if kind not in ("sonar", "laser") or not isinstance(parameters, dict):
-        raise InvalidValueError(f"{path}: sensor must be 'sonar' or 'laser', got {quoted(kind)}")
-    cls = SonarModel if kind == "sonar" else LaserModel
-    return cls.from_dict(parameters)
-
-
 def outputs(args: argparse.Namespace) -> list[Path]:
     """The file the command writes."""
     return [args.out / "fig2.png"]
@@ -72,7 +48,7 @@ def run(args: argparse.Namespace) -> int:
 
     models: list[tuple[str, SonarModel | LaserModel]] = []
     if args.model is not None:
-        learned = load_model(args.model)
+        learned = _options.load_model(args.model)
         default = type(learned)()
         models = [("default", default), ("learned", learned)]
     else:

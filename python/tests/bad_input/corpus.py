@@ -375,7 +375,7 @@ HARDENED: list[Case] = [
     Case("geojson nested 100000 deep", "covmap.World._from_geojson('{\"type\": \"FeatureCollection\", \"features\": [], \"x\": ' + '[' * 100000 + ']' * 100000 + '}')", "FileFormatError", "ValueError", alone=True),
     Case("sweep json nested 100000 deep", "from pathlib import Path\nfrom covmap._sweep_files import read_specs\np = Path(tmp, 'deep.json')\np.write_text('{\"runs\": ' + '[' * 100000 + ']' * 100000 + '}')\nread_specs(p)", "FileFormatError", "ValueError", "nested too deeply", alone=True),
     Case("sweep toml nested 100000 deep", "from pathlib import Path\nfrom covmap._sweep_files import read_specs\np = Path(tmp, 'deep.toml')\np.write_text('x = ' + '[' * 100000 + ']' * 100000 + '\\n')\nread_specs(p)", "FileFormatError", "ValueError", "nested too deeply", alone=True),
-    Case("model json nested 100000 deep", "from covmap.cli.fig2 import load_model\np = os.path.join(tmp, 'model.json')\nopen(p, 'w').write('{\"model\": ' + '{\"a\": ' * 100000 + '1' + '}' * 100000 + '}')\nload_model(p)", "InvalidValueError", "ValueError", "nested too deeply", alone=True),
+    Case("model json nested 100000 deep", "from covmap.cli._options import load_model\np = os.path.join(tmp, 'model.json')\nopen(p, 'w').write('{\"model\": ' + '{\"a\": ' * 100000 + '1' + '}' * 100000 + '}')\nload_model(p)", "InvalidValueError", "ValueError", "nested too deeply", alone=True),
     # 3. No bare exceptions.
     Case("log sliced with step 0", "log[::0]", "InvalidValueError", "ValueError", "step"),
     Case("log sliced by strings", "log['a':]", "InvalidTypeError", "TypeError", "slice"),

@@ -226,18 +226,12 @@ impl ReadingLookup {
     /// cell of a no-echo reading): region 0.
     #[inline(always)]
     pub(crate) fn free_offset(&self, d_l: f64) -> usize {
-        self.free_kernel(d_l) * self.bins
-    }
-
-    /// The index of the kernel at [`ReadingLookup::free_offset`] among all
-    /// the table's kernels (region 0's come first).
-    #[inline(always)]
-    pub(crate) fn free_kernel(&self, d_l: f64) -> usize {
-        self.free_step(d_l)
+        self.free_step(d_l) * self.bins
     }
 
     /// The distance step of [`ReadingLookup::free_offset`]: the index of the
-    /// kernel among its region's `DISTANCE_STEPS + 1`.
+    /// kernel among its region's `DISTANCE_STEPS + 1`, and so among all the
+    /// table's kernels (region 0's come first).
     #[inline(always)]
     pub(crate) fn free_step(&self, d_l: f64) -> usize {
         // Clamped by comparisons (which become plain vector min and max; a

@@ -130,7 +130,7 @@ macro_rules! range_parameters {
             }
             /// How strongly an echo marks the cells at and behind its end point
             /// (the end band and the band behind it), in `[0, 1]`: their kernels
-            /// are mixed with the uniform prior as no-echo kernels are. 1 (the
+            /// are mixed with the uniform prior by this weight. 1 (the
             /// default): the paper's kernels. A sonar's echo comes from somewhere
             /// on the arc of its cone, so most cells of the arc are not what it
             /// hit; a weight below 1 says so, where 1 marks the whole arc covered.
@@ -289,6 +289,10 @@ pub struct RemovedParameter {
     pub expected: &'static str,
 }
 
+/// Why the three parameters that made the update read the map were
+/// removed, as the error for a value other than 0 states it.
+const READS_THE_MAP: &str = "0 or nothing: the parameter was removed (it made the update read the map, so the map depended on the order of its scans)";
+
 /// Parameters the range model once had and no longer has. Three made the
 /// update read the map as it integrated a reading (`posterior_floor`,
 /// `end_attribution`, `free_yield`), so that a map depended on the order
@@ -306,17 +310,17 @@ pub const REMOVED_PARAMETERS: [RemovedParameter; 5] = [
     RemovedParameter {
         name: "posterior_floor",
         off: 0.0,
-        expected: "0 or nothing: the parameter was removed (it made the update read the map, so the map depended on the order of its scans)",
+        expected: READS_THE_MAP,
     },
     RemovedParameter {
         name: "end_attribution",
         off: 0.0,
-        expected: "0 or nothing: the parameter was removed (it made the update read the map, so the map depended on the order of its scans)",
+        expected: READS_THE_MAP,
     },
     RemovedParameter {
         name: "free_yield",
         off: 0.0,
-        expected: "0 or nothing: the parameter was removed (it made the update read the map, so the map depended on the order of its scans)",
+        expected: READS_THE_MAP,
     },
     RemovedParameter {
         name: "no_echo_reach",

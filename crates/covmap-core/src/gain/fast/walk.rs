@@ -436,7 +436,7 @@ impl<const N: usize, const A: u8> FastBeam<'_, N, A> {
             // The whole block is at the prior (common in unexplored
             // space): its gains come from the table.
             let gains = &self.beam.terms.prior_gain;
-            let block: [f64; ROW_BLOCK] = std::array::from_fn(|k| gains[free.free_kernel(d[k])]);
+            let block: [f64; ROW_BLOCK] = std::array::from_fn(|k| gains[free.free_step(d[k])]);
             self.total += weight * pairwise_sum(&block);
             return;
         }
@@ -446,7 +446,7 @@ impl<const N: usize, const A: u8> FastBeam<'_, N, A> {
             let mut gains = [0.0f64; ROW_BLOCK];
             for k in 0..n {
                 if prior[k] != 0 {
-                    gains[k] = self.beam.terms.prior_gain[free.free_kernel(d[k])];
+                    gains[k] = self.beam.terms.prior_gain[free.free_step(d[k])];
                 } else {
                     self.prefetch(first + k);
                     self.push(first + k, free.free_offset(d[k]), weight);
