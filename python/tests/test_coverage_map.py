@@ -364,3 +364,10 @@ def test_integrate_log_can_occlude_no_echo_readings_by_the_map() -> None:
     plain = covmap.CoverageMap(grid)
     plain.integrate_log(log[5:], laser)
     assert np.array_equal(first.histograms, plain.histograms)
+    # Within one log the echoes go in first: the miss is occluded by the
+    # wall whether it came after the echoes or before them.
+    after, before = covmap.CoverageMap(grid), covmap.CoverageMap(grid)
+    after.integrate_log(log, laser, occlude_no_echo=True)
+    before.integrate_log(covmap.Log(poses, ranges[::-1].copy(), np.zeros(1), max_range_m=5.0), laser, occlude_no_echo=True)
+    np.testing.assert_allclose(after.histograms, before.histograms, atol=1e-6)
+    assert np.array_equal(after.mean()[behind], walls.mean()[behind])

@@ -3,8 +3,8 @@
 use covmap::ScanMap;
 use covmap::exploration::AnySensorModel;
 use covmap::{
-    CoverageMap, Grid, LaserModel, OccupancyGrid, OccupancyModel, Pose, ScanCounts, SensorModel,
-    SonarModel,
+    Bearings, CoverageMap, Grid, LaserModel, Log, OccupancyGrid, OccupancyModel, Pose, ScanCounts,
+    SensorModel, SonarModel,
 };
 use proptest::prelude::*;
 
@@ -43,7 +43,14 @@ fn scan_with_no_echoes() -> impl Strategy<Value = (Pose, Vec<(f64, f64)>)> {
 type Orders = [Vec<(Pose, Vec<(f64, f64)>)>; 3];
 
 fn three_orders() -> impl Strategy<Value = Orders> {
-    prop::collection::vec(scan_with_no_echoes(), 2..=6).prop_flat_map(|scans| {
+    three_orders_of(scan_with_no_echoes())
+}
+
+/// [`three_orders`] of scans `scan` draws.
+fn three_orders_of(
+    scan: impl Strategy<Value = (Pose, Vec<(f64, f64)>)>,
+) -> impl Strategy<Value = Orders> {
+    prop::collection::vec(scan, 2..=6).prop_flat_map(|scans| {
         let reversed: Vec<_> = scans
             .iter()
             .rev()
@@ -82,6 +89,33 @@ fn three_long_orders() -> impl Strategy<Value = Orders> {
             )
                 .prop_map(|(a, b, c)| [a, b, c])
         })
+}
+
+/// A scan of 12 readings as [`scan_with_no_echoes`] draws them (a log's
+/// scans all have as many).
+fn log_scan() -> impl Strategy<Value = (Pose, Vec<(f64, f64)>)> {
+    (
+        (-1.0f64..1.39, -1.0f64..0.99, -7.0f64..7.0),
+        prop::collection::vec(
+            (
+                prop_oneof![6 => 0.0f64..6.0, 1 => Just(5.0), 1 => Just(30.0), 1 => Just(31.0)],
+                -3.2f64..3.2,
+            ),
+            12,
+        ),
+    )
+        .prop_map(|((x, y, t), beams)| (Pose::new(x, y, t), beams))
+}
+
+/// The log of `scans` in their order (a maximum range of 30 m).
+fn log_of(scans: &[(Pose, Vec<(f64, f64)>)]) -> Log {
+    let poses = scans.iter().map(|(pose, _)| *pose).collect();
+    let times = (0..scans.len()).map(|i| i as f64).collect();
+    let (ranges, bearings): (Vec<f64>, Vec<f64>) = scans
+        .iter()
+        .flat_map(|(_, beams)| beams.iter().copied())
+        .unzip();
+    Log::new(poses, times, ranges, Bearings::PerScan(bearings), 30.0).unwrap()
 }
 
 fn apply<S: ScanMap>(map: &mut S, scans: &[(Pose, Vec<(f64, f64)>)], model: &dyn SensorModel) {
@@ -144,6 +178,25 @@ proptest! {
     #[test]
     fn no_shipped_model_makes_a_map_depend_on_the_order_of_its_scans(orders in three_orders()) {
         orders_agree(&orders, 1e-5)?;
+    }
+
+    /// A log whose no-echo readings are occluded by the map takes them
+    /// after all of its echoes, each occluded by the map of every echo,
+    /// so the order of its scans does not matter either.
+    #[test]
+    fn occluded_logs_do_not_depend_on_the_order_of_their_scans(orders in three_orders_of(log_scan())) {
+        for model in shipped_models() {
+            let maps = orders.each_ref().map(|scans| {
+                let mut map = CoverageMap::new(grid());
+                map.occluding().integrate_log(&log_of(scans), &model).unwrap();
+                map
+            });
+            for other in &maps[1..] {
+                for (a, b) in maps[0].histograms().iter().zip(other.histograms()) {
+                    prop_assert!((a - b).abs() <= 1e-5, "{a} vs {b} ({model:?})");
+                }
+            }
+        }
     }
 
     /// The occupancy grid's log-odds are sums, in any order, where they

@@ -154,11 +154,14 @@ impl PyCoverageMap {
     /// returns the number of cell updates. Each scan is taken from its sensor pose (the robot's
     /// pose with the log's sensor offset); dropped beams (NaN) are skipped; a
     /// reading without echo clears up to the lesser of the log's and the
-    /// model's maximum range. With ``occlude_no_echo`` a no-echo reading
-    /// clears only up to the nearest cell of its footprint the map holds
-    /// covered when its scan comes, as the exploration loop integrates its
-    /// scans: a no-echo reading through a wall earlier echoes found is taken
-    /// for a specular miss. Every scan is checked first: a scan whose
+    /// model's maximum range. With ``occlude_no_echo`` every echo reading
+    /// goes in first, then every no-echo reading, each clearing only up to
+    /// the nearest cell of its footprint the map of all the echoes holds
+    /// covered (the exploration loop's rule, with every echo known; the
+    /// map does not depend on the order of the scans): a no-echo reading
+    /// through a wall the echoes found is taken for a specular miss, and
+    /// ``progress`` counts a scan once its no-echo readings are in. Every
+    /// scan is checked first: a scan whose
     /// sensor pose lies outside the map raises (``PoseOutsideMapError``, the
     /// message naming the scan) and leaves the map exactly as it was.
     /// ``progress``: ``True`` shows a bar (tqdm's if installed), a callable

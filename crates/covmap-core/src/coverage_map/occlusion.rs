@@ -1,18 +1,22 @@
 //! No-echo readings occluded by the map: a no-echo reading that the map
 //! says crossed an obstacle missed it (a specular reflection) and says
-//! nothing of what lies behind.
+//! nothing of what lies behind. A scan at a time, occluded by the map as it
+//! stands (the exploration loop); a whole log, occluded by the map of all
+//! of its echoes, which does not depend on the order of the scans.
 
 use super::{CONTACT_COVERAGE, CoverageMap};
 use crate::error::Result;
 use crate::footprint::visit;
 use crate::grid::Grid;
 use crate::histogram;
+use crate::log::Log;
 use crate::pose::Pose;
 use crate::scan_map::{ScanBeams, ScanMap};
 use crate::sensor::SensorModel;
 
 /// A coverage map that integrates each scan with its no-echo readings
-/// occluded by the map as it stands when the scan comes
+/// occluded by the map as it stands when the scan comes, and a whole log
+/// with them occluded by the map of the log's echoes
 /// ([`CoverageMap::occluding`]).
 #[derive(Debug)]
 pub struct Occluding<'a>(&'a mut CoverageMap);
@@ -27,12 +31,8 @@ impl ScanMap for Occluding<'_> {
         scan: ScanBeams<'_>,
         model: &M,
     ) -> Result<usize> {
-        let mut reaches = self
-            .0
-            .no_echo_reaches(scan.pose, scan.ranges, scan.bearings, model);
-        for (r, &given) in reaches.iter_mut().zip(scan.no_echo_reach_m.unwrap_or(&[])) {
-            *r = r.min(given);
-        }
+        let map = &*self.0;
+        let reaches = reaches_before(map.grid(), &scan, model, |i| map.is_covered(i));
         let no_echo_reach_m = Some(&reaches[..]);
         self.0.integrate_checked(
             ScanBeams {
@@ -42,17 +42,143 @@ impl ScanMap for Occluding<'_> {
             model,
         )
     }
+
+    /// Every scan of `log`, the echoes first and then the no-echo readings,
+    /// each occluded by the map as all the echoes left it
+    /// ([`integrate_log_occluded`]); `progress` is told of a scan once its
+    /// no-echo readings are in too.
+    fn integrate_log_with_progress<M: SensorModel + ?Sized>(
+        &mut self,
+        log: &Log,
+        model: &M,
+        progress: &mut dyn FnMut(usize),
+    ) -> Result<usize> {
+        integrate_log_occluded(self.0, log, model, progress, |_| Ok(0))
+    }
+}
+
+/// Integrate `log` into `map` with its no-echo readings occluded by the map
+/// of the log's echoes, which does not depend on the order of the scans:
+/// first every scan's echo readings, then every scan's no-echo readings,
+/// each clearing only up to the nearest cell of its footprint that the map
+/// held as covered once all the echoes were in (and no further than the
+/// log's maximum range). `also` is handed every set of beams `map` takes,
+/// checked, so that another map (the occupancy grid baseline) can take the
+/// very same ones; its updates are added to the count returned. `progress`
+/// is told of each scan once its no-echo readings are in.
+///
+/// # Errors
+/// As [`ScanMap::integrate_log`]: every scan is checked before anything
+/// changes.
+pub fn integrate_log_occluded<M: SensorModel + ?Sized>(
+    map: &mut CoverageMap,
+    log: &Log,
+    model: &M,
+    progress: &mut dyn FnMut(usize),
+    mut also: impl FnMut(ScanBeams<'_>) -> Result<usize>,
+) -> Result<usize> {
+    let grid = *map.grid();
+    let max_range_m = model.range_model().max_range_m;
+    let mut kept = KeptBeams::default();
+    let mut updates = crate::log::integrate_scans(&grid, log, model, &mut |_| {}, |scan| {
+        let echoes = kept.keep(scan, |r| r < max_range_m);
+        Ok(map.integrate_checked(echoes, model)? + also(echoes)?)
+    })?;
+    let covered = map.covered_cells();
+    updates += crate::log::integrate_scans(&grid, log, model, progress, |scan| {
+        let mut no_echoes = kept.keep(scan, |r| r >= max_range_m);
+        let reaches = reaches_before(&grid, &no_echoes, model, |i| covered[i]);
+        no_echoes.no_echo_reach_m = Some(&reaches);
+        Ok(map.integrate_checked(no_echoes, model)? + also(no_echoes)?)
+    })?;
+    Ok(updates)
+}
+
+/// The beams of a scan one pass of [`integrate_log_occluded`] keeps.
+#[derive(Default)]
+struct KeptBeams {
+    ranges: Vec<f64>,
+    bearings: Vec<f64>,
+    reaches: Vec<f64>,
+}
+
+impl KeptBeams {
+    /// The beams of `scan` whose range `keep` accepts, with their reaches.
+    fn keep<'a>(&'a mut self, scan: ScanBeams<'a>, keep: impl Fn(f64) -> bool) -> ScanBeams<'a> {
+        self.ranges.clear();
+        self.bearings.clear();
+        self.reaches.clear();
+        for (k, (&r, &b)) in scan.ranges.iter().zip(scan.bearings).enumerate() {
+            if keep(r) {
+                self.ranges.push(r);
+                self.bearings.push(b);
+                if let Some(reaches) = scan.no_echo_reach_m {
+                    self.reaches.push(reaches[k]);
+                }
+            }
+        }
+        ScanBeams {
+            pose: scan.pose,
+            ranges: &self.ranges,
+            bearings: &self.bearings,
+            no_echo_reach_m: scan.no_echo_reach_m.map(|_| &self.reaches[..]),
+        }
+    }
+}
+
+/// How far each reading of `scan` should clear: a no-echo reading to the
+/// nearest cell of its footprint that `is_covered`, at most the lesser of
+/// the maximum range and the scan's own reach; an echo reading the maximum
+/// range (it ignores it).
+fn reaches_before<M: SensorModel + ?Sized>(
+    grid: &Grid,
+    scan: &ScanBeams<'_>,
+    model: &M,
+    is_covered: impl Fn(usize) -> bool,
+) -> Vec<f64> {
+    let max_range_m = model.range_model().max_range_m;
+    let footprint = model.footprint();
+    let half = 0.5 * grid.resolution_m();
+    let pose = scan.pose;
+    scan.ranges
+        .iter()
+        .zip(scan.bearings)
+        .enumerate()
+        .map(|(k, (&r, &bearing))| {
+            let given = scan.no_echo_reach_m.map_or(max_range_m, |g| g[k]);
+            let mut reach = max_range_m.min(given);
+            if r >= max_range_m && r.is_finite() && bearing.is_finite() {
+                visit(
+                    grid,
+                    [pose.x_m, pose.y_m],
+                    pose.theta_rad + bearing,
+                    max_range_m,
+                    footprint,
+                    &mut |i: usize, d_l: f64| {
+                        if d_l - half < reach && is_covered(i) {
+                            reach = (d_l - half).max(0.0);
+                        }
+                    },
+                );
+            }
+            reach
+        })
+        .collect()
 }
 
 impl CoverageMap {
     /// This map, integrating each scan ([`ScanMap::integrate`],
-    /// [`ScanMap::integrate_log`] and the rest) with its no-echo readings
-    /// occluded by the map as it stands when the scan comes: a no-echo
-    /// reading clears only up to the nearest cell of its footprint the map
-    /// holds as covered ([`CoverageMap::no_echo_reaches`]), as the
-    /// exploration loop integrates its scans. A no-echo reading through a
-    /// wall that earlier echoes found is then taken for a specular miss,
-    /// which says nothing of the wall or of what lies behind it.
+    /// [`ScanMap::integrate_scan`]) with its no-echo readings occluded by
+    /// the map as it stands when the scan comes: a no-echo reading clears
+    /// only up to the nearest cell of its footprint the map holds as
+    /// covered ([`CoverageMap::no_echo_reaches`]), as the exploration loop
+    /// integrates its scans. A no-echo reading through a wall that earlier
+    /// echoes found is then taken for a specular miss, which says nothing
+    /// of the wall or of what lies behind it. A whole log
+    /// ([`ScanMap::integrate_log`]) goes in echoes first, its no-echo
+    /// readings occluded by the map of all of them
+    /// ([`integrate_log_occluded`]): that map does not depend on the order
+    /// of the scans.
     pub fn occluding(&mut self) -> Occluding<'_> {
         Occluding(self)
     }
@@ -72,41 +198,30 @@ impl CoverageMap {
         bearings: &[f64],
         model: &M,
     ) -> Vec<f64> {
-        let grid = self.grid();
-        let (bins, histograms) = (self.bins(), self.histograms());
-        let range = model.range_model();
-        let max_range_m = range.max_range_m;
-        let footprint = model.footprint();
-        let half = 0.5 * grid.resolution_m();
-        let is_covered = |i: usize| {
-            let ml = histogram::bin_value(
-                histogram::argmax(&histograms[i * bins..(i + 1) * bins]),
-                bins,
-            );
-            ml > CONTACT_COVERAGE
+        let scan = ScanBeams {
+            pose,
+            ranges,
+            bearings,
+            no_echo_reach_m: None,
         };
-        ranges
-            .iter()
-            .zip(bearings)
-            .map(|(&r, &bearing)| {
-                let mut reach = max_range_m;
-                if r >= max_range_m && r.is_finite() && bearing.is_finite() {
-                    visit(
-                        grid,
-                        [pose.x_m, pose.y_m],
-                        pose.theta_rad + bearing,
-                        max_range_m,
-                        footprint,
-                        &mut |i: usize, d_l: f64| {
-                            if d_l - half < reach && is_covered(i) {
-                                reach = (d_l - half).max(0.0);
-                            }
-                        },
-                    );
-                }
-                reach
-            })
-            .collect()
+        reaches_before(self.grid(), &scan, model, |i| self.is_covered(i))
+    }
+
+    /// Whether this map holds cell `i` as covered: its ML coverage above
+    /// [`CONTACT_COVERAGE`] (a cell the robot ran into is pinned so:
+    /// [`CoverageMap::pin_covered`]).
+    fn is_covered(&self, i: usize) -> bool {
+        let bins = self.bins();
+        let ml = histogram::bin_value(
+            histogram::argmax(&self.histograms()[i * bins..(i + 1) * bins]),
+            bins,
+        );
+        ml > CONTACT_COVERAGE
+    }
+
+    /// [`CoverageMap::is_covered`] of every cell.
+    fn covered_cells(&self) -> Vec<bool> {
+        (0..self.grid().len()).map(|i| self.is_covered(i)).collect()
     }
 }
 

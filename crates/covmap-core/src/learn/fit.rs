@@ -191,9 +191,9 @@ pub fn fit_sensor_model<M: Fittable>(
 }
 
 /// The coverage map of `data.log` on `data.grid` with `bins` bins, built
-/// with `model` as a fit builds it: every scan in turn, no-echo readings
-/// occluded by the map if `occlude_no_echo`
-/// ([`CoverageMap::occluding`]).
+/// with `model` as a fit builds it: every scan, no-echo readings occluded
+/// by the map of the log's echoes if `occlude_no_echo`
+/// ([`CoverageMap::occluding`], [`crate::integrate_log_occluded`]).
 ///
 /// # Errors
 /// As [`CoverageMap::with_bins`] and [`CoverageMap::integrate_log`].

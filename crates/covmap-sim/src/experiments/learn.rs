@@ -9,7 +9,7 @@ use covmap_core::learn::{
 };
 use covmap_core::planner::shortest_paths;
 use covmap_core::{CoverageMap, Grid, Log, OccupancyGrid, Pose};
-use covmap_core::{ScanBeams, ScanMap};
+use covmap_core::{ScanMap, integrate_log_occluded};
 use rand::RngExt;
 
 use crate::error::{Result, check_param};
@@ -205,7 +205,8 @@ impl Drive {
     /// Simulate a drive of `scans` scans through built-in world `name` with
     /// the sensor `model` stands for; its baseline occupancy grid is fed
     /// the beams as `model`'s coverage map takes them, with no-echo readings
-    /// occluded by that map if `occlude_no_echo`.
+    /// occluded by the map of the log's echoes if `occlude_no_echo`
+    /// ([`integrate_log_occluded`]).
     pub fn simulate(
         name: &str,
         model: &AnySensorModel,
@@ -235,19 +236,9 @@ impl Drive {
         let mut occupancy = OccupancyGrid::new(grid);
         if occlude_no_echo {
             let mut map = CoverageMap::with_bins(grid, DEFAULT_BINS)?;
-            for i in 0..log.len() {
-                let (pose, ranges, bearings) =
-                    (log.sensor_pose(i), log.scan_ranges(i), log.scan_bearings(i));
-                let reaches = map.no_echo_reaches(&pose, ranges, bearings, model.as_dyn());
-                let scan = ScanBeams {
-                    pose: &pose,
-                    ranges,
-                    bearings,
-                    no_echo_reach_m: Some(&reaches),
-                };
-                map.integrate_scan(scan, model.as_dyn())?;
-                occupancy.integrate_scan(scan, model.as_dyn())?;
-            }
+            integrate_log_occluded(&mut map, &log, model.as_dyn(), &mut |_| {}, |scan| {
+                occupancy.integrate_checked(scan, model.as_dyn())
+            })?;
         } else {
             occupancy.integrate_log(&log, model)?;
         }
