@@ -44,8 +44,11 @@ def plot_benchmark(b: Benchmark, path: Path) -> Path:
                 patch.set_alpha(0.5)
             ax.set_ylabel(name)
             ax.grid(alpha=0.3, axis="y")
-        # Shares from hundredths of a percent to all; paths from metres to kilometres.
+        # Shares from hundredths of a percent to all (the whole range, so
+        # that a few close values still get ticks); paths from metres to
+        # kilometres.
         unc.set_yscale("symlog", linthresh=1.0)
+        unc.set_ylim(0.0, 100.0)
         dist.set_yscale("log")
         unc.set_title("evaluation cells uncertain at the end", fontsize=9)
         dist.set_title("path length", fontsize=9)
@@ -62,11 +65,16 @@ def plot_benchmark(b: Benchmark, path: Path) -> Path:
             )
         scatter.set_xscale("log")
         scatter.set_yscale("symlog", linthresh=1.0)
+        scatter.set_ylim(0.0, 100.0)
         scatter.set_xlabel("path length [m]")
         scatter.set_ylabel("uncertain [%]")
         scatter.set_title("every run (larger: rooms never entered)", fontsize=9)
         scatter.grid(alpha=0.3)
         scatter.legend(fontsize=7)
         buildings = len({r.building for r in b.runs})
-        fig.suptitle(f"Exploration benchmark: {len(b.runs)} runs on {buildings} buildings", fontsize=10)
+        n = len(b.runs)
+        fig.suptitle(
+            f"Exploration benchmark: {n} run{'' if n == 1 else 's'} on {buildings} building{'' if buildings == 1 else 's'}",
+            fontsize=10,
+        )
     return path
