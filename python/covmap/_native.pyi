@@ -340,7 +340,9 @@ class CoverageMap:
         covered (the exploration loop's rule, with every echo known; the
         map does not depend on the order of the scans): a no-echo reading
         through a wall the echoes found is taken for a specular miss, and
-        ``progress`` counts a scan once its no-echo readings are in. Every
+        ``progress`` counts a scan once its no-echo readings are in (on a map
+        that keeps its history, the echoes' map is built on a copy, as much
+        memory again, so that a scan stays one measurement). Every
         scan is checked first: a scan whose
         sensor pose lies outside the map raises (``PoseOutsideMapError``, the
         message naming the scan) and leaves the map exactly as it was.

@@ -65,7 +65,10 @@ impl ScanMap for Occluding<'_> {
 /// log's maximum range). `also` is handed every set of beams `map` takes,
 /// checked, so that another map (the occupancy grid baseline) can take the
 /// very same ones; its updates are added to the count returned. `progress`
-/// is told of each scan once its no-echo readings are in.
+/// is told of each scan once its no-echo readings are in. A map that keeps
+/// its history ([`CoverageMap::track_history`]) counts each scan as one
+/// measurement still: the echoes' map is then built on a copy (as much
+/// memory again), and each scan goes in whole.
 ///
 /// # Errors
 /// As [`ScanMap::integrate_log`]: every scan is checked before anything
@@ -80,6 +83,24 @@ pub fn integrate_log_occluded<M: SensorModel + ?Sized>(
     let grid = *map.grid();
     let max_range_m = model.range_model().max_range_m;
     let mut kept = KeptBeams::default();
+    if map.tracks_history() {
+        let history = map.history.take();
+        let mut echoes = map.clone();
+        map.history = history;
+        crate::log::integrate_scans(&grid, log, model, &mut |_| {}, |scan| {
+            echoes.integrate_checked(kept.keep(scan, |r| r < max_range_m), model)
+        })?;
+        let covered = echoes.covered_cells();
+        drop(echoes);
+        return crate::log::integrate_scans(&grid, log, model, progress, |scan| {
+            let reaches = reaches_before(&grid, &scan, model, |i| covered[i]);
+            let whole = ScanBeams {
+                no_echo_reach_m: Some(&reaches),
+                ..scan
+            };
+            Ok(map.integrate_checked(whole, model)? + also(whole)?)
+        });
+    }
     let mut updates = crate::log::integrate_scans(&grid, log, model, &mut |_| {}, |scan| {
         let echoes = kept.keep(scan, |r| r < max_range_m);
         Ok(map.integrate_checked(echoes, model)? + also(echoes)?)
@@ -232,6 +253,42 @@ mod tests {
     use crate::grid::Grid;
     use crate::scan_map::ScanMap;
     use crate::sensor::{LaserModel, SonarModel};
+
+    /// A map that keeps its history takes an occluded log as one that
+    /// does not (but for float rounding), counting each scan as one
+    /// measurement of every cell it updates, echoes and no-echo readings
+    /// alike.
+    #[test]
+    fn an_occluded_log_counts_a_scan_as_one_measurement() {
+        use crate::log::{Bearings, Log};
+        let grid = Grid::new([0.0, 0.0], 0.05, 80, 80).unwrap();
+        let scans = 7;
+        let poses = vec![Pose::new(2.0, 2.0, 0.0); scans];
+        // An echo and a miss whose cones overlap near the robot, and a
+        // miss the other way (at the log's maximum range).
+        let ranges: Vec<f64> = (0..scans).flat_map(|_| [1.0, 5.0, 5.0]).collect();
+        let log = Log::new(
+            poses,
+            (0..scans).map(|i| i as f64).collect(),
+            ranges,
+            Bearings::Fixed(vec![0.0, 0.1, 3.0]),
+            5.0,
+        )
+        .unwrap();
+        let sonar = SonarModel::default();
+        let mut kept = CoverageMap::new(grid);
+        kept.track_history(true);
+        let mut plain = CoverageMap::new(grid);
+        let n = kept.occluding().integrate_log(&log, &sonar).unwrap();
+        assert_eq!(n, plain.occluding().integrate_log(&log, &sonar).unwrap());
+        for (a, b) in kept.histograms().iter().zip(plain.histograms()) {
+            assert!((a - b).abs() <= 1e-5, "{a} vs {b}");
+        }
+        let near = Cell { row: 40, col: 44 };
+        assert_eq!(kept.measurements(near).unwrap(), scans as u32);
+        let counts = kept.measurement_counts();
+        assert_eq!(counts.iter().copied().max(), Some(scans as u32));
+    }
 
     /// On a map holding walls, every no-echo reading stops before the
     /// nearest cell of its footprint the ML map holds covered (more than
