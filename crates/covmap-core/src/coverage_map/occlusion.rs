@@ -82,35 +82,37 @@ pub fn integrate_log_occluded<M: SensorModel + ?Sized>(
 ) -> Result<usize> {
     let grid = *map.grid();
     let max_range_m = model.range_model().max_range_m;
+    let echo = |r: f64| r < max_range_m;
     let mut kept = KeptBeams::default();
-    if map.tracks_history() {
+    // The map of every echo: this map itself, or, where a scan must stay
+    // one measurement of the history, a copy of it (the scans then go into
+    // this map whole below).
+    let whole = map.tracks_history();
+    let mut updates = 0;
+    let covered = if whole {
         let history = map.history.take();
         let mut echoes = map.clone();
         map.history = history;
         crate::log::integrate_scans(&grid, log, model, &mut |_| {}, |scan| {
-            echoes.integrate_checked(kept.keep(scan, |r| r < max_range_m), model)
+            echoes.integrate_checked(kept.keep(scan, echo), model)
         })?;
-        let covered = echoes.covered_cells();
-        drop(echoes);
-        return crate::log::integrate_scans(&grid, log, model, progress, |scan| {
-            let reaches = reaches_before(&grid, &scan, model, |i| covered[i]);
-            let whole = ScanBeams {
-                no_echo_reach_m: Some(&reaches),
-                ..scan
-            };
-            Ok(map.integrate_checked(whole, model)? + also(whole)?)
-        });
-    }
-    let mut updates = crate::log::integrate_scans(&grid, log, model, &mut |_| {}, |scan| {
-        let echoes = kept.keep(scan, |r| r < max_range_m);
-        Ok(map.integrate_checked(echoes, model)? + also(echoes)?)
-    })?;
-    let covered = map.covered_cells();
+        echoes.covered_cells()
+    } else {
+        updates += crate::log::integrate_scans(&grid, log, model, &mut |_| {}, |scan| {
+            let echoes = kept.keep(scan, echo);
+            Ok(map.integrate_checked(echoes, model)? + also(echoes)?)
+        })?;
+        map.covered_cells()
+    };
     updates += crate::log::integrate_scans(&grid, log, model, progress, |scan| {
-        let mut no_echoes = kept.keep(scan, |r| r >= max_range_m);
-        let reaches = reaches_before(&grid, &no_echoes, model, |i| covered[i]);
-        no_echoes.no_echo_reach_m = Some(&reaches);
-        Ok(map.integrate_checked(no_echoes, model)? + also(no_echoes)?)
+        let mut beams = if whole {
+            scan
+        } else {
+            kept.keep(scan, |r| !echo(r))
+        };
+        let reaches = reaches_before(&grid, &beams, model, |i| covered[i]);
+        beams.no_echo_reach_m = Some(&reaches);
+        Ok(map.integrate_checked(beams, model)? + also(beams)?)
     })?;
     Ok(updates)
 }

@@ -279,14 +279,15 @@ impl<const N: usize, const A: u8> FastBeam<'_, N, A> {
         let _ = i;
     }
 
-    /// The weights of the free kernels (echoes', then no echo's), if they
-    /// are the only ones every cell of a cone's row block (at distances from `near` to `far`) gets: every cell
+    /// The weight of the free kernel (the echoes' and no echo's together:
+    /// one kernel since no-echo readings clear as echoes' free space does),
+    /// if it is the only one every cell of a cone's row block (at distances from `near` to `far`) gets: every cell
     /// within `reach_m`, the echoes that end before the block reaching none
     /// of it, the next leaving all of it in free space, and either every cell
     /// or none within the reach of no echo. The same weight
     /// [`CellVisitor::cell`] gives each.
     #[inline(always)]
-    fn block_weight(&self, [near, far]: [f64; 2], reach_m: f64) -> Option<(f64, f64)> {
+    fn block_weight(&self, [near, far]: [f64; 2], reach_m: f64) -> Option<f64> {
         let beam = self.beam;
         if !(far <= reach_m) {
             return None;
@@ -307,9 +308,9 @@ impl<const N: usize, const A: u8> FastBeam<'_, N, A> {
             return None;
         }
         if far <= beam.none_reach {
-            Some((beam.suffix[j], beam.no_echo))
+            Some(beam.suffix[j] + beam.no_echo)
         } else if near > beam.none_reach {
-            Some((beam.suffix[j], 0.0))
+            Some(beam.suffix[j])
         } else {
             None
         }
@@ -402,31 +403,24 @@ impl<const N: usize, const A: u8> CellVisitor for FastBeam<'_, N, A> {
         bounds: [f64; 2],
         reach_m: f64,
     ) {
-        let Some((echo_free, no_echo)) = self.block_weight(bounds, reach_m) else {
+        let Some(weight) = self.block_weight(bounds, reach_m) else {
             cells_of_block(self, first, d, n, reach_m);
             return;
         };
-        let beam = self.beam;
-        self.free_block(first, d, n, beam.none_lookup, echo_free + no_echo);
+        self.free_block(first, d, n, weight);
     }
 }
 
 impl<const N: usize, const A: u8> FastBeam<'_, N, A> {
     /// Every cell of a row block (the `n` cells from `first`, at distances
-    /// `d`) gets the free-space kernel of `free` with `weight`: what `cell`
-    /// would do for each, done for the block at once.
+    /// `d`) gets the free-space kernel (a no-echo reading's) with `weight`:
+    /// what `cell` would do for each, done for the block at once.
     #[inline(always)]
-    fn free_block(
-        &mut self,
-        first: usize,
-        d: &[f64; ROW_BLOCK],
-        n: usize,
-        free: ReadingLookup,
-        weight: f64,
-    ) {
+    fn free_block(&mut self, first: usize, d: &[f64; ROW_BLOCK], n: usize, weight: f64) {
         if weight <= 0.0 {
             return;
         }
+        let free = self.beam.none_lookup;
         let prior = &self.beam.terms.prior[first..first + n];
         let flags = match prior.first_chunk::<ROW_BLOCK>() {
             Some(all) => u64::from_ne_bytes(*all),
