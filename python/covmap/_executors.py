@@ -257,6 +257,7 @@ class LocalPool:
         """Shut the pool down: once its runs are over if they are
         ``finished``, else at once, its worker processes killed."""
         import multiprocessing
+        import time
 
         if finished:
             self.executor.shutdown(wait=True)
@@ -266,11 +267,20 @@ class LocalPool:
         if callable(terminate):
             terminate()
             return
-        workers = set(multiprocessing.active_children()) - self._before
-        for child in workers:
-            child.terminate()
-        for child in workers:
-            child.join(timeout=5.0)
+        # Looked for again until none of the pool's workers is left (the
+        # executor's own thread may still start one after a look), each
+        # terminated, and killed outright once the 5 s it had are over; at
+        # most 10 s in all.
+        start = time.monotonic()
+        while (workers := set(multiprocessing.active_children()) - self._before) and time.monotonic() - start < 10.0:
+            late = time.monotonic() - start >= 5.0
+            for child in workers:
+                if late:
+                    child.kill()
+                else:
+                    child.terminate()
+            for child in workers:
+                child.join(timeout=max(0.1, 5.0 - (time.monotonic() - start)))
 
 
 #: The most worker processes :func:`dask_client` starts on this machine.
