@@ -1514,8 +1514,8 @@ class Strategy:
       (eq. 14) on the coverage map, ``alpha`` the weight of information
       against travel in ``[0, 1]``; done when every cell of the reachable
       region is certain (entropy below ``epsilon``) or has stagnated, or
-      when 60 steps in a row settled no further cell and gained less than a
-      goal must promise (cells split between two bins settle only slowly);
+      when no candidate is worth visiting (a goal whose scans did not deliver
+      what it promised is not chosen again);
     - ``Strategy.counting(n=50, discount_beyond_m=None)``: extended scan
       counting, a cell explored once ``n`` beams intercepted it (a beam reading
       ``d`` beyond ``discount_beyond_m`` counts ``discount_beyond_m / d``;

@@ -67,12 +67,10 @@
 //!   `ln bins - epsilon` nats (what making one unknown cell certain is
 //!   worth). Ends [`Termination::Certain`] when every region cell is below
 //!   epsilon, [`Termination::Stagnated`] when the rest have stagnated (the
-//!   paper's rule) or when for 60 steps no more region cells became
-//!   certain or stagnated and the region's entropy fell by less than that
-//!   least gain a step (cells split between two bins sit near `ln 2` nats,
-//!   above epsilon, and settle only slowly), [`Termination::NoGoal`] when no candidate is
-//!   worth visiting. A goal reached whose step gained less than that least
-//!   gain is not chosen again.
+//!   paper's rule), [`Termination::NoGoal`] when no candidate is worth
+//!   visiting. A goal reached whose step gained less than that least
+//!   gain, or whose scans lowered its own expected gain by less, is not
+//!   chosen again.
 //! - **Counting** ([`Strategy::Counting`]): the nearest candidate from which
 //!   the beams, traced on the ML map, would intercept a region cell counted
 //!   fewer than `n` times (beams beyond `discount_beyond_m` count

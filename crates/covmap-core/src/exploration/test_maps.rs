@@ -20,38 +20,44 @@ pub(super) fn scanned_room(door: bool, scans: usize) -> (CoverageMap, OccupancyG
     let mut map = CoverageMap::new(grid);
     map.track_history(true);
     let mut occupancy = OccupancyGrid::new(grid);
-    let laser = LaserModel::default();
-    let [x0, y0, x1, y1] = ROOM;
     for k in 0..scans {
         let pose = Pose::new(2.0 + 0.3 * (k % 4) as f64, 2.3 + 0.2 * (k % 3) as f64, 0.0);
-        let (mut ranges, mut bearings, mut reaches) = (Vec::new(), Vec::new(), Vec::new());
-        for i in 0..720 {
-            let angle = i as f64 * std::f64::consts::TAU / 720.0;
-            let (s, c) = angle.sin_cos();
-            let to = |v: f64, low: f64, high: f64, p: f64| match v {
-                v if v > 1e-12 => (high - p) / v,
-                v if v < -1e-12 => (low - p) / v,
-                _ => f64::INFINITY,
-            };
-            let (tx, ty) = (to(c, x0, x1, pose.x_m), to(s, y0, y1, pose.y_m));
-            let y_at_east = pose.y_m + tx * s;
-            if door && tx < ty && c > 0.0 && (2.2..3.2).contains(&y_at_east) {
-                ranges.push(laser.range.max_range_m);
-                reaches.push(tx);
-            } else {
-                ranges.push(tx.min(ty));
-                reaches.push(laser.range.max_range_m);
-            }
-            bearings.push(angle);
-        }
-        let scan = ScanBeams {
-            pose: &pose,
-            ranges: &ranges,
-            bearings: &bearings,
-            no_echo_reach_m: Some(&reaches),
-        };
-        map.integrate_scan(scan, &laser).unwrap();
-        occupancy.integrate_scan(scan, &laser).unwrap();
+        scan_room(door, &pose, &mut map);
+        scan_room(door, &pose, &mut occupancy);
     }
     (map, occupancy, Pose::new(2.5, 2.5, 0.0))
+}
+
+/// One scan of the room (as [`scanned_room`] takes them) from `pose`
+/// inside it, integrated into `map`.
+pub(super) fn scan_room(door: bool, pose: &Pose, map: &mut impl ScanMap) {
+    let laser = LaserModel::default();
+    let [x0, y0, x1, y1] = ROOM;
+    let (mut ranges, mut bearings, mut reaches) = (Vec::new(), Vec::new(), Vec::new());
+    for i in 0..720 {
+        let angle = i as f64 * std::f64::consts::TAU / 720.0;
+        let (s, c) = angle.sin_cos();
+        let to = |v: f64, low: f64, high: f64, p: f64| match v {
+            v if v > 1e-12 => (high - p) / v,
+            v if v < -1e-12 => (low - p) / v,
+            _ => f64::INFINITY,
+        };
+        let (tx, ty) = (to(c, x0, x1, pose.x_m), to(s, y0, y1, pose.y_m));
+        let y_at_east = pose.y_m + tx * s;
+        if door && tx < ty && c > 0.0 && (2.2..3.2).contains(&y_at_east) {
+            ranges.push(laser.range.max_range_m);
+            reaches.push(tx);
+        } else {
+            ranges.push(tx.min(ty));
+            reaches.push(laser.range.max_range_m);
+        }
+        bearings.push(angle);
+    }
+    let scan = ScanBeams {
+        pose,
+        ranges: &ranges,
+        bearings: &bearings,
+        no_echo_reach_m: Some(&reaches),
+    };
+    map.integrate_scan(scan, &laser).unwrap();
 }

@@ -45,7 +45,7 @@ use std::collections::HashMap;
 use crate::coverage_map::{ChangeCursor, Changes, CoverageMap};
 use crate::error::Result;
 use crate::gain::{
-    GainEvaluator, GainOptions, MapTerms, TileSet, Tiles, beam_sum, stop_coverage_of,
+    GainEvaluator, GainMethod, GainOptions, MapTerms, TileSet, Tiles, beam_sum, stop_coverage_of,
     validate_candidates,
 };
 use crate::grid::Grid;
@@ -499,6 +499,50 @@ impl PlanningCache {
             }
         }
         Ok(stats)
+    }
+
+    /// The expected gain of scanning from `pose` with `bearings` on `map`, as
+    /// `GainEvaluator::new(map, model, options)?.evaluate(&[pose], bearings,
+    /// GainMethod::Fast)` gives it, read from the per-map work the last plan
+    /// on `map` brought up to date (computed anew where the map changed
+    /// since, or there is none for these inputs).
+    ///
+    /// # Errors
+    /// As [`GainEvaluator::new`] and [`GainEvaluator::evaluate`].
+    pub(crate) fn gain_at<M: SensorModel + ?Sized>(
+        &self,
+        map: &CoverageMap,
+        model: &M,
+        options: GainOptions,
+        pose: &Pose,
+        bearings: &[f64],
+    ) -> Result<f64> {
+        let range = *model.range_model();
+        let table: Cow<'_, KernelTable> = map.kernel_table(&range)?;
+        let inputs = GainInputs::new(map, &range, model.footprint(), &table, options, bearings);
+        // The kept per-map work is this map's as it is now: the map has not
+        // changed since the cache last read it, and every change read
+        // since has been applied to the work.
+        let current = self
+            .readouts
+            .as_ref()
+            .is_some_and(|r| r.cursor == map.change_cursor())
+            && self.unapplied.is_empty();
+        let gains = match &self.gains {
+            Some(state) if current && state.inputs == inputs => {
+                GainEvaluator::with_terms(map, model, options, &table, &state.terms)?.evaluate(
+                    std::slice::from_ref(pose),
+                    bearings,
+                    GainMethod::Fast,
+                )?
+            }
+            _ => GainEvaluator::new(map, model, options)?.evaluate(
+                std::slice::from_ref(pose),
+                bearings,
+                GainMethod::Fast,
+            )?,
+        };
+        Ok(gains[0])
     }
 
     /// The kept gain of each candidate at `poses` (in `cells`), after

@@ -464,3 +464,41 @@ fn a_change_of_any_sensor_parameter_recomputes_the_gains() {
         }
     }
 }
+
+/// The gain at one pose read through the cache is the fresh evaluation's,
+/// bit for bit: after a plan on the map (the cache's per-map work) and
+/// after a scan the cache has not seen (computed anew).
+#[test]
+fn the_gain_at_a_pose_is_the_fresh_gain() {
+    let sonar = SonarModel::default();
+    let bearings = ring();
+    let planner = Planner::new(PlannerConfig::default()).unwrap();
+    let options = planner.config().gain;
+    let mut cache = PlanningCache::new();
+    let mut map = empty();
+    let mut next = uniform(43);
+    let fresh = |map: &CoverageMap, pose: &Pose| {
+        GainEvaluator::new(map, &sonar, options)
+            .unwrap()
+            .evaluate(std::slice::from_ref(pose), &bearings, GainMethod::Fast)
+            .unwrap()[0]
+    };
+    let poses = way();
+    for (step, pose) in poses.iter().enumerate().step_by(4) {
+        let ranges = scan(pose, &bearings, sonar.range.max_range_m, &mut next);
+        map.integrate(pose, &ranges, &bearings, &sonar).unwrap();
+        let ahead = &poses[(step + 3).min(poses.len() - 1)];
+        for at in [pose, ahead] {
+            let unseen = cache.gain_at(&map, &sonar, options, at, &bearings).unwrap();
+            assert_eq!(unseen.to_bits(), fresh(&map, at).to_bits(), "at {at:?}");
+        }
+        planner
+            .next_viewpoint_cached(&mut cache, &map, pose, &bearings, &sonar)
+            .unwrap();
+        for at in [pose, ahead] {
+            let kept = cache.gain_at(&map, &sonar, options, at, &bearings).unwrap();
+            assert_eq!(kept.to_bits(), fresh(&map, at).to_bits(), "at {at:?}");
+        }
+    }
+    assert!(fresh(&map, &poses[0]) > 0.0);
+}
