@@ -364,7 +364,8 @@ fn table1(world: &str, seed: u64) -> [(f64, f64); 3] {
 /// a chaotic loop says little): counting to 1 travels far less than coverage
 /// maps and leaves well over 10 % of the evaluation cells uncertain;
 /// coverage maps travel at most 15 % farther than counting to 50 (in fact
-/// about half as far in the office: 5.0 km against 10.1 km, 2026-12-06).
+/// less far: the table1 example with `--strategies coverage,count50` prints
+/// both).
 /// The rest of the table does not hold here: since the map keeps its
 /// evidence as log-likelihoods (no floor clamps it, 2026-12-04), counting
 /// to 50 leaves fewer cells uncertain than coverage maps (corridor 0.10 %

@@ -69,8 +69,9 @@
 //!   epsilon, [`Termination::Stagnated`] when the rest have stagnated (the
 //!   paper's rule), [`Termination::NoGoal`] when no candidate is worth
 //!   visiting. A goal reached whose step gained less than that least
-//!   gain, or whose scans lowered its own expected gain by less, is not
-//!   chosen again.
+//!   gain is not chosen again, nor is one whose step gained less than the
+//!   goal promised and whose scans lowered its promise by less than that
+//!   least gain.
 //! - **Counting** ([`Strategy::Counting`]): the nearest candidate from which
 //!   the beams, traced on the ML map, would intercept a region cell counted
 //!   fewer than `n` times (beams beyond `discount_beyond_m` count

@@ -79,8 +79,10 @@ pub(crate) struct DecisionTheoretic {
     exhausted: Vec<usize>,
     /// The last goal, while the robot is on its way.
     last: Option<LastGoal>,
-    /// The last goal, reached, its promise to be checked on the next plan.
-    reached: Option<LastGoal>,
+    /// The last goal, reached, and how much its step (the drive, its scans
+    /// and the scan at the goal) lowered the map's entropy (nats): its
+    /// promise is checked on the next plan.
+    reached: Option<(LastGoal, f64)>,
     /// What planning after the next scan can keep of this one's work.
     cache: PlanningCache,
 }
@@ -117,7 +119,7 @@ impl DecisionTheoretic {
             return Ok(NextGoal::Done(done));
         }
         let plan = self.plan(view, (&free, &reach))?;
-        if let Some(goal) = self.reached.take() {
+        if let Some((goal, realised_nats)) = self.reached.take() {
             let now = self.cache.gain_at(
                 view.map,
                 view.model,
@@ -125,9 +127,7 @@ impl DecisionTheoretic {
                 &goal.pose,
                 view.bearings,
             )?;
-            if goal.realised_nats < goal.promised_nats
-                && goal.promised_nats - now < self.min_gain_nats
-            {
+            if realised_nats < goal.promised_nats && goal.promised_nats - now < self.min_gain_nats {
                 self.exhausted.push(goal.cell);
             }
         }
@@ -155,7 +155,6 @@ impl DecisionTheoretic {
             pose: plan.candidates.poses[k],
             promised_nats: plan.candidates.gains[k],
             entropy_nats: total_entropy(view.entropy),
-            realised_nats: 0.0,
         });
         Ok(NextGoal::Goal {
             pose: plan.candidates.poses[k],
@@ -194,17 +193,17 @@ impl DecisionTheoretic {
             reachable_region(&self.planner, view.map, &view.pose, band_m)?
         );
         let epsilon = view.config.epsilon;
-        let (mut stagnated, mut open) = (0usize, 0usize);
+        let mut stagnated = false;
         for (i, _) in region.iter().enumerate().filter(|(_, r)| **r) {
             if f64::from(view.entropy[i]) < epsilon {
-                // Certain.
-            } else if view.map.stagnated_at(i) {
-                stagnated += 1;
-            } else {
-                open += 1;
+                continue;
             }
+            if !view.map.stagnated_at(i) {
+                return Ok(None);
+            }
+            stagnated = true;
         }
-        Ok((open == 0).then_some(if stagnated > 0 {
+        Ok(Some(if stagnated {
             Termination::Stagnated
         } else {
             Termination::Certain
@@ -222,20 +221,20 @@ impl ExplorationStrategy for DecisionTheoretic {
     /// reached has its promise checked on the next plan (see the module
     /// documentation).
     fn learn(&mut self, view: &DecisionInputs<'_>, outcome: &GoalOutcome) {
-        if let Some(mut goal) = self.last.take()
+        if let Some(goal) = self.last.take()
             && outcome.reached
         {
-            goal.realised_nats = goal.entropy_nats - total_entropy(view.entropy);
-            if goal.realised_nats < self.min_gain_nats {
+            let realised_nats = goal.entropy_nats - total_entropy(view.entropy);
+            if realised_nats < self.min_gain_nats {
                 self.exhausted.push(goal.cell);
             } else {
-                self.reached = Some(goal);
+                self.reached = Some((goal, realised_nats));
             }
         }
     }
 }
 
-/// A goal chosen, on the way or reached.
+/// A goal chosen.
 struct LastGoal {
     /// Its cell, row-major.
     cell: usize,
@@ -244,9 +243,6 @@ struct LastGoal {
     promised_nats: f64,
     /// The map's entropy when it was chosen, nats.
     entropy_nats: f64,
-    /// How much its step (the drive, its scans and the scan at the goal)
-    /// lowered the map's entropy, nats, once reached.
-    realised_nats: f64,
 }
 
 /// The sum of a map's entropies, nats.
