@@ -48,7 +48,6 @@ mod pose;
 mod ros_occupancy;
 mod scan_map;
 pub mod sensor;
-mod sight;
 mod stamp;
 #[cfg(test)]
 mod test_rng;
@@ -67,4 +66,3 @@ pub use pose::Pose;
 pub use ros_occupancy::{CoverageValue, ROS_UNKNOWN};
 pub use scan_map::{ScanBeams, ScanMap};
 pub use sensor::{Footprint, KernelTable, LaserModel, RangeModel, SensorModel, SonarModel};
-pub use sight::NoEchoSight;

@@ -68,10 +68,7 @@ impl<S: ScanSource, M: Motion> Exploration<S, M> {
     /// # Errors
     /// None in practice (the robot's pose lies on the map).
     pub fn paths(&self) -> Result<Reachability> {
-        let navigator = region::navigator(self.config.robot_radius_m, 0.0)?;
-        Ok(navigator
-            .free_and_reachable_driven(&self.map, &self.pose, Some(&self.driven))?
-            .1)
+        region::navigator(self.config.robot_radius_m, 0.0)?.reachability(&self.map, &self.pose)
     }
 
     /// The candidate viewpoints the coverage strategy weighs now, each with

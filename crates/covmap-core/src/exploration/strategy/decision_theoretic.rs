@@ -112,12 +112,9 @@ impl DecisionTheoretic {
         // The free space and the paths, found once for the termination
         // rule, the plan and the path to a goal other than the plan's (the
         // planner's cache keeps the map's read-outs they need).
-        let (free, reach) = self.planner.free_and_reachable_cached(
-            &mut self.cache,
-            view.map,
-            &view.pose,
-            Some(view.driven),
-        )?;
+        let (free, reach) =
+            self.planner
+                .free_and_reachable_cached(&mut self.cache, view.map, &view.pose)?;
         if let Some(done) = self.termination(view, &reach)? {
             return Ok(NextGoal::Done(done));
         }
@@ -193,7 +190,7 @@ impl DecisionTheoretic {
         let region = region_of(reach, view.map.grid(), &self.planner, band_m);
         debug_assert_eq!(
             region,
-            reachable_region(&self.planner, view.map, &view.pose, band_m, view.driven)?
+            reachable_region(&self.planner, view.map, &view.pose, band_m)?
         );
         let epsilon = view.config.epsilon;
         let mut stagnated = false;
@@ -314,7 +311,7 @@ mod tests {
             };
             let (free, reach) = strategy
                 .planner
-                .free_and_reachable_cached(&mut strategy.cache, &map, &pose, Some(&driven))
+                .free_and_reachable_cached(&mut strategy.cache, &map, &pose)
                 .unwrap();
             let plan = strategy.plan(&view, (&free, &reach)).unwrap();
             assert_eq!(
