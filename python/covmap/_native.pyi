@@ -335,9 +335,9 @@ class CoverageMap:
         pose with the log's sensor offset); dropped beams (NaN) are skipped; a
         reading without echo clears up to the lesser of the log's and the
         model's maximum range. With ``occlude_no_echo`` every echo reading
-        goes in first, then every no-echo reading, each clearing only up to
-        the nearest cell of its footprint the map of all the echoes holds
-        covered (the exploration loop's rule, with every echo known; the
+        goes in first, then every no-echo reading, each clearing only what
+        its line of sight reaches past the cells of its footprint the map of
+        all the echoes holds covered (the exploration loop's rule, with every echo known; the
         map does not depend on the order of the scans): a no-echo reading
         through a wall the echoes found is taken for a specular miss, and
         ``progress`` counts a scan once its no-echo readings are in (on a map
@@ -1418,8 +1418,9 @@ def run_learn(
     on both drives. With ``judged_only`` the fit scores the training drive's
     judged cells only, not every cell of its grid. With ``occlude_no_echo``
     (the default) every map, the fit's and the scores', is built as the
-    exploration loop builds its maps: each no-echo reading clears only up to
-    the nearest cell the map holds covered (``CoverageMap.integrate_log``'s
+    exploration loop builds its maps: each no-echo reading clears only what
+    its line of sight reaches past the cells the map holds covered
+    (``CoverageMap.integrate_log``'s
     ``occlude_no_echo``), and the drives' occupancy grids take the same
     beams; ``False`` lets no-echo readings clear their whole footprint.
     Runs with the GIL released.

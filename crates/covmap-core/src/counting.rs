@@ -3,10 +3,10 @@
 use serde::{Deserialize, Serialize};
 
 use crate::error::{CovmapError, Result, check_parameter};
-use crate::footprint::visit;
 use crate::grid::Grid;
 use crate::scan_map::{ScanBeams, ScanMap};
 use crate::sensor::{RangeModel, SensorModel};
+use crate::sight::visit_reading;
 
 /// Per-cell scan counts, the exploration baseline of the paper's Table I.
 ///
@@ -139,15 +139,16 @@ impl ScanMap for ScanCounts {
         model: &M,
     ) -> Result<usize> {
         let range = model.range_model();
-        let pose = scan.pose;
         let mut updates = 0;
-        for (k, (&r, &bearing)) in scan.ranges.iter().zip(scan.bearings).enumerate() {
+        for (k, &r) in scan.ranges.iter().enumerate() {
             let (reach, w) = self.beam(range, r, k, scan.no_echo_reach_m);
             let counts = &mut self.counts;
-            visit(
+            let echo = r < range.max_range_m;
+            visit_reading(
                 &self.grid,
-                [pose.x_m, pose.y_m],
-                pose.theta_rad + bearing,
+                &scan,
+                k,
+                echo,
                 reach,
                 model.footprint(),
                 &mut |i, _| {

@@ -48,6 +48,7 @@ mod pose;
 mod ros_occupancy;
 mod scan_map;
 pub mod sensor;
+mod sight;
 mod stamp;
 #[cfg(test)]
 mod test_rng;
@@ -66,3 +67,4 @@ pub use pose::Pose;
 pub use ros_occupancy::{CoverageValue, ROS_UNKNOWN};
 pub use scan_map::{ScanBeams, ScanMap};
 pub use sensor::{Footprint, KernelTable, LaserModel, RangeModel, SensorModel, SonarModel};
+pub use sight::NoEchoSight;

@@ -4,11 +4,11 @@ use serde::{Deserialize, Serialize};
 
 use crate::counting::ScanCounts;
 use crate::error::{CovmapError, Result, check_parameter};
-use crate::footprint::visit;
 use crate::grid::Grid;
 use crate::memory;
 use crate::scan_map::{ScanBeams, ScanMap};
 use crate::sensor::SensorModel;
+use crate::sight::visit_reading;
 
 /// The inverse model of the occupancy baseline.
 ///
@@ -247,16 +247,16 @@ impl ScanMap for OccupancyGrid {
         let range = model.range_model();
         let grid = *self.counts.grid();
         let half = 0.5 * grid.resolution_m();
-        let pose = scan.pose;
         let mut updates = 0;
-        for (k, (&r, &bearing)) in scan.ranges.iter().zip(scan.bearings).enumerate() {
+        for (k, &r) in scan.ranges.iter().enumerate() {
             let echo = r < range.max_range_m;
             let (reach, weight) = self.counts.beam(range, r, k, scan.no_echo_reach_m);
             let (log_odds, counts) = (&mut self.log_odds, self.counts.counts_mut());
-            visit(
+            visit_reading(
                 &grid,
-                [pose.x_m, pose.y_m],
-                pose.theta_rad + bearing,
+                &scan,
+                k,
+                echo,
                 reach,
                 model.footprint(),
                 &mut |i: usize, d_l: f64| {
@@ -317,6 +317,7 @@ mod tests {
                     ranges: &ranges,
                     bearings: &bearings,
                     no_echo_reach_m: Some(&reaches),
+                    no_echo_sight: None,
                 };
                 occupancy.integrate_scan(scan, &sonar).unwrap();
                 alone.integrate_scan(scan, &sonar).unwrap();

@@ -9,6 +9,7 @@ use crate::grid::Grid;
 use crate::log::Log;
 use crate::pose::{Pose, validate_scan};
 use crate::sensor::SensorModel;
+use crate::sight::NoEchoSight;
 
 /// One scan as a map takes it: from `pose`, reading `ranges[i]` (metres)
 /// along `pose.theta_rad + bearings[i]`; no-echo reading `k` clearing its
@@ -24,6 +25,9 @@ pub struct ScanBeams<'a> {
     /// How far each no-echo reading clears, metres (`None`: the model's
     /// no-echo reach).
     pub no_echo_reach_m: Option<&'a [f64]>,
+    /// Which cells each no-echo reading clears within that reach: those in
+    /// no covered cell's shadow ([`NoEchoSight`]; `None`: all of them).
+    pub no_echo_sight: Option<&'a NoEchoSight>,
 }
 
 /// A map that range scans are integrated into, every scan checked before
@@ -84,6 +88,7 @@ pub trait ScanMap {
             ranges,
             bearings,
             no_echo_reach_m: None,
+            no_echo_sight: None,
         };
         validate_scan(self.grid(), pose, ranges, bearings, model)?;
         self.integrate_checked(scan, model)
@@ -108,6 +113,9 @@ pub trait ScanMap {
     ) -> Result<usize> {
         if let Some(reaches) = scan.no_echo_reach_m {
             crate::coverage_map::check_reaches(scan.ranges, reaches)?;
+        }
+        if let Some(sight) = scan.no_echo_sight {
+            crate::coverage_map::check_sight(scan.ranges, sight)?;
         }
         validate_scan(self.grid(), scan.pose, scan.ranges, scan.bearings, model)?;
         self.integrate_checked(scan, model)

@@ -155,9 +155,9 @@ impl PyCoverageMap {
     /// pose with the log's sensor offset); dropped beams (NaN) are skipped; a
     /// reading without echo clears up to the lesser of the log's and the
     /// model's maximum range. With ``occlude_no_echo`` every echo reading
-    /// goes in first, then every no-echo reading, each clearing only up to
-    /// the nearest cell of its footprint the map of all the echoes holds
-    /// covered (the exploration loop's rule, with every echo known; the
+    /// goes in first, then every no-echo reading, each clearing only what
+    /// its line of sight reaches past the cells of its footprint the map of
+    /// all the echoes holds covered (the exploration loop's rule, with every echo known; the
     /// map does not depend on the order of the scans): a no-echo reading
     /// through a wall the echoes found is taken for a specular miss, and
     /// ``progress`` counts a scan once its no-echo readings are in (on a map

@@ -8,7 +8,10 @@ The paper's finding: if 85 % or more of the cells must be certain, coverage
 maps travel less. :func:`path_at` reads the counting curve at a fraction
 (linear interpolation between the means of consecutive ``n`` where the
 curve first reaches it), :func:`crossings` where the counting curve reaches
-the coverage runs' mean path length.
+the coverage runs' mean path length. :meth:`Fig7.reaching` reads the runs
+on the way (the path at which each first had a fraction certain), which
+tells the two halves of a coverage run apart: how soon it makes most of the
+cells certain, and how far it drives for the last few.
 """
 
 from __future__ import annotations
@@ -17,6 +20,8 @@ import csv
 import io
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any, Callable
+
+import numpy as np
 
 from covmap._native import DEFAULT_DISCOUNT_BEYOND_M, Strategy
 from covmap._sweep import RunSummary, SweepFailure, sweep
@@ -101,6 +106,16 @@ class Fig7:
     def cross(self) -> Point:
         """The coverage runs' mean and spread."""
         return _point(f"coverage, alpha {self.alpha:g}", self.coverage)
+
+    def reaching(self, fraction: float) -> tuple[float | None, tuple[float, int] | None]:
+        """On the way: the coverage runs' mean path when each first had
+        ``fraction`` of its cells certain (:func:`reached_at`), and the
+        counting ``n`` whose runs all got there soonest, as ``(mean path,
+        n)``. ``None`` where some run of coverage (of every ``n``) never got
+        there."""
+        coverage = mean_reached_at(self.coverage, fraction)
+        counting = [(path, n) for n in self.ns if (path := mean_reached_at(self.counting_runs(n), fraction)) is not None]
+        return coverage, min(counting, default=None)
 
 
 MAX_PATH_M = 2000.0
@@ -200,6 +215,24 @@ def path_at(curve: Sequence[Point], fraction: float) -> float | None:
     return None
 
 
+def reached_at(run: RunSummary, fraction: float) -> float | None:
+    """The run's path length, metres, at the end of its first step after
+    which at least ``fraction`` of its evaluation cells were certain (from
+    its trace; ``None``: never)."""
+    certain = 1.0 - np.asarray(run.trace["uncertain_fraction"], dtype=float)
+    hits = np.flatnonzero(certain >= fraction)
+    return float(run.trace["path_length_m"][hits[0]]) if hits.size else None
+
+
+def mean_reached_at(runs: Sequence[RunSummary], fraction: float) -> float | None:
+    """The mean of :func:`reached_at` over ``runs`` (``None`` if one of
+    them never got there, or there are none)."""
+    paths = [reached_at(r, fraction) for r in runs]
+    if not paths or any(p is None for p in paths):
+        return None
+    return sum(p for p in paths if p is not None) / len(paths)
+
+
 def crossings(curve: Sequence[Point], path_m: float) -> list[float]:
     """The certain fractions at which the counting curve passes the path
     length ``path_m`` (the coverage runs' mean), interpolated linearly
@@ -266,6 +299,16 @@ def report(f: Fig7) -> str:
         elif cross.certain >= fraction:
             verdict = "; only coverage reaches it"
         lines.append(f"at {100 * fraction:.0f} % certain: {counting_text}; {coverage_text}{verdict}")
+    lines.append("on the way (the path at which a run first had the fraction certain, mean over the seeds):")
+    for fraction in FRACTIONS:
+        on_way, soonest = f.reaching(fraction)
+        coverage_text = f"coverage {on_way:.1f} m" if on_way is not None else "not every coverage run gets there"
+        counting_text = (
+            f"counting {soonest[0]:.1f} m (n = {soonest[1]}, the soonest)"
+            if soonest is not None
+            else "no n whose every run gets there"
+        )
+        lines.append(f"  {100 * fraction:.0f} %: {coverage_text}; {counting_text}")
     return "\n".join(lines)
 
 

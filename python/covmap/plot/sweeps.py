@@ -4,6 +4,8 @@ from __future__ import annotations
 
 from typing import TYPE_CHECKING
 
+import numpy as np
+
 from covmap.plot.figures import _figure_file
 
 __all__ = ["plot_fig7"]
@@ -19,7 +21,9 @@ def plot_fig7(f: Fig7, path: Path) -> Path:
     against the percentage of evaluation cells certain at the end, each
     counting run a dot, the mean per ``n`` a line labelled by ``n``, the
     coverage runs each a small cross and their mean a large cross with its
-    spread (sample standard deviation) in both directions. Returns the path."""
+    spread (sample standard deviation) in both directions, and a dashed line
+    through the coverage runs' mean path on the way (where each first had a
+    fraction certain, :meth:`Fig7.reaching`). Returns the path."""
     with _figure_file(path, figsize=(7.5, 5.0), layout="constrained") as (_, ax):
         ax.scatter(
             [100.0 * r.certain_fraction for r in f.counting],
@@ -49,6 +53,19 @@ def plot_fig7(f: Fig7, path: Path) -> Path:
             alpha=0.6,
             label="coverage runs",
         )
+        if f.coverage:
+            top = min(r.certain_fraction for r in f.coverage)
+            way = [(x, f.reaching(x)[0]) for x in np.linspace(0.5, top, 60)]
+            way = [(x, p) for x, p in way if p is not None]
+            if way:
+                ax.plot(
+                    [100.0 * x for x, _ in way],
+                    [p for _, p in way],
+                    "--",
+                    color="tab:red",
+                    linewidth=1.0,
+                    label="coverage runs on the way: mean path at which each first had the fraction",
+                )
         c = f.cross
         ax.errorbar(
             [100.0 * c.certain],

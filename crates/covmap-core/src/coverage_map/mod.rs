@@ -13,4 +13,4 @@ pub use contact::CONTACT_COVERAGE;
 pub use history::{HistoryState, STAGNATION_MEASUREMENTS, STAGNATION_NATS};
 pub use occlusion::{Occluding, integrate_log_occluded};
 pub use storage::CoverageMap;
-pub(crate) use update::check_reaches;
+pub(crate) use update::{check_reaches, check_sight};

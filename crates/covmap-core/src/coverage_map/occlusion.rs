@@ -6,13 +6,13 @@
 
 use super::{CONTACT_COVERAGE, CoverageMap};
 use crate::error::Result;
-use crate::footprint::visit;
 use crate::grid::Grid;
 use crate::histogram;
 use crate::log::Log;
 use crate::pose::Pose;
 use crate::scan_map::{ScanBeams, ScanMap};
 use crate::sensor::SensorModel;
+use crate::sight::NoEchoSight;
 
 /// A coverage map that integrates each scan with its no-echo readings
 /// occluded by the map as it stands when the scan comes, and a whole log
@@ -32,11 +32,10 @@ impl ScanMap for Occluding<'_> {
         model: &M,
     ) -> Result<usize> {
         let map = &*self.0;
-        let reaches = reaches_before(map.grid(), &scan, model, |i| map.is_covered(i));
-        let no_echo_reach_m = Some(&reaches[..]);
+        let sight = NoEchoSight::of_scan(map.grid(), &scan, model, |i| map.is_covered(i));
         self.0.integrate_checked(
             ScanBeams {
-                no_echo_reach_m,
+                no_echo_sight: Some(&sight),
                 ..scan
             },
             model,
@@ -60,7 +59,7 @@ impl ScanMap for Occluding<'_> {
 /// Integrate `log` into `map` with its no-echo readings occluded by the map
 /// of the log's echoes, which does not depend on the order of the scans:
 /// first every scan's echo readings, then every scan's no-echo readings,
-/// each clearing only up to the nearest cell of its footprint that the map
+/// each clearing only what its line of sight reaches past the cells the map
 /// held as covered once all the echoes were in (and no further than the
 /// log's maximum range). `also` is handed every set of beams `map` takes,
 /// checked, so that another map (the occupancy grid baseline) can take the
@@ -110,8 +109,8 @@ pub fn integrate_log_occluded<M: SensorModel + ?Sized>(
         } else {
             kept.keep(scan, |r| !echo(r))
         };
-        let reaches = reaches_before(&grid, &beams, model, |i| covered[i]);
-        beams.no_echo_reach_m = Some(&reaches);
+        let sight = NoEchoSight::of_scan(&grid, &beams, model, |i| covered[i]);
+        beams.no_echo_sight = Some(&sight);
         Ok(map.integrate_checked(beams, model)? + also(beams)?)
     })?;
     Ok(updates)
@@ -145,57 +144,18 @@ impl KeptBeams {
             ranges: &self.ranges,
             bearings: &self.bearings,
             no_echo_reach_m: scan.no_echo_reach_m.map(|_| &self.reaches[..]),
+            no_echo_sight: None,
         }
     }
-}
-
-/// How far each reading of `scan` should clear: a no-echo reading to the
-/// nearest cell of its footprint that `is_covered`, at most the lesser of
-/// the maximum range and the scan's own reach; an echo reading the maximum
-/// range (it ignores it).
-fn reaches_before<M: SensorModel + ?Sized>(
-    grid: &Grid,
-    scan: &ScanBeams<'_>,
-    model: &M,
-    is_covered: impl Fn(usize) -> bool,
-) -> Vec<f64> {
-    let max_range_m = model.range_model().max_range_m;
-    let footprint = model.footprint();
-    let half = 0.5 * grid.resolution_m();
-    let pose = scan.pose;
-    scan.ranges
-        .iter()
-        .zip(scan.bearings)
-        .enumerate()
-        .map(|(k, (&r, &bearing))| {
-            let given = scan.no_echo_reach_m.map_or(max_range_m, |g| g[k]);
-            let mut reach = max_range_m.min(given);
-            if r >= max_range_m && r.is_finite() && bearing.is_finite() {
-                visit(
-                    grid,
-                    [pose.x_m, pose.y_m],
-                    pose.theta_rad + bearing,
-                    max_range_m,
-                    footprint,
-                    &mut |i: usize, d_l: f64| {
-                        if d_l - half < reach && is_covered(i) {
-                            reach = (d_l - half).max(0.0);
-                        }
-                    },
-                );
-            }
-            reach
-        })
-        .collect()
 }
 
 impl CoverageMap {
     /// This map, integrating each scan ([`ScanMap::integrate`],
     /// [`ScanMap::integrate_scan`]) with its no-echo readings occluded by
     /// the map as it stands when the scan comes: a no-echo reading clears
-    /// only up to the nearest cell of its footprint the map holds as
-    /// covered ([`CoverageMap::no_echo_reaches`]), as the exploration loop
-    /// integrates its scans. A no-echo reading through a wall that earlier
+    /// only the cells of its footprint that no cell the map holds as
+    /// covered shadows ([`CoverageMap::no_echo_sight`]), as the exploration
+    /// loop integrates its scans. A no-echo reading through a wall that earlier
     /// echoes found is then taken for a specular miss, which says nothing
     /// of the wall or of what lies behind it. A whole log
     /// ([`ScanMap::integrate_log`]) goes in echoes first, its no-echo
@@ -206,28 +166,29 @@ impl CoverageMap {
         Occluding(self)
     }
 
-    /// How far each no-echo reading of a scan from `pose` should clear: to
-    /// the nearest cell of its footprint that this map holds as covered (ML
-    /// coverage above [`CONTACT_COVERAGE`]; a cell the robot ran into is
-    /// pinned so: [`CoverageMap::pin_covered`]), at most the maximum range;
-    /// echo readings get the maximum range (they ignore it).
-    /// The result is the `no_echo_reach_m` of a
-    /// [`ScanBeams`](crate::ScanBeams). The scan is not validated: an
-    /// invalid one gives reaches the update then refuses.
-    pub fn no_echo_reaches<M: SensorModel + ?Sized>(
+    /// What each no-echo reading of a scan from `pose` should clear: in
+    /// each sector of its footprint, the cells nearer than the nearest cell
+    /// this map holds as covered (ML coverage above [`CONTACT_COVERAGE`]; a
+    /// cell the robot ran into is pinned so: [`CoverageMap::pin_covered`])
+    /// that shadows the sector, at most the maximum range
+    /// ([`NoEchoSight`]); echo readings are not limited. The result is the
+    /// `no_echo_sight` of a [`ScanBeams`](crate::ScanBeams). The scan is
+    /// not validated: an invalid one gives a sight the update then refuses.
+    pub fn no_echo_sight<M: SensorModel + ?Sized>(
         &self,
         pose: &Pose,
         ranges: &[f64],
         bearings: &[f64],
         model: &M,
-    ) -> Vec<f64> {
+    ) -> NoEchoSight {
         let scan = ScanBeams {
             pose,
             ranges,
             bearings,
             no_echo_reach_m: None,
+            no_echo_sight: None,
         };
-        reaches_before(self.grid(), &scan, model, |i| self.is_covered(i))
+        NoEchoSight::of_scan(self.grid(), &scan, model, |i| self.is_covered(i))
     }
 
     /// Whether this map holds cell `i` as covered: its ML coverage above
@@ -251,6 +212,7 @@ impl CoverageMap {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::footprint::visit;
     use crate::grid::Cell;
     use crate::grid::Grid;
     use crate::scan_map::ScanMap;
@@ -292,12 +254,17 @@ mod tests {
         assert_eq!(counts.iter().copied().max(), Some(scans as u32));
     }
 
-    /// On a map holding walls, every no-echo reading stops before the
-    /// nearest cell of its footprint the ML map holds covered (more than
-    /// half), and echo readings and readings that meet none reach as far
-    /// as the model lets them.
+    /// On a map holding walls, every cell a no-echo reading clears lies in
+    /// its line of sight: the segment from the sensor to the cell's centre
+    /// crosses no cell of the reading's footprint the ML map holds covered
+    /// (more than half) short of
+    /// the last half cell and half diagonal before the centre (a covered
+    /// cell shadows the cells more than half a cell farther than its own
+    /// centre). Readings that pass beside a covered
+    /// cell clear what lies beyond it in their other sectors, and echo
+    /// readings are not limited.
     #[test]
-    fn no_echo_readings_stop_before_covered_cells() {
+    fn no_echo_readings_clear_only_what_their_line_of_sight_reaches() {
         let grid = Grid::new([0.0, 0.0], 0.05, 120, 160).unwrap();
         let mut map = CoverageMap::new(grid);
         let laser = LaserModel::default();
@@ -308,39 +275,84 @@ mod tests {
         }
         map.pin_covered(&[Cell { row: 60, col: 60 }]).unwrap();
         let ml = map.ml();
-        let half = 0.5 * grid.resolution_m();
+        let covered_at = |covered: &[bool], x: f64, y: f64| {
+            grid.world_to_cell(x, y)
+                .is_some_and(|c| covered[grid.index(c).unwrap()])
+        };
         let mut next = crate::test_rng::uniform(3);
         let sonar = SonarModel::default();
         let limit = sonar.range.max_range_m;
         let ring: Vec<f64> = (0..24).map(|k| f64::from(k) * 0.2618).collect();
-        let mut stopped = 0;
+        let (mut cleared, mut past_covered) = (0usize, 0usize);
         for trial in 0..40 {
             let pose = Pose::new(1.0 + 6.0 * next(), 1.0 + 4.0 * next(), next());
-            let mut ranges = vec![sonar.range.max_range_m; 24];
+            let mut ranges = vec![limit; 24];
             ranges[trial % 24] = 1.0;
-            let got = map.no_echo_reaches(&pose, &ranges, &ring, &sonar);
-            for (k, (&reach, &r)) in got.iter().zip(&ranges).enumerate() {
-                if r < sonar.range.max_range_m {
-                    assert_eq!(reach, sonar.range.max_range_m, "an echo");
+            let sight = map.no_echo_sight(&pose, &ranges, &ring, &sonar);
+            let origin = [pose.x_m, pose.y_m];
+            for (k, &r) in ranges.iter().enumerate() {
+                let axis = pose.theta_rad + ring[k];
+                if r < limit {
+                    assert_eq!(sight.max_reach_m(k), limit, "an echo");
                     continue;
                 }
-                let mut want = limit;
+                let mut nearest_covered = f64::INFINITY;
+                let mut covered = vec![false; grid.len()];
                 visit(
                     &grid,
-                    [pose.x_m, pose.y_m],
-                    pose.theta_rad + ring[k],
+                    origin,
+                    axis,
                     limit,
                     sonar.footprint(),
                     &mut |i: usize, d_l: f64| {
                         if f64::from(ml[i]) > CONTACT_COVERAGE {
-                            want = want.min((d_l - half).max(0.0));
+                            nearest_covered = nearest_covered.min(d_l);
+                            covered[i] = true;
                         }
                     },
                 );
-                assert_eq!(reach, want, "trial {trial}, beam {k}");
-                stopped += usize::from(reach < limit);
+                let reach = sight.max_reach_m(k);
+                visit(
+                    &grid,
+                    origin,
+                    axis,
+                    reach,
+                    sonar.footprint(),
+                    &mut |i: usize, d_l: f64| {
+                        if !sight.sees(&grid, origin, axis, k, i, d_l) {
+                            return;
+                        }
+                        cleared += 1;
+                        past_covered += usize::from(d_l > nearest_covered);
+                        let [cx, cy] = grid.cell_center(grid.cell(i));
+                        let steps = (d_l / (0.05 * grid.resolution_m())).ceil() as usize;
+                        for s in 0..steps {
+                            let t = s as f64 / steps as f64;
+                            // A covered cell shadows the cells more than half a
+                            // cell farther than its centre, which lies at most
+                            // half a diagonal beyond its nearest point.
+                            if (1.0 - t) * d_l
+                                < (0.5 + 0.5 * std::f64::consts::SQRT_2) * grid.resolution_m()
+                            {
+                                break;
+                            }
+                            let (x, y) = (
+                                origin[0] + t * (cx - origin[0]),
+                                origin[1] + t * (cy - origin[1]),
+                            );
+                            assert!(
+                                !covered_at(&covered, x, y),
+                                "trial {trial}, beam {k}: ({x}, {y}) on the way to ({cx}, {cy})"
+                            );
+                        }
+                    },
+                );
             }
         }
-        assert!(stopped > 100, "{stopped} readings stopped");
+        assert!(cleared > 10_000, "{cleared} cells cleared");
+        assert!(
+            past_covered > 100,
+            "{past_covered} cells cleared beyond a covered cell beside them"
+        );
     }
 }

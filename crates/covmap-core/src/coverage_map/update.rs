@@ -8,11 +8,12 @@ use super::changes::Stamper;
 use super::history::History;
 use super::storage::cached_or_new;
 use crate::error::Result;
-use crate::footprint::{CellVisitor, visit};
+use crate::footprint::CellVisitor;
 use crate::grid::Grid;
 use crate::histogram::{self, with_bins};
 use crate::scan_map::{ScanBeams, ScanMap};
 use crate::sensor::{KernelTable, ReadingLookup, SensorModel};
+use crate::sight::visit_reading;
 
 impl ScanMap for CoverageMap {
     fn grid(&self) -> &Grid {
@@ -74,6 +75,19 @@ pub(crate) fn check_reaches(ranges: &[f64], no_echo_reach_m: &[f64]) -> Result<(
     }
 }
 
+/// Errors unless `sight` is for as many readings as `ranges`.
+pub(crate) fn check_sight(ranges: &[f64], sight: &crate::NoEchoSight) -> Result<()> {
+    if sight.len() == ranges.len() {
+        Ok(())
+    } else {
+        Err(crate::CovmapError::LengthMismatch {
+            what: "ranges and no-echo sights",
+            left: ranges.len(),
+            right: sight.len(),
+        })
+    }
+}
+
 /// How far reading `k` of `r` metres reaches along its beam, and whether it
 /// is an echo: [`RangeModel::reach`](crate::RangeModel::reach), a no-echo
 /// reading cut to its entry of `no_echo_reach_m`, if any.
@@ -126,17 +140,16 @@ fn apply<const N: usize, M: SensorModel + ?Sized>(
     touches: &mut Touches<'_>,
 ) -> usize {
     let ScanBeams {
-        pose,
         ranges,
-        bearings,
         no_echo_reach_m,
+        ..
     } = scan;
     let bins = table.bins();
     debug_assert_eq!(data.len(), grid.len() * bins);
     let range = model.range_model();
     let footprint = model.footprint();
     let mut updates = 0;
-    for (k, (&r, &bearing)) in ranges.iter().zip(bearings).enumerate() {
+    for (k, &r) in ranges.iter().enumerate() {
         let (reach, echo) = beam_reach(range, r, k, no_echo_reach_m);
         let d = r.min(range.max_range_m);
         let mut beam = BeamUpdate::<N> {
@@ -149,14 +162,7 @@ fn apply<const N: usize, M: SensorModel + ?Sized>(
             updates: 0,
             touches: &mut *touches,
         };
-        visit(
-            grid,
-            [pose.x_m, pose.y_m],
-            pose.theta_rad + bearing,
-            reach,
-            footprint,
-            &mut beam,
-        );
+        visit_reading(grid, &scan, k, echo, reach, footprint, &mut beam);
         updates += beam.updates;
     }
     updates

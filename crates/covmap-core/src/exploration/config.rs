@@ -36,9 +36,10 @@ pub struct ExplorationConfig {
     /// a safety net too (default 20 000).
     pub max_steps: usize,
     /// Whether a reading at the maximum range ("no echo") clears only the
-    /// cells nearer than the nearest obstacle the coverage map holds in its
-    /// footprint (see the [module documentation](super)), rather than its whole
-    /// footprint to the maximum range as the sensor model has it.
+    /// cells its line of sight reaches past the obstacles the coverage map
+    /// holds in its footprint ([`NoEchoSight`](crate::NoEchoSight), see the
+    /// [module documentation](super)), rather than its whole footprint to
+    /// the maximum range as the sensor model has it.
     pub occlude_no_echo: bool,
 }
 

@@ -142,15 +142,16 @@ impl<S: ScanSource, M: Motion> Exploration<S, M> {
         let (pose, bearings, model) = (&self.pose, &self.bearings[..], self.model.as_dyn());
         // No-echo readings stopped before what the map holds (see the
         // module documentation of `crate::exploration`).
-        let reaches = self
+        let sight = self
             .config
             .occlude_no_echo
-            .then(|| self.map.no_echo_reaches(pose, &ranges, bearings, model));
+            .then(|| self.map.no_echo_sight(pose, &ranges, bearings, model));
         let scan = ScanBeams {
             pose,
             ranges: &ranges,
             bearings,
-            no_echo_reach_m: reaches.as_deref(),
+            no_echo_reach_m: None,
+            no_echo_sight: sight.as_ref(),
         };
         // The coverage map checks the scan first: an invalid one changes no map.
         self.map.integrate_scan(scan, model)?;

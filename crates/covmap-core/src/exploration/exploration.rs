@@ -401,6 +401,7 @@ impl<S, M> Exploration<S, M> {
             &self.map,
             &self.pose,
             self.model.as_dyn().range_model().band_m,
+            &self.driven,
         )
     }
 

@@ -22,18 +22,23 @@
 //!   coverage map, the occupancy grid and the scan counts, the very same
 //!   beams. Poses are exact: no localisation error.
 //! - **No echo**: a reading at the maximum range clears only the cells
-//!   nearer than the nearest obstacle the coverage map already holds
-//!   anywhere in its footprint (ML coverage above 0.5, or a contact), the
-//!   same in all three maps ([`ExplorationConfig::occlude_no_echo`], on by
-//!   default). A sonar's specular miss of a known wall says nothing of what
+//!   its line of sight reaches: in each sector of its footprint (a cell wide
+//!   at the maximum range), those nearer than the nearest obstacle the
+//!   coverage map already holds there (ML coverage above 0.5, or a
+//!   contact; [`NoEchoSight`](crate::NoEchoSight)), the same in all three
+//!   maps ([`ExplorationConfig::occlude_no_echo`], on by default). A sonar's specular miss of a known wall says nothing of what
 //!   lies behind it; integrated to the maximum range, as the sensor model
 //!   alone has it, oblique misses erase the walls the perpendicular echoes
 //!   found (in the built-in corridor the robot then plans through walls on
-//!   most steps). The whole footprint, not the axis alone: a cone grazing a
+//!   most steps). Every sector, not the axis alone: a cone grazing a
 //!   wall along its flank, its axis clear of it, would otherwise clear the
 //!   wall's face under its flank (on the corridor, stopping at the axis
 //!   left the wall's face and inner cells of the north wall reading free
-//!   on long stretches, and the robot touched it 50 times in one run).
+//!   on long stretches, and the robot touched it 50 times in one run). Nor
+//!   the whole cone at its nearest obstacle, as until 2026-12-07: a cone
+//!   aimed at a doorway then stopped at the jambs, the doorway's cells
+//!   were never cleared by the readings through it, and the door stayed
+//!   closed on the map (docs/experiments.md, "The line of sight").
 //! - **Contacts**: where the world stops the robot short of its target (the
 //!   map showed the way free), the robot stops at its last free point,
 //!   scans, takes the contact into the coverage map (the cell it ran into
@@ -49,12 +54,12 @@
 //! - **Planning radius**: paths are planned for a disc a cell (at least 5 cm) wider than
 //!   the robot, since a cell less than half covered reads free and a sonar
 //!   map often holds the face row of a wall as free (see `region`).
-//! - **The way back**: counting and frontier, which navigate the occupancy
-//!   grid, may always pass the cells the robot's centre has driven through,
-//!   whatever the grid says of them since (the robot fitted there, and the
-//!   world does not change): the end arcs of readings that catch a door's
-//!   jambs close the door on the grid behind the robot, and it would end
-//!   shut in the room it drove into (see `region`).
+//! - **The way back**: every strategy may always pass the cells the robot's
+//!   centre has driven through, whatever its map says of them since (the
+//!   robot fitted there, and the world does not change): the end arcs of
+//!   readings that catch a door's jambs narrow the door on the map behind
+//!   the robot, and it would end shut in the room it drove into (see
+//!   `region`).
 //! - **The reachable region**: the cells the robot can reach through known
 //!   free space (of the coverage map; counting: of the occupancy grid, what
 //!   the beams have seen), plus a shell of the planning radius and the

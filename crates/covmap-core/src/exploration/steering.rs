@@ -68,7 +68,10 @@ impl<S: ScanSource, M: Motion> Exploration<S, M> {
     /// # Errors
     /// None in practice (the robot's pose lies on the map).
     pub fn paths(&self) -> Result<Reachability> {
-        region::navigator(self.config.robot_radius_m, 0.0)?.reachability(&self.map, &self.pose)
+        let navigator = region::navigator(self.config.robot_radius_m, 0.0)?;
+        Ok(navigator
+            .free_and_reachable_driven(&self.map, &self.pose, Some(&self.driven))?
+            .1)
     }
 
     /// The candidate viewpoints the coverage strategy weighs now, each with

@@ -58,6 +58,7 @@ pub(super) fn scan_room(door: bool, pose: &Pose, map: &mut impl ScanMap) {
         ranges: &ranges,
         bearings: &bearings,
         no_echo_reach_m: Some(&reaches),
+        no_echo_sight: None,
     };
     map.integrate_scan(scan, &laser).unwrap();
 }

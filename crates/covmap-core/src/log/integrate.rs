@@ -29,6 +29,7 @@ impl PreparedScan {
             ranges: &self.ranges,
             bearings: &self.bearings,
             no_echo_reach_m: Some(&self.reaches),
+            no_echo_sight: None,
         }
     }
 
@@ -146,6 +147,7 @@ mod tests {
                 ranges: &ranges,
                 bearings: log.scan_bearings(i),
                 no_echo_reach_m: Some(&reach),
+                no_echo_sight: None,
             };
             sum += by_scan.integrate_scan(scan, &model).unwrap();
             occupancy_sum += occupancy.integrate_scan(scan, &model).unwrap();

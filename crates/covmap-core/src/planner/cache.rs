@@ -289,7 +289,7 @@ impl Planner {
         bearings: &[f64],
         model: &M,
     ) -> Result<Plan> {
-        let (changed_cells, free, reach) = self.see_free_and_reachable(cache, map, pose)?;
+        let (changed_cells, free, reach) = self.see_free_and_reachable(cache, map, pose, None)?;
         let plan = self.next_viewpoint_on(cache, map, pose, bearings, model, (&free, &reach))?;
         cache.stats.changed_cells = changed_cells;
         Ok(plan)
@@ -334,19 +334,21 @@ impl Planner {
         cache: &mut PlanningCache,
         map: &CoverageMap,
         pose: &Pose,
+        driven: Option<&[bool]>,
     ) -> Result<(Vec<bool>, Reachability)> {
-        let (_, free, reach) = self.see_free_and_reachable(cache, map, pose)?;
+        let (_, free, reach) = self.see_free_and_reachable(cache, map, pose, driven)?;
         Ok((free, reach))
     }
 
     /// Bring `cache` up to date with `map` (how many cells changed) and
     /// find the free space and the paths from `pose` on the map's read-outs
-    /// it keeps.
+    /// it keeps (the cells `driven` passable, if given).
     fn see_free_and_reachable(
         &self,
         cache: &mut PlanningCache,
         map: &CoverageMap,
         pose: &Pose,
+        driven: Option<&[bool]>,
     ) -> Result<(usize, Vec<bool>, Reachability)> {
         let start = check_pose(map.grid(), pose)?;
         let changed_cells = cache.see(map);
@@ -358,7 +360,7 @@ impl Planner {
             &readouts.entropy,
             !self.config.unknown_is_free,
         );
-        let (free, reach) = self.free_and_reachable_of(map.grid(), &blocked, start)?;
+        let (free, reach) = self.free_and_reachable_of(map.grid(), &blocked, start, driven)?;
         Ok((changed_cells, free, reach))
     }
 }

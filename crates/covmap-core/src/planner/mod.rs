@@ -69,6 +69,7 @@ pub use config::{DEFAULT_HEADINGS, MAX_CANDIDATE_HEADINGS, MIN_GAIN_FLOOR_NATS, 
 pub use path::{Reachability, shortest_paths};
 pub(crate) use path::{Search, SearchMemory, reachable_cells};
 pub use termination::ExplorationStatus;
+pub(crate) use traversability::pass_where_driven;
 pub use viewpoint::{
     Candidates, FACE_MARGIN_M, Plan, Planner, fixed_headings, sees_all_around, widest_gap_rad,
 };

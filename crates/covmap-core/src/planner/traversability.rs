@@ -99,18 +99,33 @@ impl Planner {
         map: &CoverageMap,
         pose: &Pose,
     ) -> Result<(Vec<bool>, Reachability)> {
-        let start = check_pose(map.grid(), pose)?;
-        let blocked = self.blocked(map, !self.config.unknown_is_free);
-        self.free_and_reachable_of(map.grid(), &blocked, start)
+        self.free_and_reachable_driven(map, pose, None)
     }
 
-    /// [`Self::free_and_reachable`] on `grid` around the cells `blocked`
-    /// (as [`Self::blocked`] finds them for planning), from the cell `start`.
+    /// [`Self::free_and_reachable`], the cells `driven` (one flag a cell:
+    /// where the robot's centre has been) passable whatever the map says
+    /// of them (the exploration loop's "way back", see
+    /// [`crate::exploration`]).
+    pub(crate) fn free_and_reachable_driven(
+        &self,
+        map: &CoverageMap,
+        pose: &Pose,
+        driven: Option<&[bool]>,
+    ) -> Result<(Vec<bool>, Reachability)> {
+        let start = check_pose(map.grid(), pose)?;
+        let blocked = self.blocked(map, !self.config.unknown_is_free);
+        self.free_and_reachable_of(map.grid(), &blocked, start, driven)
+    }
+
+    /// [`Self::free_and_reachable_driven`] on `grid` around the cells
+    /// `blocked` (as [`Self::blocked`] finds them for planning), from the
+    /// cell `start`.
     pub(super) fn free_and_reachable_of(
         &self,
         grid: &Grid,
         blocked: &[bool],
         start: Cell,
+        driven: Option<&[bool]>,
     ) -> Result<(Vec<bool>, Reachability)> {
         let free = self.free_of(grid, blocked);
         let start_index = grid.index(start)?;
@@ -121,8 +136,21 @@ impl Planner {
         for overlapped in cells_at(grid, start_index, &self.disc_offsets(grid)) {
             passable[overlapped] |= !blocked[overlapped];
         }
+        if let Some(driven) = driven {
+            pass_where_driven(&mut passable, driven);
+        }
         let reach = shortest_paths(grid, &passable, start)?;
         Ok((free, reach))
+    }
+}
+
+/// Make passable every cell the robot's centre has driven through
+/// (`driven`), whatever the map says of it now: the robot fitted there, and
+/// the world does not change (see [`crate::exploration`], "The way back").
+pub(crate) fn pass_where_driven(passable: &mut [bool], driven: &[bool]) {
+    assert_eq!(passable.len(), driven.len(), "one flag a cell");
+    for (p, &d) in passable.iter_mut().zip(driven) {
+        *p |= d;
     }
 }
 
@@ -179,8 +207,8 @@ fn cells_at<'o>(
 mod tests {
     use super::*;
     use crate::grid::Cell;
-    use crate::planner::PlannerConfig;
     use crate::planner::test_maps::walled_map;
+    use crate::planner::{PlannerConfig, PlanningCache};
     use crate::scan_map::ScanMap;
     use crate::sensor::LaserModel;
 
@@ -221,6 +249,42 @@ mod tests {
                 }
             }
         }
+    }
+
+    /// A doorway closed on the map behind the robot: the cells its centre
+    /// drove through lead back through it (the way back), for the plan's
+    /// paths and its cached paths alike; without them the far side is out
+    /// of reach.
+    #[test]
+    fn the_cells_driven_through_lead_back_through_a_doorway_closed_on_the_map() {
+        // A wall along column 30 with no gap, the robot west of it.
+        let map = walled_map(|_, col| col == 30, false);
+        let grid = *map.grid();
+        let planner = Planner::new(PlannerConfig::default()).unwrap();
+        let pose = Pose::new(0.5, 1.5, 0.0);
+        let east = grid.index(Cell { row: 30, col: 50 }).unwrap();
+        let (_, shut) = planner
+            .free_and_reachable_driven(&map, &pose, None)
+            .unwrap();
+        assert!(!shut.reachable(east), "the wall closes the east side");
+        // The robot drove along row 30 from the west side to the east.
+        let driven: Vec<bool> = (0..grid.len())
+            .map(|i| grid.cell(i).row == 30 && (10..=50).contains(&grid.cell(i).col))
+            .collect();
+        let (free, back) = planner
+            .free_and_reachable_driven(&map, &pose, Some(&driven))
+            .unwrap();
+        assert!(back.reachable(east), "the way back");
+        let through = grid.index(Cell { row: 30, col: 30 }).unwrap();
+        assert!(
+            !free[through],
+            "the doorway stays out of the free space (no goal there)"
+        );
+        let mut cache = PlanningCache::default();
+        let (cached_free, cached) = planner
+            .free_and_reachable_cached(&mut cache, &map, &pose, Some(&driven))
+            .unwrap();
+        assert_eq!((cached_free, cached.costs()), (free, back.costs()));
     }
 
     /// Inflating only the blocked region's edge cells takes the same cells

@@ -112,9 +112,12 @@ impl DecisionTheoretic {
         // The free space and the paths, found once for the termination
         // rule, the plan and the path to a goal other than the plan's (the
         // planner's cache keeps the map's read-outs they need).
-        let (free, reach) =
-            self.planner
-                .free_and_reachable_cached(&mut self.cache, view.map, &view.pose)?;
+        let (free, reach) = self.planner.free_and_reachable_cached(
+            &mut self.cache,
+            view.map,
+            &view.pose,
+            Some(view.driven),
+        )?;
         if let Some(done) = self.termination(view, &reach)? {
             return Ok(NextGoal::Done(done));
         }
@@ -190,7 +193,7 @@ impl DecisionTheoretic {
         let region = region_of(reach, view.map.grid(), &self.planner, band_m);
         debug_assert_eq!(
             region,
-            reachable_region(&self.planner, view.map, &view.pose, band_m)?
+            reachable_region(&self.planner, view.map, &view.pose, band_m, view.driven)?
         );
         let epsilon = view.config.epsilon;
         let mut stagnated = false;
@@ -311,7 +314,7 @@ mod tests {
             };
             let (free, reach) = strategy
                 .planner
-                .free_and_reachable_cached(&mut strategy.cache, &map, &pose)
+                .free_and_reachable_cached(&mut strategy.cache, &map, &pose, Some(&driven))
                 .unwrap();
             let plan = strategy.plan(&view, (&free, &reach)).unwrap();
             assert_eq!(

@@ -52,12 +52,12 @@ use crate::error::Result;
 use crate::exploration::config::ExplorationConfig;
 use crate::exploration::dilation::Dilation;
 use crate::exploration::region::{
-    blocked_on_occupancy, clearance_offsets, dilation_offsets, open_start, pass_where_driven,
-    planning_radius_m,
+    blocked_on_occupancy, clearance_offsets, dilation_offsets, open_start, planning_radius_m,
 };
 use crate::exploration::result::Termination;
 use crate::footprint::visit;
 use crate::grid::Grid;
+use crate::planner::pass_where_driven;
 use crate::planner::{Search, SearchMemory, reachable_cells};
 use crate::pose::{Pose, check_pose};
 use crate::sensor::{SensorModel, trace_readings};
