@@ -54,8 +54,13 @@ def plot_fig7(f: Fig7, path: Path) -> Path:
             label="coverage runs",
         )
         if f.coverage:
+            from covmap.experiments.fig7 import mean_reached_at
+
+            # From the least any run had certain after its first step to
+            # the least any had at its end: where every run has a path.
+            low = min(1.0 - float(r.trace["uncertain_fraction"][0]) for r in f.coverage)
             top = min(r.certain_fraction for r in f.coverage)
-            way = [(x, f.reaching(x)[0]) for x in np.linspace(0.5, top, 60)]
+            way = [(x, mean_reached_at(f.coverage, x)) for x in np.linspace(low, top, 60)]
             way = [(x, p) for x, p in way if p is not None]
             if way:
                 ax.plot(
