@@ -1,7 +1,8 @@
 """Where a coverage run's steps take entropy from, quarter by quarter of its
 path: the uncertain evaluation cells (what the run is judged on), the
-uncertain cells outside them, and cells already certain (entropy below
-epsilon at the step's start).
+uncertain cells outside them (within the region the stop rule judges, and
+beyond it), and cells already certain (entropy below epsilon at the step's
+start).
 
 One run of the coverage strategy with the 24-sonar ring, stepped to its end;
 after each step the map's entropy is compared with the step's start::
@@ -41,6 +42,7 @@ def main() -> None:
     )
     evaluation = run.evaluation_cells
     before = run.map.entropy().astype(np.float64)
+    region = run.region()
     rows = []
     for _ in run:
         after = run.map.entropy().astype(np.float64)
@@ -50,12 +52,14 @@ def main() -> None:
             (
                 run.path_length_m,
                 removed[uncertain & evaluation].sum(),
-                removed[uncertain & ~evaluation].sum(),
+                removed[uncertain & ~evaluation & region].sum(),
+                removed[uncertain & ~evaluation & ~region].sum(),
                 removed[~uncertain].sum(),
                 run.uncertain_fraction,
             )
         )
         before = after
+        region = run.region()
     print(
         f"{args.building}, seed {args.seed}: ended {run.termination} at {run.path_length_m:.0f} m, "
         f"{100 * run.uncertain_fraction:.2f} % of the evaluation cells uncertain, {len(rows)} steps"
@@ -69,15 +73,18 @@ def main() -> None:
         part = table[(table[:, 0] > lo) & (table[:, 0] <= hi)]
         if not len(part):
             continue
-        taken = part[:, 1:4].sum(axis=0)
+        taken = part[:, 1:5].sum(axis=0)
         total = taken.sum()
         shares = ", ".join(
             f"{name} {100 * x / total:5.1f} %"
-            for name, x in zip(("uncertain evaluation cells", "uncertain others", "certain"), taken)
+            for name, x in zip(
+                ("uncertain evaluation cells", "uncertain others in the stop region", "uncertain others beyond it", "certain"),
+                taken,
+            )
         )
         print(
             f"{lo:6.0f} to {hi:6.0f} m: {total:9.0f} nats removed: {shares}; "
-            f"{100 * part[-1, 4]:.2f} % uncertain after"
+            f"{100 * part[-1, 5]:.2f} % uncertain after"
         )
 
 
