@@ -19,4 +19,5 @@ def need_extra(module: str, extra: str, tests: str) -> Any:
     except ImportError:
         if os.environ.get("CI") == "true":
             pytest.fail(f"{module} is not installed (CI=true: CI installs covmap[{extra}])")
-        pytest.skip(f"{module} is not installed: pip install 'covmap[{extra}]' to run {tests}")
+        # At a module's top, where the tests that need it import it.
+        pytest.skip(f"{module} is not installed: pip install 'covmap[{extra}]' to run {tests}", allow_module_level=True)

@@ -340,7 +340,8 @@ def test_from_histograms_validates(grid: covmap.Grid) -> None:
 
 def test_integrate_log_can_occlude_no_echo_readings_by_the_map() -> None:
     """With ``occlude_no_echo`` a no-echo reading stops at the wall the map
-    holds covered and leaves what lies behind it as it was."""
+    holds covered and is certain of, and leaves what lies behind it as it
+    was; a cell held covered but uncertain does not stop it."""
     grid = covmap.Grid(origin=(0.0, 0.0), resolution=0.1, shape=(10, 60))
     laser = covmap.LaserModel(max_range_m=5.0)
     poses = np.array([[0.05, 0.55, 0.0]] * 6)
@@ -357,7 +358,13 @@ def test_integrate_log_can_occlude_no_echo_readings_by_the_map() -> None:
     behind = (5, slice(30, 50))  # the cells 3 to 5 m out: behind the wall's band
     assert np.array_equal(maps[True][behind], walls.mean()[behind])
     assert (maps[False][behind] < walls.mean()[behind]).all()
-    assert maps[True][5, 20] > 0.5 > maps[False][5, 20]
+    # The face cell (the echoes' range on its edge: half covered, uncertain)
+    # does not occlude, the certain cell behind it does.
+    face, wall = walls.entropy()[5, 20], walls.entropy()[5, 21]
+    assert face > 0.65 >= wall and walls.mean()[5, 21] > 0.5
+    assert maps[True][5, 20] == pytest.approx(maps[False][5, 20], abs=1e-6)
+    assert maps[True][5, 20] < walls.mean()[5, 20]
+    assert maps[True][5, 22] == walls.mean()[5, 22] > maps[False][5, 22]
     # Occlusion changes nothing where no echo has marked the map yet.
     first = covmap.CoverageMap(grid)
     first.integrate_log(log[5:], laser, occlude_no_echo=True)

@@ -45,10 +45,10 @@ def test_coverage_maps_make_every_fraction_certain(sweep: fig7.Fig7) -> None:
 
 @pytest.mark.xfail(
     strict=True,
-    reason="Fig. 7's claim does not hold on the corridor since no-echo readings clear their line of sight "
-    "(2026-12-07): the coverage runs end at 839 m, counting reaches 85 % certain at 500 m; the coverage runs "
-    "have 99 % certain by 228 m (seed 0) and drive the rest for the last cells (BENCHMARKS.md, Fig. 7); "
-    "strict, so that the day it holds again this fails and is put back",
+    reason="Fig. 7's claim, read at the runs' ends, does not hold on the corridor since no-echo readings clear "
+    "their line of sight (2026-12-07): the coverage runs end farther than counting travels to reach 85 % "
+    "certain, having made 99 % of the cells certain early and driven the rest for the last ones (the full "
+    "sweep's figures: BENCHMARKS.md, Fig. 7); strict, so that the day it holds again this fails and is put back",
 )
 def test_coverage_maps_travel_less_wherever_85_percent_or_more_must_be_certain(sweep: fig7.Fig7) -> None:
     cross = sweep.cross

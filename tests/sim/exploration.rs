@@ -403,7 +403,17 @@ fn check_table1_shape(world: &str, seeds: std::ops::Range<u64>) {
     assert!(coverage_m <= 1.15 * fifty_m, "{figures}");
 }
 
+/// An expected failure since only cells the map is certain of occlude
+/// no-echo readings (2026-12-07): every strategy's map then settles sooner,
+/// and on the corridor counting to 1 leaves 1.12 % of the evaluation cells
+/// uncertain after 269 m (means over the three seeds), not over 10 %, and
+/// 5.6 times the coverage runs' 0.20 % after 774 m, not ten times (counting
+/// to 50: 0.09 % after 1863 m). On the test buildings' medians, where the
+/// issue judges Table I, the order holds (BENCHMARKS.md). The test fails
+/// once the corridor's order holds again, and then goes back to a plain
+/// check.
 #[test]
+#[should_panic(expected = "corridor, seeds 0..3, means")]
 fn table1_what_holds_on_the_corridor() {
     check_table1_shape("corridor", 0..3);
 }

@@ -12,8 +12,9 @@ use crate::sensor::{Footprint, SensorModel};
 /// footprint ([`NoEchoSight::of_scan`]); the maps take it with the scan
 /// ([`ScanBeams::no_echo_sight`]).
 ///
-/// A no-echo reading that crossed a cell the map holds covered missed it (a
-/// specular reflection) and says nothing of what lies behind that cell:
+/// A no-echo reading that crossed a cell the map holds covered, and is
+/// certain of ([`CoverageMap::occludes`](crate::CoverageMap::occludes)),
+/// missed it (a specular reflection) and says nothing of what lies behind that cell:
 /// behind it as seen from the sensor, not behind it anywhere in the cone. A
 /// sonar cone aimed at a doorway passes between the jambs: the cells of the
 /// opening and of the room beyond lie in no jamb's shadow and are cleared;

@@ -157,7 +157,8 @@ impl PyCoverageMap {
     /// model's maximum range. With ``occlude_no_echo`` every echo reading
     /// goes in first, then every no-echo reading, each clearing only what
     /// its line of sight reaches past the cells of its footprint the map of
-    /// all the echoes holds covered (the exploration loop's rule, with every echo known; the
+    /// all the echoes holds covered and is certain of (entropy at most 0.65
+    /// nats, the default epsilon; the exploration loop's rule, with every echo known; the
     /// map does not depend on the order of the scans): a no-echo reading
     /// through a wall the echoes found is taken for a specular miss, and
     /// ``progress`` counts a scan once its no-echo readings are in (on a map

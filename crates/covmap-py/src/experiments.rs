@@ -65,7 +65,8 @@ pub(crate) fn run_fig3(py: Python<'_>, seed: Seed) -> PyResult<Bound<'_, PyAny>>
 /// judged cells only, not every cell of its grid. With ``occlude_no_echo``
 /// (the default) every map, the fit's and the scores', is built as the
 /// exploration loop builds its maps: each no-echo reading clears only what
-/// its line of sight reaches past the cells the map holds covered
+/// its line of sight reaches past the cells the map holds covered and is
+/// certain of
 /// (``CoverageMap.integrate_log``'s
 /// ``occlude_no_echo``), and the drives' occupancy grids take the same
 /// beams; ``False`` lets no-echo readings clear their whole footprint.

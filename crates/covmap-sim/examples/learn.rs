@@ -8,7 +8,7 @@
 //!
 //! The maps are built as the exploration loop builds them, each no-echo
 //! reading occluded by the map (it clears only what its line of sight
-//! reaches past the cells the map holds covered); `--clear-no-echo` lets every no-echo reading clear
+//! reaches past the cells the map holds covered and is certain of); `--clear-no-echo` lets every no-echo reading clear
 //! its whole footprint instead, as the sensor model alone has it.
 //!
 //! `--set` changes a parameter of the starting model (after `--laser`); the

@@ -26,7 +26,7 @@ DESCRIPTION = (
     "with the occupancy grid's beside them, and save the learned model as model.json "
     "(for covmap fig2 --model) and the fit's trace as trace.csv. Maps are built as the "
     "exploration loop builds them, each no-echo reading occluded by the map (it clears only "
-    "up to the nearest cell the map holds covered), unless --clear-no-echo."
+    "up to the nearest cell the map holds covered and is certain of), unless --clear-no-echo."
 )
 """What ``covmap learn --help`` says the command does."""
 

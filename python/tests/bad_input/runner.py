@@ -1,5 +1,6 @@
 """Runs a batch of the bad-input corpus in this process, under an
-address-space limit: ``python runner.py CASES.json LIMIT_BYTES``.
+address-space limit: ``python runner.py CASES.json LIMIT_BYTES``, in a
+working directory the caller made (the cases' files go inside it).
 
 Prints one JSON line per case: ``{"start": id}`` before it runs (so that a
 process that dies is known to have died in it), then its outcome: whether
@@ -11,6 +12,7 @@ a map of the namespace changed although the call raised.
 from __future__ import annotations
 
 import json
+import os
 import resource
 import sys
 import tempfile
@@ -33,7 +35,9 @@ def snapshot(namespace: dict[str, Any]) -> tuple[bytes, ...]:
 def main() -> None:
     cases = json.loads(open(sys.argv[1]).read())
     limit = int(sys.argv[2])
-    namespace: dict[str, Any] = {"tmp": tempfile.mkdtemp(prefix="covmap-bad-input-")}
+    # Inside the working directory the test made (and removes), so that no
+    # directory outlives the run, even one of a process that died.
+    namespace: dict[str, Any] = {"tmp": tempfile.mkdtemp(prefix="covmap-bad-input-", dir=os.getcwd())}
     exec(SETUP, namespace)
     # After the setup: the limit is for the cases.
     resource.setrlimit(resource.RLIMIT_AS, (limit, limit))

@@ -1,14 +1,22 @@
 //! No-echo readings occluded by the map: a no-echo reading that the map
-//! says crossed an obstacle missed it (a specular reflection) and says
-//! nothing of what lies behind. A scan at a time, occluded by the map as it
-//! stands (the exploration loop); a whole log, occluded by the map of all
-//! of its echoes, which does not depend on the order of the scans.
+//! is certain crossed an obstacle missed it (a specular reflection) and
+//! says nothing of what lies behind. A scan at a time, occluded by the map
+//! as it stands (the exploration loop); a whole log, occluded by the map of
+//! all of its echoes, which does not depend on the order of the scans.
+//!
+//! Only cells the map is certain of occlude ([`CoverageMap::occludes`]):
+//! a cell held covered on the evidence of an echo arc or two may be a
+//! cell of the arc that did not return the echo (a doorway between two
+//! jambs), and a no-echo reading through it is evidence that it did not.
+//! Were such a cell to occlude, it would shadow the very readings that
+//! could clear it and stay covered for good.
 
 use super::{CONTACT_COVERAGE, CoverageMap};
 use crate::error::Result;
 use crate::grid::Grid;
 use crate::histogram;
 use crate::log::Log;
+use crate::planner::DEFAULT_EPSILON;
 use crate::pose::Pose;
 use crate::scan_map::{ScanBeams, ScanMap};
 use crate::sensor::SensorModel;
@@ -19,11 +27,14 @@ use crate::sight::NoEchoSight;
 /// with them occluded by the map of the log's echoes
 /// ([`CoverageMap::occluding`]).
 #[derive(Debug)]
-pub struct Occluding<'a>(&'a mut CoverageMap);
+pub struct Occluding<'a> {
+    map: &'a mut CoverageMap,
+    epsilon: f64,
+}
 
 impl ScanMap for Occluding<'_> {
     fn grid(&self) -> &Grid {
-        self.0.grid()
+        self.map.grid()
     }
 
     fn integrate_checked<M: SensorModel + ?Sized>(
@@ -31,9 +42,10 @@ impl ScanMap for Occluding<'_> {
         scan: ScanBeams<'_>,
         model: &M,
     ) -> Result<usize> {
-        let map = &*self.0;
-        let sight = NoEchoSight::of_scan(map.grid(), &scan, model, |i| map.is_covered(i));
-        self.0.integrate_checked(
+        let map = &*self.map;
+        let sight =
+            NoEchoSight::of_scan(map.grid(), &scan, model, |i| map.occludes(i, self.epsilon));
+        self.map.integrate_checked(
             ScanBeams {
                 no_echo_sight: Some(&sight),
                 ..scan
@@ -52,7 +64,7 @@ impl ScanMap for Occluding<'_> {
         model: &M,
         progress: &mut dyn FnMut(usize),
     ) -> Result<usize> {
-        integrate_log_occluded(self.0, log, model, progress, |_| Ok(0))
+        integrate_log_occluded(self.map, log, model, self.epsilon, progress, |_| Ok(0))
     }
 }
 
@@ -60,8 +72,9 @@ impl ScanMap for Occluding<'_> {
 /// of the log's echoes, which does not depend on the order of the scans:
 /// first every scan's echo readings, then every scan's no-echo readings,
 /// each clearing only what its line of sight reaches past the cells the map
-/// held as covered once all the echoes were in (and no further than the
-/// log's maximum range). `also` is handed every set of beams `map` takes,
+/// held as covered, with an entropy of at most `epsilon` nats, once all the
+/// echoes were in ([`CoverageMap::occludes`]; no further than the log's
+/// maximum range). `also` is handed every set of beams `map` takes,
 /// checked, so that another map (the occupancy grid baseline) can take the
 /// very same ones; its updates are added to the count returned. `progress`
 /// is told of each scan once its no-echo readings are in. A map that keeps
@@ -76,6 +89,7 @@ pub fn integrate_log_occluded<M: SensorModel + ?Sized>(
     map: &mut CoverageMap,
     log: &Log,
     model: &M,
+    epsilon: f64,
     progress: &mut dyn FnMut(usize),
     mut also: impl FnMut(ScanBeams<'_>) -> Result<usize>,
 ) -> Result<usize> {
@@ -95,13 +109,13 @@ pub fn integrate_log_occluded<M: SensorModel + ?Sized>(
         crate::log::integrate_scans(&grid, log, model, &mut |_| {}, |scan| {
             echoes.integrate_checked(kept.keep(scan, echo), model)
         })?;
-        echoes.covered_cells()
+        echoes.occluding_cells(epsilon)
     } else {
         updates += crate::log::integrate_scans(&grid, log, model, &mut |_| {}, |scan| {
             let echoes = kept.keep(scan, echo);
             Ok(map.integrate_checked(echoes, model)? + also(echoes)?)
         })?;
-        map.covered_cells()
+        map.occluding_cells(epsilon)
     };
     updates += crate::log::integrate_scans(&grid, log, model, progress, |scan| {
         let mut beams = if whole {
@@ -154,8 +168,9 @@ impl CoverageMap {
     /// [`ScanMap::integrate_scan`]) with its no-echo readings occluded by
     /// the map as it stands when the scan comes: a no-echo reading clears
     /// only the cells of its footprint that no cell the map holds as
-    /// covered shadows ([`CoverageMap::no_echo_sight`]), as the exploration
-    /// loop integrates its scans. A no-echo reading through a wall that earlier
+    /// covered, and is certain of, shadows ([`CoverageMap::no_echo_sight`];
+    /// certain: an entropy of at most [`DEFAULT_EPSILON`] nats), as the
+    /// exploration loop integrates its scans (at its own epsilon). A no-echo reading through a wall that earlier
     /// echoes found is then taken for a specular miss, which says nothing
     /// of the wall or of what lies behind it. A whole log
     /// ([`ScanMap::integrate_log`]) goes in echoes first, its no-echo
@@ -163,14 +178,16 @@ impl CoverageMap {
     /// ([`integrate_log_occluded`]): that map does not depend on the order
     /// of the scans.
     pub fn occluding(&mut self) -> Occluding<'_> {
-        Occluding(self)
+        Occluding {
+            map: self,
+            epsilon: DEFAULT_EPSILON,
+        }
     }
 
     /// What each no-echo reading of a scan from `pose` should clear: in
     /// each sector of its footprint, the cells nearer than the nearest cell
-    /// this map holds as covered (ML coverage above [`CONTACT_COVERAGE`]; a
-    /// cell the robot ran into is pinned so: [`CoverageMap::pin_covered`])
-    /// that shadows the sector, at most the maximum range
+    /// that occludes at `epsilon` ([`CoverageMap::occludes`]) and shadows
+    /// the sector, at most the maximum range
     /// ([`NoEchoSight`]); echo readings are not limited. The result is the
     /// `no_echo_sight` of a [`ScanBeams`](crate::ScanBeams). The scan is
     /// not validated: an invalid one gives a sight the update then refuses.
@@ -180,6 +197,7 @@ impl CoverageMap {
         ranges: &[f64],
         bearings: &[f64],
         model: &M,
+        epsilon: f64,
     ) -> NoEchoSight {
         let scan = ScanBeams {
             pose,
@@ -188,24 +206,28 @@ impl CoverageMap {
             no_echo_reach_m: None,
             no_echo_sight: None,
         };
-        NoEchoSight::of_scan(self.grid(), &scan, model, |i| self.is_covered(i))
+        NoEchoSight::of_scan(self.grid(), &scan, model, |i| self.occludes(i, epsilon))
     }
 
-    /// Whether this map holds cell `i` as covered: its ML coverage above
-    /// [`CONTACT_COVERAGE`] (a cell the robot ran into is pinned so:
-    /// [`CoverageMap::pin_covered`]).
-    fn is_covered(&self, i: usize) -> bool {
+    /// Whether cell `i` (row-major) stops the line of sight of no-echo
+    /// readings: this map holds it as covered (ML coverage above
+    /// [`CONTACT_COVERAGE`]) and is certain of it (its entropy at most
+    /// `epsilon` nats, as a cell counts as explored). A cell the robot ran
+    /// into is pinned so ([`CoverageMap::pin_covered`]). A cell held
+    /// covered but uncertain does not occlude: the no-echo readings through
+    /// it are evidence the map still weighs.
+    pub fn occludes(&self, i: usize, epsilon: f64) -> bool {
         let bins = self.bins();
-        let ml = histogram::bin_value(
-            histogram::argmax(&self.histograms()[i * bins..(i + 1) * bins]),
-            bins,
-        );
-        ml > CONTACT_COVERAGE
+        let h = &self.histograms()[i * bins..(i + 1) * bins];
+        histogram::bin_value(histogram::argmax(h), bins) > CONTACT_COVERAGE
+            && f64::from(histogram::entropy(h)) <= epsilon
     }
 
-    /// [`CoverageMap::is_covered`] of every cell.
-    fn covered_cells(&self) -> Vec<bool> {
-        (0..self.grid().len()).map(|i| self.is_covered(i)).collect()
+    /// [`CoverageMap::occludes`] of every cell.
+    fn occluding_cells(&self, epsilon: f64) -> Vec<bool> {
+        (0..self.grid().len())
+            .map(|i| self.occludes(i, epsilon))
+            .collect()
     }
 }
 
@@ -257,7 +279,8 @@ mod tests {
     /// On a map holding walls, every cell a no-echo reading clears lies in
     /// its line of sight: the segment from the sensor to the cell's centre
     /// crosses no cell of the reading's footprint the ML map holds covered
-    /// (more than half) short of
+    /// (more than half) and the map is certain of (entropy at most epsilon)
+    /// short of
     /// the last half cell and half diagonal before the centre (a covered
     /// cell shadows the cells more than half a cell farther than its own
     /// centre). Readings that pass beside a covered
@@ -269,12 +292,21 @@ mod tests {
         let mut map = CoverageMap::new(grid);
         let laser = LaserModel::default();
         let bearings: Vec<f64> = (0..90).map(|k| f64::from(k) * 0.0698).collect();
+        // Each scan four times: walls the map is certain of.
         for pose in [Pose::new(2.0, 3.0, 0.0), Pose::new(6.0, 3.5, 0.0)] {
             let ranges: Vec<f64> = bearings.iter().map(|b| 1.2 + b.sin().abs()).collect();
-            map.integrate(&pose, &ranges, &bearings, &laser).unwrap();
+            for _ in 0..4 {
+                map.integrate(&pose, &ranges, &bearings, &laser).unwrap();
+            }
         }
         map.pin_covered(&[Cell { row: 60, col: 60 }]).unwrap();
-        let ml = map.ml();
+        let (ml, entropy) = (map.ml(), map.entropy());
+        let occluders = (0..grid.len())
+            .filter(|&i| {
+                f64::from(ml[i]) > CONTACT_COVERAGE && f64::from(entropy[i]) <= DEFAULT_EPSILON
+            })
+            .count();
+        assert!(occluders > 100, "{occluders} certain covered cells");
         let covered_at = |covered: &[bool], x: f64, y: f64| {
             grid.world_to_cell(x, y)
                 .is_some_and(|c| covered[grid.index(c).unwrap()])
@@ -288,7 +320,7 @@ mod tests {
             let pose = Pose::new(1.0 + 6.0 * next(), 1.0 + 4.0 * next(), next());
             let mut ranges = vec![limit; 24];
             ranges[trial % 24] = 1.0;
-            let sight = map.no_echo_sight(&pose, &ranges, &ring, &sonar);
+            let sight = map.no_echo_sight(&pose, &ranges, &ring, &sonar, DEFAULT_EPSILON);
             let origin = [pose.x_m, pose.y_m];
             for (k, &r) in ranges.iter().enumerate() {
                 let axis = pose.theta_rad + ring[k];
@@ -305,7 +337,9 @@ mod tests {
                     limit,
                     sonar.footprint(),
                     &mut |i: usize, d_l: f64| {
-                        if f64::from(ml[i]) > CONTACT_COVERAGE {
+                        if f64::from(ml[i]) > CONTACT_COVERAGE
+                            && f64::from(entropy[i]) <= DEFAULT_EPSILON
+                        {
                             nearest_covered = nearest_covered.min(d_l);
                             covered[i] = true;
                         }
@@ -354,5 +388,45 @@ mod tests {
             past_covered > 100,
             "{past_covered} cells cleared beyond a covered cell beside them"
         );
+    }
+
+    /// A cell held covered on one echo's evidence is uncertain and does not
+    /// stop the no-echo readings that pass it, which clear it and what lies
+    /// behind it; the same cell once certain (pinned) stops them.
+    #[test]
+    fn only_cells_the_map_is_certain_of_occlude() {
+        let grid = Grid::new([0.0, 0.0], 0.05, 80, 120).unwrap();
+        let sonar = SonarModel::default();
+        let limit = sonar.range.max_range_m;
+        let mut map = CoverageMap::new(grid);
+        // One echo 1.5 m ahead: an arc of cells held covered, uncertain.
+        let from = Pose::new(1.0, 2.0, 0.0);
+        map.integrate(&from, &[1.5], &[0.0], &sonar).unwrap();
+        let arc = grid.world_to_cell(2.5, 2.0).unwrap();
+        let i = grid.index(arc).unwrap();
+        assert!(f64::from(map.ml()[i]) > CONTACT_COVERAGE);
+        assert!(f64::from(map.entropy()[i]) > DEFAULT_EPSILON);
+        assert!(!map.occludes(i, DEFAULT_EPSILON));
+        let beyond = grid.index(grid.world_to_cell(3.5, 2.0).unwrap()).unwrap();
+        let before = map.histograms()[beyond * 16..(beyond + 1) * 16].to_vec();
+        // A no-echo reading from the same place clears the arc and beyond.
+        let mut cleared = map.clone();
+        cleared
+            .occluding()
+            .integrate(&from, &[limit], &[0.0], &sonar)
+            .unwrap();
+        assert!(cleared.mean()[i] < map.mean()[i]);
+        assert_ne!(
+            cleared.histograms()[beyond * 16..(beyond + 1) * 16],
+            before[..]
+        );
+        // Pinned, the cell is certain: it shadows the reading's axis, and
+        // the cell behind it stays as it was.
+        map.pin_covered(&[arc]).unwrap();
+        assert!(map.occludes(i, DEFAULT_EPSILON));
+        map.occluding()
+            .integrate(&from, &[limit], &[0.0], &sonar)
+            .unwrap();
+        assert_eq!(map.histograms()[beyond * 16..(beyond + 1) * 16], before[..]);
     }
 }

@@ -37,7 +37,9 @@ pub struct ExplorationConfig {
     pub max_steps: usize,
     /// Whether a reading at the maximum range ("no echo") clears only the
     /// cells its line of sight reaches past the obstacles the coverage map
-    /// holds in its footprint ([`NoEchoSight`](crate::NoEchoSight), see the
+    /// holds, and is certain of at `epsilon`, in its footprint
+    /// ([`CoverageMap::occludes`](crate::CoverageMap::occludes),
+    /// [`NoEchoSight`](crate::NoEchoSight), see the
     /// [module documentation](super)), rather than its whole footprint to
     /// the maximum range as the sensor model has it.
     pub occlude_no_echo: bool,

@@ -142,10 +142,10 @@ impl<S: ScanSource, M: Motion> Exploration<S, M> {
         let (pose, bearings, model) = (&self.pose, &self.bearings[..], self.model.as_dyn());
         // No-echo readings stopped before what the map holds (see the
         // module documentation of `crate::exploration`).
-        let sight = self
-            .config
-            .occlude_no_echo
-            .then(|| self.map.no_echo_sight(pose, &ranges, bearings, model));
+        let sight = self.config.occlude_no_echo.then(|| {
+            self.map
+                .no_echo_sight(pose, &ranges, bearings, model, self.config.epsilon)
+        });
         let scan = ScanBeams {
             pose,
             ranges: &ranges,

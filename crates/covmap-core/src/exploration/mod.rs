@@ -24,8 +24,10 @@
 //! - **No echo**: a reading at the maximum range clears only the cells
 //!   its line of sight reaches: in each sector of its footprint (a cell wide
 //!   at the maximum range), those nearer than the nearest obstacle the
-//!   coverage map already holds there (ML coverage above 0.5, or a
-//!   contact; [`NoEchoSight`](crate::NoEchoSight)), the same in all three
+//!   coverage map already holds there and is certain of (ML coverage above
+//!   0.5 and entropy at most `epsilon`, or a contact;
+//!   [`CoverageMap::occludes`](crate::CoverageMap::occludes),
+//!   [`NoEchoSight`](crate::NoEchoSight)), the same in all three
 //!   maps ([`ExplorationConfig::occlude_no_echo`], on by default). A sonar's specular miss of a known wall says nothing of what
 //!   lies behind it; integrated to the maximum range, as the sensor model
 //!   alone has it, oblique misses erase the walls the perpendicular echoes

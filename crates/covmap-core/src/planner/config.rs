@@ -57,6 +57,13 @@ pub struct PlannerConfig {
 /// The most headings a candidate position may be considered with.
 pub const MAX_CANDIDATE_HEADINGS: usize = 64;
 
+/// The default epsilon, nats: the entropy at or below which a cell counts
+/// as explored (certain), the value of the paper's Fig. 7. Maps built
+/// without an exploration's settings (a whole log with its no-echo
+/// readings occluded, [`CoverageMap::occluding`](crate::CoverageMap::occluding))
+/// use it for the cells they are certain of.
+pub const DEFAULT_EPSILON: f64 = 0.65;
+
 /// The headings a candidate position is considered with by default when
 /// the sensor does not see all around: every 45 degrees.
 pub const DEFAULT_HEADINGS: usize = 8;
@@ -79,7 +86,7 @@ impl Default for PlannerConfig {
             blocked_coverage: 0.5,
             unknown_entropy_fraction: 0.95,
             unknown_is_free: false,
-            epsilon: 0.65,
+            epsilon: DEFAULT_EPSILON,
             gain: GainOptions::default(),
             candidate_headings: None,
         }

@@ -65,7 +65,9 @@ mod traversability;
 mod viewpoint;
 
 pub use cache::{CacheStats, PlanningCache};
-pub use config::{DEFAULT_HEADINGS, MAX_CANDIDATE_HEADINGS, MIN_GAIN_FLOOR_NATS, PlannerConfig};
+pub use config::{
+    DEFAULT_EPSILON, DEFAULT_HEADINGS, MAX_CANDIDATE_HEADINGS, MIN_GAIN_FLOOR_NATS, PlannerConfig,
+};
 pub use path::{Reachability, shortest_paths};
 pub(crate) use path::{Search, SearchMemory, reachable_cells};
 pub use termination::ExplorationStatus;

@@ -7,7 +7,7 @@ use covmap_core::histogram::DEFAULT_BINS;
 use covmap_core::learn::{
     FitData, FitOptions, SensorFit, fit_sensor_model, log_likelihood, map_of_log,
 };
-use covmap_core::planner::shortest_paths;
+use covmap_core::planner::{DEFAULT_EPSILON, shortest_paths};
 use covmap_core::{CoverageMap, Grid, Log, OccupancyGrid, Pose};
 use covmap_core::{ScanMap, integrate_log_occluded};
 use rand::RngExt;
@@ -236,9 +236,14 @@ impl Drive {
         let mut occupancy = OccupancyGrid::new(grid);
         if occlude_no_echo {
             let mut map = CoverageMap::with_bins(grid, DEFAULT_BINS)?;
-            integrate_log_occluded(&mut map, &log, model.as_dyn(), &mut |_| {}, |scan| {
-                occupancy.integrate_checked(scan, model.as_dyn())
-            })?;
+            integrate_log_occluded(
+                &mut map,
+                &log,
+                model.as_dyn(),
+                DEFAULT_EPSILON,
+                &mut |_| {},
+                |scan| occupancy.integrate_checked(scan, model.as_dyn()),
+            )?;
         } else {
             occupancy.integrate_log(&log, model)?;
         }
