@@ -1602,6 +1602,7 @@ def explore(
     scan_spacing_m: float = 0.25,
     max_path_m: float = 10000.0,
     max_steps: int = 20000,
+    occlude_no_echo: bool = True,
 ) -> ExplorationResult:
     """Explore ``world`` (a ``World``) with ``strategy`` (a ``Strategy``) until
     the strategy is done or a limit is reached; returns an
@@ -1624,7 +1625,13 @@ def explore(
     it stops at the obstacle, scans, and the contact is integrated as
     covered. Poses are exact (no localisation error). A cell is certain
     below ``epsilon`` nats. The run stops by the strategy's rule, or after
-    ``max_path_m`` metres or ``max_steps`` steps.
+    ``max_path_m`` metres or ``max_steps`` steps. A reading with no echo
+    clears only what its line of sight reaches past the cells the
+    coverage map holds covered and is certain of, in every map
+    (``occlude_no_echo``, the default); with ``occlude_no_echo=False``
+    it clears its whole footprint, the paper's reading (which settles
+    more cells but erodes walls: docs/experiments.md, "The paper's
+    no-echo reading in the loop").
 
     Every random draw (start, sensor noise) comes from ``seed``: the same
     seed gives the same run at any thread count. Every option is checked
@@ -1664,6 +1671,7 @@ class Exploration:
         scan_spacing_m: float = 0.25,
         max_path_m: float = 10000.0,
         max_steps: int = 20000,
+        occlude_no_echo: bool = True,
     ) -> Exploration: ...
     def step(self, goal: _Pose | None = None) -> Step | None:
         """Take one step: a ``Step``, or ``None`` once the run is over. With

@@ -176,6 +176,22 @@ def test_benchmark_command(tmp_path: Path) -> None:
     assert (tmp_path / "report" / "benchmark.png").read_bytes()[:8] == PNG_SIGNATURE
 
 
+def test_the_benchmark_command_lets_no_echo_readings_clear_on_request(tmp_path: Path) -> None:
+    """``--clear-no-echo`` runs the same buildings with every no-echo
+    reading clearing its whole footprint: the option is shown with the
+    summary, and the same run maps otherwise."""
+    args = ["benchmark", "--buildings", "corridor", "--strategies", "coverage", "--max-steps", "12"]
+    errors = []
+    for clear in (False, True):
+        out = tmp_path / ("clearing" if clear else "default")
+        result = run_cli(*args, *(["--clear-no-echo"] if clear else []), "--out", str(out))
+        assert result.returncode == 0, result.stderr
+        assert ("occlude_no_echo=False" in result.stdout) == clear
+        (row,) = csv.DictReader(io.StringIO((out / "benchmark.csv").read_text()))
+        errors.append(float(row["error_coverage_map"]))
+    assert errors[0] != errors[1]
+
+
 def test_the_benchmark_command_maps_with_a_learned_model(tmp_path: Path) -> None:
     """``--model`` (a ``covmap learn`` file) is the model the runs of its
     sensor map with: the same runs give other maps; a model of a sensor the

@@ -402,3 +402,19 @@ def test_readme_exploration_example_runs() -> None:
     assert namespace["seen"].shape == result.grid.shape
     assert run.done and run.steps == 3
     assert pickle.loads(pickle.dumps(run.result())).steps == 3
+
+
+def test_no_echo_readings_clear_their_whole_footprint_on_request(corridor: covmap.World) -> None:
+    # The default occludes no-echo readings by the walls the map is certain
+    # of; with occlude_no_echo=False every one clears its whole footprint,
+    # the paper's reading: the same robot, the same readings, other maps.
+    steps = 12
+    occluded = covmap.explore(corridor, covmap.Strategy.coverage(0.5), seed=3, max_steps=steps)
+    again = covmap.explore(corridor, covmap.Strategy.coverage(0.5), seed=3, max_steps=steps, occlude_no_echo=True)
+    clearing = covmap.explore(corridor, covmap.Strategy.coverage(0.5), seed=3, max_steps=steps, occlude_no_echo=False)
+    np.testing.assert_array_equal(occluded.map.histograms, again.map.histograms)
+    assert not np.array_equal(occluded.map.histograms, clearing.map.histograms)
+    first = covmap.Exploration(corridor, covmap.Strategy.coverage(0.5), seed=3, occlude_no_echo=False).step()
+    assert first is not None
+    with pytest.raises(TypeError, match="occlude_no_echo"):
+        covmap.explore(corridor, covmap.Strategy.coverage(0.5), max_steps=1, occlude_no_echo="no")  # type: ignore[arg-type]

@@ -64,6 +64,7 @@ impl Keywords<'_> {
                 scan_spacing_m: self.scan_spacing_m.0,
                 max_path_m: self.max_path_m.0,
                 max_steps: self.max_steps.0,
+                occlude_no_echo: self.occlude_no_echo,
                 ..d.config
             },
             ..d
@@ -106,6 +107,7 @@ pub(crate) fn defaults(py: Python<'_>) -> PyResult<Bound<'_, PyDict>> {
     dict.set_item("scan_spacing_m", c.scan_spacing_m)?;
     dict.set_item("max_path_m", c.max_path_m)?;
     dict.set_item("max_steps", c.max_steps)?;
+    dict.set_item("occlude_no_echo", c.occlude_no_echo)?;
     Ok(dict)
 }
 
@@ -135,6 +137,7 @@ macro_rules! run_keywords {
             scan_spacing_m: Float,
             max_path_m: Float,
             max_steps: Int<usize, 1, { usize::MAX as i128 }>,
+            occlude_no_echo: bool,
         ) }
     };
     (@expand [keywords_struct] ($($name:ident: $ty:ty,)*)) => {
@@ -150,9 +153,10 @@ macro_rules! run_keywords {
                 world, strategy, *, start=None, seed=Seed(0), sensor=None, model=None,
                 resolution=Float(0.05), bins=Int(16), epsilon=Float(0.65),
                 robot_radius_m=Float(0.25), candidate_stride_m=Float(0.5),
-                scan_spacing_m=Float(0.25), max_path_m=Float(10000.0), max_steps=Int(20000)
+                scan_spacing_m=Float(0.25), max_path_m=Float(10000.0), max_steps=Int(20000),
+                occlude_no_echo=true
             ),
-            text: "(world, strategy, *, start=None, seed=0, sensor=None, model=None, resolution=0.05, bins=16, epsilon=0.65, robot_radius_m=0.25, candidate_stride_m=0.5, scan_spacing_m=0.25, max_path_m=10000.0, max_steps=20000)",
+            text: "(world, strategy, *, start=None, seed=0, sensor=None, model=None, resolution=0.05, bins=16, epsilon=0.65, robot_radius_m=0.25, candidate_stride_m=0.5, scan_spacing_m=0.25, max_path_m=10000.0, max_steps=20000, occlude_no_echo=True)",
             params: ($($name: $ty,)*),
             keywords: (Keywords { $($name),* }),
             $($rest)*
@@ -267,7 +271,13 @@ run_keywords! { explore_function! {
     /// it stops at the obstacle, scans, and the contact is integrated as
     /// covered. Poses are exact (no localisation error). A cell is certain
     /// below ``epsilon`` nats. The run stops by the strategy's rule, or after
-    /// ``max_path_m`` metres or ``max_steps`` steps.
+    /// ``max_path_m`` metres or ``max_steps`` steps. A reading with no echo
+    /// clears only what its line of sight reaches past the cells the
+    /// coverage map holds covered and is certain of, in every map
+    /// (``occlude_no_echo``, the default); with ``occlude_no_echo=False``
+    /// it clears its whole footprint, the paper's reading (which settles
+    /// more cells but erodes walls: docs/experiments.md, "The paper's
+    /// no-echo reading in the loop").
     ///
     /// Every random draw (start, sensor noise) comes from ``seed``: the same
     /// seed gives the same run at any thread count. Every option is checked

@@ -31,7 +31,8 @@ DESCRIPTION = (
     "run stops at 3000 m (--max-path-m, --max-steps: other limits for every run). --buildings picks other buildings: sets "
     "(default, development, test) or buildings by name (corridor, office, generated:SEED[:AREA], a world "
     "file), separated by commas. --model maps with a sensor model covmap learn fitted, to judge it on "
-    "buildings it was not fitted on. --report CSV prints the summary of an earlier run's benchmark.csv and "
+    "buildings it was not fitted on. --clear-no-echo lets no-echo readings clear their whole footprint (the "
+    "paper's reading). --report CSV prints the summary of an earlier run's benchmark.csv and "
     "draws its figure, running nothing."
 )
 """What ``covmap benchmark --help`` says the command does."""
@@ -102,6 +103,13 @@ def add_arguments(command: argparse.ArgumentParser) -> None:
         metavar="JSON",
         help="a sensor model file of covmap learn: the runs with its sensor map with it "
         "(default: each sensor's default model)",
+    )
+    command.add_argument(
+        "--clear-no-echo",
+        action="store_true",
+        help="let every reading with no echo clear its whole footprint, the paper's reading, rather than "
+        "only what its line of sight reaches past the cells the coverage map is certain are covered "
+        "(the default)",
     )
     _options.add_dask(command)
     _options.add_out(command, NAME)
@@ -179,6 +187,7 @@ def run(args: argparse.Namespace) -> int:
             executor=executor,
             progress=show,
             resolution=args.resolution,
+            **({"occlude_no_echo": False} if args.clear_no_echo else {}),
         )
     print(benchmark.summary_table(b))
     print(benchmark.speed_table(b))

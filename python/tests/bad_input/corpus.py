@@ -172,7 +172,7 @@ API: list[tuple[str, list[tuple[str, str, str]]]] = [
     ("covmap.Strategy.counting", [("n", "50", "pos"), ("discount_beyond_m", "None", "pos")]),
     # A run kept short by each of its limits (steps, path), so that an
     # argument set to an extreme value cannot make it long.
-    ("covmap.explore", [("world", "small", "pos"), ("strategy", "strategy", "pos"), ("start", "None", "kw"), ("seed", "0", "kw"), ("sensor", "None", "kw"), ("model", "None", "kw"), ("resolution", "0.1", "kw"), ("bins", "16", "kw"), ("epsilon", "0.65", "kw"), ("robot_radius_m", "0.1", "kw"), ("candidate_stride_m", "0.5", "kw"), ("scan_spacing_m", "0.25", "kw"), ("max_path_m", "1.0", "kw"), ("max_steps", "2", "kw")]),
+    ("covmap.explore", [("world", "small", "pos"), ("strategy", "strategy", "pos"), ("start", "None", "kw"), ("seed", "0", "kw"), ("sensor", "None", "kw"), ("model", "None", "kw"), ("resolution", "0.1", "kw"), ("bins", "16", "kw"), ("epsilon", "0.65", "kw"), ("robot_radius_m", "0.1", "kw"), ("candidate_stride_m", "0.5", "kw"), ("scan_spacing_m", "0.25", "kw"), ("max_path_m", "1.0", "kw"), ("max_steps", "2", "kw"), ("occlude_no_echo", "True", "kw")]),
     ("covmap.Exploration", [("world", "small", "pos"), ("strategy", "strategy", "pos"), ("resolution", "0.1", "kw"), ("bins", "16", "kw"), ("max_path_m", "1.0", "kw"), ("max_steps", "2", "kw")]),
 ]
 

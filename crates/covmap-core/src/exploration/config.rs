@@ -41,7 +41,12 @@ pub struct ExplorationConfig {
     /// ([`CoverageMap::occludes`](crate::CoverageMap::occludes),
     /// [`NoEchoSight`](crate::NoEchoSight), see the
     /// [module documentation](super)), rather than its whole footprint to
-    /// the maximum range as the sensor model has it.
+    /// the maximum range as the sensor model has it (the default, `true`).
+    /// With `false`, the paper's reading, runs leave fewer cells uncertain
+    /// but wear walls away: specular misses clear the cells behind the
+    /// faces that echoes found, the maps err more and the robot runs into
+    /// walls twice as often on the development buildings
+    /// (docs/experiments.md, "The paper's no-echo reading in the loop").
     pub occlude_no_echo: bool,
 }
 
