@@ -27,14 +27,11 @@ use crate::sight::NoEchoSight;
 /// with them occluded by the map of the log's echoes
 /// ([`CoverageMap::occluding`]).
 #[derive(Debug)]
-pub struct Occluding<'a> {
-    map: &'a mut CoverageMap,
-    epsilon: f64,
-}
+pub struct Occluding<'a>(&'a mut CoverageMap);
 
 impl ScanMap for Occluding<'_> {
     fn grid(&self) -> &Grid {
-        self.map.grid()
+        self.0.grid()
     }
 
     fn integrate_checked<M: SensorModel + ?Sized>(
@@ -42,10 +39,11 @@ impl ScanMap for Occluding<'_> {
         scan: ScanBeams<'_>,
         model: &M,
     ) -> Result<usize> {
-        let map = &*self.map;
-        let sight =
-            NoEchoSight::of_scan(map.grid(), &scan, model, |i| map.occludes(i, self.epsilon));
-        self.map.integrate_checked(
+        let map = &*self.0;
+        let sight = NoEchoSight::of_scan(map.grid(), &scan, model, |i| {
+            map.occludes(i, DEFAULT_EPSILON)
+        });
+        self.0.integrate_checked(
             ScanBeams {
                 no_echo_sight: Some(&sight),
                 ..scan
@@ -64,7 +62,7 @@ impl ScanMap for Occluding<'_> {
         model: &M,
         progress: &mut dyn FnMut(usize),
     ) -> Result<usize> {
-        integrate_log_occluded(self.map, log, model, self.epsilon, progress, |_| Ok(0))
+        integrate_log_occluded(self.0, log, model, DEFAULT_EPSILON, progress, |_| Ok(0))
     }
 }
 
@@ -178,10 +176,7 @@ impl CoverageMap {
     /// ([`integrate_log_occluded`]): that map does not depend on the order
     /// of the scans.
     pub fn occluding(&mut self) -> Occluding<'_> {
-        Occluding {
-            map: self,
-            epsilon: DEFAULT_EPSILON,
-        }
+        Occluding(self)
     }
 
     /// What each no-echo reading of a scan from `pose` should clear: in
@@ -300,12 +295,14 @@ mod tests {
             }
         }
         map.pin_covered(&[Cell { row: 60, col: 60 }]).unwrap();
+        // The cells that occlude, read off the ML map and the entropies.
         let (ml, entropy) = (map.ml(), map.entropy());
-        let occluders = (0..grid.len())
-            .filter(|&i| {
+        let occluding: Vec<bool> = (0..grid.len())
+            .map(|i| {
                 f64::from(ml[i]) > CONTACT_COVERAGE && f64::from(entropy[i]) <= DEFAULT_EPSILON
             })
-            .count();
+            .collect();
+        let occluders = occluding.iter().filter(|&&o| o).count();
         assert!(occluders > 100, "{occluders} certain covered cells");
         let covered_at = |covered: &[bool], x: f64, y: f64| {
             grid.world_to_cell(x, y)
@@ -337,9 +334,7 @@ mod tests {
                     limit,
                     sonar.footprint(),
                     &mut |i: usize, d_l: f64| {
-                        if f64::from(ml[i]) > CONTACT_COVERAGE
-                            && f64::from(entropy[i]) <= DEFAULT_EPSILON
-                        {
+                        if occluding[i] {
                             nearest_covered = nearest_covered.min(d_l);
                             covered[i] = true;
                         }
