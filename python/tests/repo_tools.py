@@ -1,5 +1,6 @@
-"""The repository's scripts under ``tools/``, loaded as modules for their
-tests (a skip where the tests run outside the repository)."""
+"""The repository's scripts under ``tools/`` and ``python/tools/``, loaded
+as modules for their tests (a skip where the tests run outside the
+repository)."""
 
 from __future__ import annotations
 
@@ -11,11 +12,13 @@ from typing import Any
 import pytest
 
 TOOLS = Path(__file__).resolve().parents[2] / "tools"
+PYTHON_TOOLS = Path(__file__).resolve().parents[1] / "tools"
 
 
-def load_tool(name: str) -> Any:
-    """``tools/NAME.py`` as a module, or a skip if it is absent."""
-    path = TOOLS / f"{name}.py"
+def load_tool(name: str, under: Path = TOOLS) -> Any:
+    """``NAME.py`` of the folder ``under`` (``tools/`` by default) as a
+    module, or a skip if it is absent."""
+    path = under / f"{name}.py"
     if not path.is_file():
         pytest.skip(f"{path} is absent (the test runs from the repository)")
     spec = importlib.util.spec_from_file_location(name, path)

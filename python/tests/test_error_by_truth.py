@@ -4,26 +4,17 @@ obstacle."""
 
 from __future__ import annotations
 
-import importlib.util
 import sys
-from pathlib import Path
 from typing import Any
 
 import numpy as np
 import pytest
-
-TOOL = Path(__file__).resolve().parents[1] / "tools" / "error_by_truth.py"
+from repo_tools import PYTHON_TOOLS, load_tool
 
 
 @pytest.fixture(scope="module")
 def tool() -> Any:
-    if not TOOL.is_file():
-        pytest.skip(f"{TOOL} is absent (the test runs from the repository)")
-    spec = importlib.util.spec_from_file_location("error_by_truth", TOOL)
-    assert spec is not None and spec.loader is not None
-    module = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(module)
-    return module
+    return load_tool("error_by_truth", PYTHON_TOOLS)
 
 
 def test_distances_are_four_connected_and_capped(tool: Any) -> None:

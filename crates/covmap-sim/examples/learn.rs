@@ -20,6 +20,11 @@
 //! the training drive comes from: the cells scoring below -20 nats (and how
 //! many of them a wall face cuts), and the likelihood of the same map with
 //! every bin floored at 1e-4 (and renormalised).
+//!
+//! `--true-occluders` also maps both drives with the starting model and
+//! each no-echo reading occluded by the true obstacles (every cell that
+//! holds some obstacle in the true world) instead of by the map: what
+//! occlusion costs where the map's occluders are not at fault.
 
 use covmap_core::exploration::AnySensorModel;
 use covmap_sim::experiments::{LearnConfig, learn};
@@ -27,6 +32,7 @@ use covmap_sim::experiments::{LearnConfig, learn};
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let mut config = LearnConfig::default();
     let mut breakdown = false;
+    let mut true_occluders = false;
     let mut args = std::env::args().skip(1);
     while let Some(a) = args.next() {
         let mut value = || args.next().ok_or(format!("{a} needs a value"));
@@ -52,6 +58,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             "--evaluations" => config.fit.max_evaluations = value()?.parse()?,
             "--judged" => config.judged_only = true,
             "--breakdown" => breakdown = true,
+            "--true-occluders" => true_occluders = true,
             "--clear-no-echo" => config.fit.occlude_no_echo = false,
             "--seed" => config.fit.seed = value()?.parse()?,
             "--test-seed" => config.test_seed = value()?.parse()?,
@@ -108,6 +115,71 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     if breakdown {
         print_breakdown(&report.drives[0], &config.model, config.fit.occlude_no_echo)?;
     }
+    if true_occluders {
+        for drive in &report.drives {
+            print_true_occluders(drive, &config.model)?;
+        }
+    }
+    Ok(())
+}
+
+/// The error of `drive`'s map built with `model`, each no-echo reading
+/// occluded by the true obstacles: its line of sight stops, sector by
+/// sector, before the first cell holding some obstacle in the true world.
+fn print_true_occluders(
+    drive: &covmap_sim::experiments::Drive,
+    model: &AnySensorModel,
+) -> Result<(), Box<dyn std::error::Error>> {
+    use covmap_core::NoEchoSight;
+    use covmap_core::histogram::DEFAULT_BINS;
+    use covmap_core::{CoverageMap, ScanBeams, ScanMap};
+    let model = model.as_dyn();
+    let (log, grid) = (&drive.log, &drive.grid);
+    let max_range_m = model.range_model().max_range_m;
+    let mut map = CoverageMap::with_bins(*grid, DEFAULT_BINS)?;
+    let (mut ranges, mut bearings) = (Vec::new(), Vec::new());
+    for i in 0..log.len() {
+        let pose = log.sensor_pose(i);
+        ranges.clear();
+        bearings.clear();
+        for (&r, &b) in log.scan_ranges(i).iter().zip(log.scan_bearings(i)) {
+            if !r.is_nan() {
+                ranges.push(if r >= log.max_range_m() {
+                    max_range_m
+                } else {
+                    r
+                });
+                bearings.push(b);
+            }
+        }
+        let reaches = vec![log.max_range_m(); ranges.len()];
+        let mut scan = ScanBeams {
+            pose: &pose,
+            ranges: &ranges,
+            bearings: &bearings,
+            no_echo_reach_m: Some(&reaches),
+            no_echo_sight: None,
+        };
+        let sight = NoEchoSight::of_scan(grid, &scan, model, |c| drive.truth[c] > 0.0);
+        scan.no_echo_sight = Some(&sight);
+        map.integrate_checked(scan, model)?;
+    }
+    let mean = map.mean();
+    let error = |keep: &dyn Fn(f64) -> bool| {
+        let (sum, n) = (0..grid.len())
+            .filter(|&c| drive.judged[c] && keep(drive.truth[c]))
+            .fold((0.0, 0usize), |(s, n), c| {
+                (s + (f64::from(mean[c]) - drive.truth[c]).abs(), n + 1)
+            });
+        sum / n.max(1) as f64
+    };
+    println!(
+        "{} drive, no-echo readings occluded by the true obstacles: mean-map error {:.4} (free {:.4}, obstacle {:.4})",
+        drive.world,
+        error(&|_| true),
+        error(&|t| t == 0.0),
+        error(&|t| t > 0.0)
+    );
     Ok(())
 }
 
