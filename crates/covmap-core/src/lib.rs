@@ -56,7 +56,7 @@ mod test_rng;
 pub use counting::ScanCounts;
 pub use coverage_map::{
     CONTACT_COVERAGE, ChangeCursor, Changes, CoverageMap, HistoryState, Occluding,
-    STAGNATION_MEASUREMENTS, STAGNATION_NATS, integrate_log_occluded,
+    STAGNATION_MEASUREMENTS, STAGNATION_NATS, integrate_log_occluded, integrate_log_occluded_by,
 };
 pub use error::{CovmapError, QUOTED_CHARS, Result, quoted};
 pub use grid::{Cell, Grid, MAX_CELLS, MAX_CELLS_FROM_ZERO, MIN_RESOLUTION_M};

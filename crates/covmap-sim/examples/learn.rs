@@ -130,55 +130,20 @@ fn print_true_occluders(
     drive: &covmap_sim::experiments::Drive,
     model: &AnySensorModel,
 ) -> Result<(), Box<dyn std::error::Error>> {
-    use covmap_core::NoEchoSight;
     use covmap_core::histogram::DEFAULT_BINS;
-    use covmap_core::{CoverageMap, ScanBeams, ScanMap};
-    let model = model.as_dyn();
-    let (log, grid) = (&drive.log, &drive.grid);
-    let max_range_m = model.range_model().max_range_m;
-    let mut map = CoverageMap::with_bins(*grid, DEFAULT_BINS)?;
-    let (mut ranges, mut bearings) = (Vec::new(), Vec::new());
-    for i in 0..log.len() {
-        let pose = log.sensor_pose(i);
-        ranges.clear();
-        bearings.clear();
-        for (&r, &b) in log.scan_ranges(i).iter().zip(log.scan_bearings(i)) {
-            if !r.is_nan() {
-                ranges.push(if r >= log.max_range_m() {
-                    max_range_m
-                } else {
-                    r
-                });
-                bearings.push(b);
-            }
-        }
-        let reaches = vec![log.max_range_m(); ranges.len()];
-        let mut scan = ScanBeams {
-            pose: &pose,
-            ranges: &ranges,
-            bearings: &bearings,
-            no_echo_reach_m: Some(&reaches),
-            no_echo_sight: None,
-        };
-        let sight = NoEchoSight::of_scan(grid, &scan, model, |c| drive.truth[c] > 0.0);
-        scan.no_echo_sight = Some(&sight);
-        map.integrate_checked(scan, model)?;
-    }
+    use covmap_core::{CoverageMap, integrate_log_occluded_by};
+    let mut map = CoverageMap::with_bins(drive.grid, DEFAULT_BINS)?;
+    integrate_log_occluded_by(&mut map, &drive.log, model.as_dyn(), |c| {
+        drive.truth[c] > 0.0
+    })?;
     let mean = map.mean();
-    let error = |keep: &dyn Fn(f64) -> bool| {
-        let (sum, n) = (0..grid.len())
-            .filter(|&c| drive.judged[c] && keep(drive.truth[c]))
-            .fold((0.0, 0usize), |(s, n), c| {
-                (s + (f64::from(mean[c]) - drive.truth[c]).abs(), n + 1)
-            });
-        sum / n.max(1) as f64
-    };
+    let error = |keep: fn(f64) -> bool| drive.error_where(&mean, keep);
     println!(
         "{} drive, no-echo readings occluded by the true obstacles: mean-map error {:.4} (free {:.4}, obstacle {:.4})",
         drive.world,
-        error(&|_| true),
-        error(&|t| t == 0.0),
-        error(&|t| t > 0.0)
+        error(|_| true),
+        error(|t| t == 0.0),
+        error(|t| t > 0.0)
     );
     Ok(())
 }

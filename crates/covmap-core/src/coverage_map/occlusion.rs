@@ -128,6 +128,35 @@ pub fn integrate_log_occluded<M: SensorModel + ?Sized>(
     Ok(updates)
 }
 
+/// Integrate `log` into `map` with each no-echo reading occluded by the
+/// cells `occludes` names instead of by the map (obstacles known
+/// otherwise, such as a world's true ones): each clears, sector by sector,
+/// only what its line of sight reaches before the first such cell
+/// ([`NoEchoSight`]). The map does not read itself, so it does not depend
+/// on the order of the scans.
+///
+/// # Errors
+/// As [`ScanMap::integrate_log`]: every scan is checked before anything
+/// changes.
+pub fn integrate_log_occluded_by<M: SensorModel + ?Sized>(
+    map: &mut CoverageMap,
+    log: &Log,
+    model: &M,
+    occludes: impl Fn(usize) -> bool,
+) -> Result<usize> {
+    let grid = *map.grid();
+    crate::log::integrate_scans(&grid, log, model, &mut |_| {}, |scan| {
+        let sight = NoEchoSight::of_scan(&grid, &scan, model, &occludes);
+        map.integrate_checked(
+            ScanBeams {
+                no_echo_sight: Some(&sight),
+                ..scan
+            },
+            model,
+        )
+    })
+}
+
 /// The beams of a scan one pass of [`integrate_log_occluded`] keeps.
 #[derive(Default)]
 struct KeptBeams {
@@ -269,6 +298,50 @@ mod tests {
         assert_eq!(kept.measurements(near).unwrap(), scans as u32);
         let counts = kept.measurement_counts();
         assert_eq!(counts.iter().copied().max(), Some(scans as u32));
+    }
+
+    /// A log occluded by given cells: by none, it is the paper's map of the
+    /// log; by a wall across a miss, the miss clears in front of the wall
+    /// and not behind it, and the echoes mark as before.
+    #[test]
+    fn a_log_occluded_by_given_cells() {
+        use crate::log::{Bearings, Log};
+        let grid = Grid::new([0.0, 0.0], 0.05, 80, 80).unwrap();
+        let log = Log::new(
+            vec![Pose::new(1.8, 2.0, 0.0); 3],
+            vec![0.0, 1.0, 2.0],
+            [1.5, 5.0].repeat(3),
+            Bearings::Fixed(vec![3.0, 0.0]),
+            5.0,
+        )
+        .unwrap();
+        let sonar = SonarModel::default();
+        let mut paper = CoverageMap::new(grid);
+        paper.integrate_log(&log, &sonar).unwrap();
+        let mut none = CoverageMap::new(grid);
+        integrate_log_occluded_by(&mut none, &log, &sonar, |_| false).unwrap();
+        assert_eq!(none.histograms(), paper.histograms());
+        // A wall across the miss (bearing 0) at x = 3.0 m.
+        let wall = |i: usize| i % 80 == 60;
+        let mut walled = CoverageMap::new(grid);
+        integrate_log_occluded_by(&mut walled, &log, &sonar, wall).unwrap();
+        let mean = |m: &CoverageMap, x: f64| {
+            m.mean()[grid.index(grid.world_to_cell(x, 2.0).unwrap()).unwrap()]
+        };
+        assert!(mean(&walled, 2.5) < 0.5, "in front of the wall: cleared");
+        assert_eq!(mean(&walled, 3.5), 0.5, "behind the wall: untouched");
+        assert!(mean(&paper, 3.5) < 0.5, "the paper's miss clears behind it");
+        // The echo (bearing 3, away from the wall) marks as before.
+        let echo = grid
+            .index(
+                grid.world_to_cell(1.8 + 1.5 * 3f64.cos(), 2.0 + 1.5 * 3f64.sin())
+                    .unwrap(),
+            )
+            .unwrap();
+        assert_eq!(
+            walled.histograms()[echo * 16..(echo + 1) * 16],
+            paper.histograms()[echo * 16..(echo + 1) * 16]
+        );
     }
 
     /// On a map holding walls, every cell a no-echo reading clears lies in

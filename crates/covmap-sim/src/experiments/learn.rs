@@ -266,7 +266,7 @@ impl Drive {
 
     /// The mean absolute error of `values` against the truth over the
     /// judged cells whose truth `keep` accepts.
-    fn error_where(&self, values: &[f32], keep: impl Fn(f64) -> bool) -> f64 {
+    pub fn error_where(&self, values: &[f32], keep: impl Fn(f64) -> bool) -> f64 {
         let (sum, n) = (0..self.grid.len())
             .filter(|&i| self.judged[i] && keep(self.truth[i]))
             .fold((0.0, 0usize), |(s, n), i| {
