@@ -335,15 +335,15 @@ class CoverageMap:
         pose with the log's sensor offset); dropped beams (NaN) are skipped; a
         reading without echo clears up to the lesser of the log's and the
         model's maximum range. With ``occlude_no_echo`` every echo reading
-        goes in first, then every no-echo reading, each clearing only what
-        its line of sight reaches past the cells of its footprint the map of
-        all the echoes holds covered and is certain of (entropy at most 0.65
-        nats, the default epsilon; the exploration loop's rule, with every echo known; the
-        map does not depend on the order of the scans): a no-echo reading
-        through a wall the echoes found is taken for a specular miss, and
-        ``progress`` counts a scan once its no-echo readings are in (on a map
-        that keeps its history, the echoes' map is built on a copy, as much
-        memory again, so that a scan stays one measurement). Every
+        goes first into a copy of the map (as much memory again); then every
+        scan goes in read against the cells that copy holds covered and is
+        certain of (entropy at most 0.65 nats, the default epsilon; the
+        exploration loop's rule, with every echo known; the map does not
+        depend on the order of the scans): a no-echo reading clears only
+        what its line of sight reaches past them (through a wall the echoes
+        found it is taken for a specular miss), and an echo off one of them
+        marks only the cells at its bearing and the certain ones, not the
+        rest of its arc (model.md, section 5). Every
         scan is checked first: a scan whose
         sensor pose lies outside the map raises (``PoseOutsideMapError``, the
         message naming the scan) and leaves the map exactly as it was.
@@ -1627,8 +1627,9 @@ def explore(
     below ``epsilon`` nats. The run stops by the strategy's rule, or after
     ``max_path_m`` metres or ``max_steps`` steps. A reading with no echo
     clears only what its line of sight reaches past the cells the
-    coverage map holds covered and is certain of, in every map
-    (``occlude_no_echo``, the default); with ``occlude_no_echo=False``
+    coverage map holds covered and is certain of, in every map, and an
+    echo off such a cell marks only the cells at its bearing and the
+    certain ones (``occlude_no_echo``, the default); with ``occlude_no_echo=False``
     it clears its whole footprint, the paper's reading (which settles
     more cells but erodes walls: docs/experiments.md, "The paper's
     no-echo reading in the loop").

@@ -28,6 +28,7 @@
 mod aligned;
 mod counting;
 mod coverage_map;
+mod echo_sources;
 mod error;
 pub mod exploration;
 mod footprint;
@@ -58,6 +59,7 @@ pub use coverage_map::{
     CONTACT_COVERAGE, ChangeCursor, Changes, CoverageMap, HistoryState, Occluding,
     STAGNATION_MEASUREMENTS, STAGNATION_NATS, integrate_log_occluded, integrate_log_occluded_by,
 };
+pub use echo_sources::EchoSources;
 pub use error::{CovmapError, QUOTED_CHARS, Result, quoted};
 pub use grid::{Cell, Grid, MAX_CELLS, MAX_CELLS_FROM_ZERO, MIN_RESOLUTION_M};
 pub use log::{Bearings, CarmenLaser, CarmenOptions, Log, SonarTextOptions};

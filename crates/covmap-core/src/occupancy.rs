@@ -318,6 +318,7 @@ mod tests {
                     bearings: &bearings,
                     no_echo_reach_m: Some(&reaches),
                     no_echo_sight: None,
+                    echo_sources: None,
                 };
                 occupancy.integrate_scan(scan, &sonar).unwrap();
                 alone.integrate_scan(scan, &sonar).unwrap();

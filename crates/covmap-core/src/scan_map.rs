@@ -4,6 +4,7 @@
 //! clipping no-echo readings and taking in a whole log are written once,
 //! here.
 
+use crate::echo_sources::EchoSources;
 use crate::error::Result;
 use crate::grid::Grid;
 use crate::log::Log;
@@ -28,6 +29,25 @@ pub struct ScanBeams<'a> {
     /// Which cells each no-echo reading clears within that reach: those in
     /// no covered cell's shadow ([`NoEchoSight`]; `None`: all of them).
     pub no_echo_sight: Option<&'a NoEchoSight>,
+    /// Which cells at and past its end point each echo reading marks: all
+    /// but those its sources withhold ([`EchoSources`]; `None`: all of
+    /// them).
+    pub echo_sources: Option<&'a EchoSources>,
+}
+
+impl<'a> ScanBeams<'a> {
+    /// The scan from `pose` of `ranges` along `bearings`, read as the
+    /// sensor model has it: no reach, sight or echo sources of its own.
+    pub fn new(pose: &'a Pose, ranges: &'a [f64], bearings: &'a [f64]) -> Self {
+        Self {
+            pose,
+            ranges,
+            bearings,
+            no_echo_reach_m: None,
+            no_echo_sight: None,
+            echo_sources: None,
+        }
+    }
 }
 
 /// A map that range scans are integrated into, every scan checked before
@@ -83,13 +103,7 @@ pub trait ScanMap {
         bearings: &[f64],
         model: &M,
     ) -> Result<usize> {
-        let scan = ScanBeams {
-            pose,
-            ranges,
-            bearings,
-            no_echo_reach_m: None,
-            no_echo_sight: None,
-        };
+        let scan = ScanBeams::new(pose, ranges, bearings);
         validate_scan(self.grid(), pose, ranges, bearings, model)?;
         self.integrate_checked(scan, model)
     }
@@ -115,7 +129,10 @@ pub trait ScanMap {
             crate::coverage_map::check_reaches(scan.ranges, reaches)?;
         }
         if let Some(sight) = scan.no_echo_sight {
-            crate::coverage_map::check_sight(scan.ranges, sight)?;
+            crate::coverage_map::check_sight(scan.ranges, sight.len())?;
+        }
+        if let Some(sources) = scan.echo_sources {
+            crate::coverage_map::check_sight(scan.ranges, sources.len())?;
         }
         validate_scan(self.grid(), scan.pose, scan.ranges, scan.bearings, model)?;
         self.integrate_checked(scan, model)

@@ -3,6 +3,7 @@
 
 use std::f64::consts::{PI, SQRT_2, TAU};
 
+use crate::echo_sources::Attributed;
 use crate::footprint::{CellVisitor, visit};
 use crate::grid::Grid;
 use crate::scan_map::ScanBeams;
@@ -168,7 +169,9 @@ impl NoEchoSight {
 /// Visit the cells reading `k` of `scan` (from `scan.pose` along
 /// `axis`) updates, out to `reach_m`: its footprint, and for a no-echo
 /// reading (`echo` false) of a scan with a sight only the cells that sight
-/// clears ([`ScanBeams::no_echo_sight`]). What the three maps share.
+/// clears ([`ScanBeams::no_echo_sight`]), and for an echo reading of a scan
+/// with sources only the cells the echo is attributed to
+/// ([`ScanBeams::echo_sources`]). What the three maps share.
 #[inline(always)]
 pub(crate) fn visit_reading(
     grid: &Grid,
@@ -194,7 +197,13 @@ pub(crate) fn visit_reading(
             };
             visit(grid, origin, axis, reach_m, footprint, &mut sighted);
         }
-        _ => visit(grid, origin, axis, reach_m, footprint, f),
+        _ => match scan.echo_sources {
+            Some(sources) if echo && !sources.withheld(k).is_empty() => {
+                let mut attributed = Attributed::new(sources, k, f);
+                visit(grid, origin, axis, reach_m, footprint, &mut attributed);
+            }
+            _ => visit(grid, origin, axis, reach_m, footprint, f),
+        },
     }
 }
 
@@ -273,13 +282,7 @@ mod tests {
     /// A scan of the readings `ranges` at `bearings`, with no reach or
     /// sight of its own.
     fn one_reading<'a>(pose: &'a Pose, ranges: &'a [f64], bearings: &'a [f64]) -> ScanBeams<'a> {
-        ScanBeams {
-            pose,
-            ranges,
-            bearings,
-            no_echo_reach_m: None,
-            no_echo_sight: None,
-        }
+        ScanBeams::new(pose, ranges, bearings)
     }
 
     /// A covered column across part of a cone shadows only the sectors it

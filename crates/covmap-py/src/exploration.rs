@@ -273,8 +273,9 @@ run_keywords! { explore_function! {
     /// below ``epsilon`` nats. The run stops by the strategy's rule, or after
     /// ``max_path_m`` metres or ``max_steps`` steps. A reading with no echo
     /// clears only what its line of sight reaches past the cells the
-    /// coverage map holds covered and is certain of, in every map
-    /// (``occlude_no_echo``, the default); with ``occlude_no_echo=False``
+    /// coverage map holds covered and is certain of, in every map, and an
+    /// echo off such a cell marks only the cells at its bearing and the
+    /// certain ones (``occlude_no_echo``, the default); with ``occlude_no_echo=False``
     /// it clears its whole footprint, the paper's reading (which settles
     /// more cells but erodes walls: docs/experiments.md, "The paper's
     /// no-echo reading in the loop").

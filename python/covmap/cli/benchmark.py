@@ -31,8 +31,8 @@ DESCRIPTION = (
     "run stops at 3000 m (--max-path-m, --max-steps: other limits for every run). --buildings picks other buildings: sets "
     "(default, development, test) or buildings by name (corridor, office, generated:SEED[:AREA], a world "
     "file), separated by commas. --model maps with a sensor model covmap learn fitted, to judge it on "
-    "buildings it was not fitted on. --clear-no-echo lets no-echo readings clear their whole footprint (the "
-    "paper's reading). --report CSV prints the summary of an earlier run's benchmark.csv and "
+    "buildings it was not fitted on. --clear-no-echo integrates as the paper does: no-echo readings clear "
+    "their whole footprint, echoes mark their whole arc. --report CSV prints the summary of an earlier run's benchmark.csv and "
     "draws its figure, running nothing."
 )
 """What ``covmap benchmark --help`` says the command does."""
@@ -107,9 +107,10 @@ def add_arguments(command: argparse.ArgumentParser) -> None:
     command.add_argument(
         "--clear-no-echo",
         action="store_true",
-        help="let every reading with no echo clear its whole footprint, the paper's reading, rather than "
-        "only what its line of sight reaches past the cells the coverage map is certain are covered "
-        "(the default)",
+        help="integrate as the paper does: every reading with no echo clears its whole footprint and every "
+        "echo marks its whole arc (default: scans read against the cells the coverage map is certain are "
+        "covered: a no-echo reading clears only what its line of sight reaches past them, an echo off one "
+        "of them marks only the cells at its bearing)",
     )
     _options.add_dask(command)
     _options.add_out(command, NAME)

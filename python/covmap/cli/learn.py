@@ -25,8 +25,9 @@ DESCRIPTION = (
     "log-likelihood of the truth before and after on both drives and the mean-map errors "
     "with the occupancy grid's beside them, and save the learned model as model.json "
     "(for covmap fig2 --model) and the fit's trace as trace.csv. Maps are built as the "
-    "exploration loop builds them, each no-echo reading occluded by the map (it clears only "
-    "up to the nearest cell the map holds covered and is certain of), unless --clear-no-echo."
+    "exploration loop builds them, read against the cells the map holds covered and is certain of "
+    "(a no-echo reading clears only up to the nearest of them, an echo off one of them marks only the "
+    "cells at its bearing), unless --clear-no-echo."
 )
 """What ``covmap learn --help`` says the command does."""
 
@@ -47,8 +48,9 @@ def add_arguments(command: argparse.ArgumentParser) -> None:
     command.add_argument(
         "--clear-no-echo",
         action="store_true",
-        help="let every no-echo reading clear its whole footprint, through walls the map holds "
-        "(default: occluded by the map, as the exploration loop builds its maps)",
+        help="integrate as the paper does: every no-echo reading clears its whole footprint, through "
+        "walls the map holds, every echo marks its whole arc (default: read against the map, as the "
+        "exploration loop builds its maps)",
     )
     _options.add_seed(command)
 

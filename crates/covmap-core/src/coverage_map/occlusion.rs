@@ -1,8 +1,10 @@
 //! No-echo readings occluded by the map: a no-echo reading that the map
 //! is certain crossed an obstacle missed it (a specular reflection) and
-//! says nothing of what lies behind. A scan at a time, occluded by the map
-//! as it stands (the exploration loop); a whole log, occluded by the map of
-//! all of its echoes, which does not depend on the order of the scans.
+//! says nothing of what lies behind; an echo the map explains marks only
+//! the cells that explain it ([`EchoSources`]). A scan at a time, read
+//! against the map as it stands (the exploration loop); a whole log, read
+//! against the map of all of its echoes, which does not depend on the order
+//! of the scans.
 //!
 //! Only cells the map is certain of occlude ([`CoverageMap::occludes`]):
 //! a cell held covered on the evidence of an echo arc or two may be a
@@ -12,6 +14,7 @@
 //! could clear it and stay covered for good.
 
 use super::{CONTACT_COVERAGE, CoverageMap};
+use crate::echo_sources::EchoSources;
 use crate::error::Result;
 use crate::grid::Grid;
 use crate::histogram;
@@ -22,10 +25,10 @@ use crate::scan_map::{ScanBeams, ScanMap};
 use crate::sensor::SensorModel;
 use crate::sight::NoEchoSight;
 
-/// A coverage map that integrates each scan with its no-echo readings
-/// occluded by the map as it stands when the scan comes, and a whole log
-/// with them occluded by the map of the log's echoes
-/// ([`CoverageMap::occluding`]).
+/// A coverage map that integrates each scan read against the map as it
+/// stands when the scan comes (its no-echo readings occluded, its echoes
+/// explained by what the map is certain of), and a whole log read against
+/// the map of the log's echoes ([`CoverageMap::occluding`]).
 #[derive(Debug)]
 pub struct Occluding<'a>(&'a mut CoverageMap);
 
@@ -40,22 +43,22 @@ impl ScanMap for Occluding<'_> {
         model: &M,
     ) -> Result<usize> {
         let map = &*self.0;
-        let sight = NoEchoSight::of_scan(map.grid(), &scan, model, |i| {
-            map.occludes(i, DEFAULT_EPSILON)
-        });
+        let certain = |i| map.occludes(i, DEFAULT_EPSILON);
+        let sight = NoEchoSight::of_scan(map.grid(), &scan, model, certain);
+        let sources = EchoSources::of_scan(map.grid(), &scan, model, certain);
         self.0.integrate_checked(
             ScanBeams {
                 no_echo_sight: Some(&sight),
+                echo_sources: Some(&sources),
                 ..scan
             },
             model,
         )
     }
 
-    /// Every scan of `log`, the echoes first and then the no-echo readings,
-    /// each occluded by the map as all the echoes left it
-    /// ([`integrate_log_occluded`]); `progress` is told of a scan once its
-    /// no-echo readings are in too.
+    /// Every scan of `log`, read against the map of all of the log's
+    /// echoes ([`integrate_log_occluded`]); `progress` is told of each
+    /// scan once it is in.
     fn integrate_log_with_progress<M: SensorModel + ?Sized>(
         &mut self,
         log: &Log,
@@ -66,19 +69,19 @@ impl ScanMap for Occluding<'_> {
     }
 }
 
-/// Integrate `log` into `map` with its no-echo readings occluded by the map
-/// of the log's echoes, which does not depend on the order of the scans:
-/// first every scan's echo readings, then every scan's no-echo readings,
-/// each clearing only what its line of sight reaches past the cells the map
-/// held as covered, with an entropy of at most `epsilon` nats, once all the
-/// echoes were in ([`CoverageMap::occludes`]; no further than the log's
-/// maximum range). `also` is handed every set of beams `map` takes,
-/// checked, so that another map (the occupancy grid baseline) can take the
-/// very same ones; its updates are added to the count returned. `progress`
-/// is told of each scan once its no-echo readings are in. A map that keeps
-/// its history ([`CoverageMap::track_history`]) counts each scan as one
-/// measurement still: the echoes' map is then built on a copy (as much
-/// memory again), and each scan goes in whole.
+/// Integrate `log` into `map` read against the map of the log's echoes,
+/// which does not depend on the order of the scans: first every scan's
+/// echo readings go into a copy of `map` (as much memory again); the cells
+/// that copy then holds as covered, with an entropy of at most `epsilon`
+/// nats ([`CoverageMap::occludes`]), stop the line of sight of every
+/// no-echo reading ([`NoEchoSight`]; no further than the log's maximum
+/// range) and explain the echoes off them ([`EchoSources`]); then every
+/// scan goes into `map` whole, so read. `also` is handed every set of beams
+/// `map` takes, checked, so that another map (the occupancy grid baseline)
+/// can take the very same ones; its updates are added to the count
+/// returned. `progress` is told of each scan once it is in. A map that
+/// keeps its history ([`CoverageMap::track_history`]) counts each scan as
+/// one measurement.
 ///
 /// # Errors
 /// As [`ScanMap::integrate_log`]: every scan is checked before anything
@@ -93,39 +96,26 @@ pub fn integrate_log_occluded<M: SensorModel + ?Sized>(
 ) -> Result<usize> {
     let grid = *map.grid();
     let max_range_m = model.range_model().max_range_m;
-    let echo = |r: f64| r < max_range_m;
     let mut kept = KeptBeams::default();
-    // The map of every echo: this map itself, or, where a scan must stay
-    // one measurement of the history, a copy of it (the scans then go into
-    // this map whole below).
-    let whole = map.tracks_history();
-    let mut updates = 0;
-    let covered = if whole {
-        let history = map.history.take();
-        let mut echoes = map.clone();
-        map.history = history;
-        crate::log::integrate_scans(&grid, log, model, &mut |_| {}, |scan| {
-            echoes.integrate_checked(kept.keep(scan, echo), model)
-        })?;
-        echoes.occluding_cells(epsilon)
-    } else {
-        updates += crate::log::integrate_scans(&grid, log, model, &mut |_| {}, |scan| {
-            let echoes = kept.keep(scan, echo);
-            Ok(map.integrate_checked(echoes, model)? + also(echoes)?)
-        })?;
-        map.occluding_cells(epsilon)
-    };
-    updates += crate::log::integrate_scans(&grid, log, model, progress, |scan| {
-        let mut beams = if whole {
-            scan
-        } else {
-            kept.keep(scan, |r| !echo(r))
-        };
-        let sight = NoEchoSight::of_scan(&grid, &beams, model, |i| covered[i]);
-        beams.no_echo_sight = Some(&sight);
-        Ok(map.integrate_checked(beams, model)? + also(beams)?)
+    // The map of every echo, on a copy that keeps no history.
+    let history = map.history.take();
+    let mut echoes = map.clone();
+    map.history = history;
+    crate::log::integrate_scans(&grid, log, model, &mut |_| {}, |scan| {
+        echoes.integrate_checked(kept.keep(scan, |r| r < max_range_m), model)
     })?;
-    Ok(updates)
+    let covered = echoes.occluding_cells(epsilon);
+    drop(echoes);
+    crate::log::integrate_scans(&grid, log, model, progress, |scan| {
+        let sight = NoEchoSight::of_scan(&grid, &scan, model, |i| covered[i]);
+        let sources = EchoSources::of_scan(&grid, &scan, model, |i| covered[i]);
+        let beams = ScanBeams {
+            no_echo_sight: Some(&sight),
+            echo_sources: Some(&sources),
+            ..scan
+        };
+        Ok(map.integrate_checked(beams, model)? + also(beams)?)
+    })
 }
 
 /// Integrate `log` into `map` with each no-echo reading occluded by the
@@ -186,6 +176,7 @@ impl KeptBeams {
             bearings: &self.bearings,
             no_echo_reach_m: scan.no_echo_reach_m.map(|_| &self.reaches[..]),
             no_echo_sight: None,
+            echo_sources: None,
         }
     }
 }
@@ -199,11 +190,11 @@ impl CoverageMap {
     /// certain: an entropy of at most [`DEFAULT_EPSILON`] nats), as the
     /// exploration loop integrates its scans (at its own epsilon). A no-echo reading through a wall that earlier
     /// echoes found is then taken for a specular miss, which says nothing
-    /// of the wall or of what lies behind it. A whole log
-    /// ([`ScanMap::integrate_log`]) goes in echoes first, its no-echo
-    /// readings occluded by the map of all of them
-    /// ([`integrate_log_occluded`]): that map does not depend on the order
-    /// of the scans.
+    /// of the wall or of what lies behind it. Each echo is explained by
+    /// the same cells ([`CoverageMap::echo_sources`]). A whole log
+    /// ([`ScanMap::integrate_log`]) is read against the map of all of its
+    /// echoes ([`integrate_log_occluded`]): that map does not depend on
+    /// the order of the scans.
     pub fn occluding(&mut self) -> Occluding<'_> {
         Occluding(self)
     }
@@ -223,14 +214,27 @@ impl CoverageMap {
         model: &M,
         epsilon: f64,
     ) -> NoEchoSight {
-        let scan = ScanBeams {
-            pose,
-            ranges,
-            bearings,
-            no_echo_reach_m: None,
-            no_echo_sight: None,
-        };
+        let scan = ScanBeams::new(pose, ranges, bearings);
         NoEchoSight::of_scan(self.grid(), &scan, model, |i| self.occludes(i, epsilon))
+    }
+
+    /// Which cells at and past its end point each echo reading of a scan
+    /// from `pose` is not attributed to: where the end band holds a cell
+    /// that occludes at `epsilon` ([`CoverageMap::occludes`]), the cells
+    /// off every such cell's bearing that do not occlude themselves
+    /// ([`EchoSources`]). The result is the `echo_sources` of a
+    /// [`ScanBeams`](crate::ScanBeams). The scan is not validated: an
+    /// invalid one gives sources the update then refuses.
+    pub fn echo_sources<M: SensorModel + ?Sized>(
+        &self,
+        pose: &Pose,
+        ranges: &[f64],
+        bearings: &[f64],
+        model: &M,
+        epsilon: f64,
+    ) -> EchoSources {
+        let scan = ScanBeams::new(pose, ranges, bearings);
+        EchoSources::of_scan(self.grid(), &scan, model, |i| self.occludes(i, epsilon))
     }
 
     /// Whether cell `i` (row-major) stops the line of sight of no-echo

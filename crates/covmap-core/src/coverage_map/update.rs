@@ -75,15 +75,16 @@ pub(crate) fn check_reaches(ranges: &[f64], no_echo_reach_m: &[f64]) -> Result<(
     }
 }
 
-/// Errors unless `sight` is for as many readings as `ranges`.
-pub(crate) fn check_sight(ranges: &[f64], sight: &crate::NoEchoSight) -> Result<()> {
-    if sight.len() == ranges.len() {
+/// Errors unless a scan's sight or echo sources are for `len` readings,
+/// as many as `ranges`.
+pub(crate) fn check_sight(ranges: &[f64], len: usize) -> Result<()> {
+    if len == ranges.len() {
         Ok(())
     } else {
         Err(crate::CovmapError::LengthMismatch {
-            what: "ranges and no-echo sights",
+            what: "ranges and no-echo sights or echo sources",
             left: ranges.len(),
-            right: sight.len(),
+            right: len,
         })
     }
 }

@@ -47,6 +47,10 @@ pub struct ExplorationConfig {
     /// faces that echoes found, the maps err more and the robot runs into
     /// walls twice as often on the development buildings
     /// (docs/experiments.md, "The paper's no-echo reading in the loop").
+    /// With `true` each echo is also explained by what the map is certain
+    /// of ([`EchoSources`](crate::EchoSources)): both read a scan against
+    /// the cells the map holds covered and is certain of; `false` is the
+    /// paper's update throughout.
     pub occlude_no_echo: bool,
 }
 

@@ -140,18 +140,25 @@ impl<S: ScanSource, M: Motion> Exploration<S, M> {
         let integrating = Instant::now();
         self.totals.timing.sensing_s += (integrating - started).as_secs_f64();
         let (pose, bearings, model) = (&self.pose, &self.bearings[..], self.model.as_dyn());
-        // No-echo readings stopped before what the map holds (see the
-        // module documentation of `crate::exploration`).
-        let sight = self.config.occlude_no_echo.then(|| {
-            self.map
-                .no_echo_sight(pose, &ranges, bearings, model, self.config.epsilon)
+        // No-echo readings stopped before what the map is certain of, and
+        // echoes attributed to it (see the module documentation of
+        // `crate::exploration`).
+        let epsilon = self.config.epsilon;
+        let seen = self.config.occlude_no_echo.then(|| {
+            (
+                self.map
+                    .no_echo_sight(pose, &ranges, bearings, model, epsilon),
+                self.map
+                    .echo_sources(pose, &ranges, bearings, model, epsilon),
+            )
         });
         let scan = ScanBeams {
             pose,
             ranges: &ranges,
             bearings,
             no_echo_reach_m: None,
-            no_echo_sight: sight.as_ref(),
+            no_echo_sight: seen.as_ref().map(|s| &s.0),
+            echo_sources: seen.as_ref().map(|s| &s.1),
         };
         // The coverage map checks the scan first: an invalid one changes no map.
         self.map.integrate_scan(scan, model)?;

@@ -41,6 +41,15 @@
 //!   aimed at a doorway then stopped at the jambs, the doorway's cells
 //!   were never cleared by the readings through it, and the door stayed
 //!   closed on the map (docs/experiments.md, "The line of sight").
+//! - **Echoes explained**: where the end band of an echo holds a cell the
+//!   coverage map holds covered and is certain of (as above), the echo
+//!   marks only the cells at such a cell's bearing and the certain ones,
+//!   not the rest of its arc at and past its range
+//!   ([`EchoSources`](crate::EchoSources), [the model](crate::model),
+//!   section 5), the same in all three maps (with
+//!   [`ExplorationConfig::occlude_no_echo`]: both read the scan against
+//!   what the map is certain of). A settled jamb's echoes then leave the
+//!   doorway beside it as they found it.
 //! - **Contacts**: where the world stops the robot short of its target (the
 //!   map showed the way free), the robot stops at its last free point,
 //!   scans, takes the contact into the coverage map (the cell it ran into

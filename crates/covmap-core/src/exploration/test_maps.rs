@@ -59,6 +59,7 @@ pub(super) fn scan_room(door: bool, pose: &Pose, map: &mut impl ScanMap) {
         bearings: &bearings,
         no_echo_reach_m: Some(&reaches),
         no_echo_sight: None,
+        echo_sources: None,
     };
     map.integrate_scan(scan, &laser).unwrap();
 }

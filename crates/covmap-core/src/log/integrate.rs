@@ -30,6 +30,7 @@ impl PreparedScan {
             bearings: &self.bearings,
             no_echo_reach_m: Some(&self.reaches),
             no_echo_sight: None,
+            echo_sources: None,
         }
     }
 
@@ -148,6 +149,7 @@ mod tests {
                 bearings: log.scan_bearings(i),
                 no_echo_reach_m: Some(&reach),
                 no_echo_sight: None,
+                echo_sources: None,
             };
             sum += by_scan.integrate_scan(scan, &model).unwrap();
             occupancy_sum += occupancy.integrate_scan(scan, &model).unwrap();
