@@ -4,10 +4,20 @@
 //! larger than L2, so updates stream from memory), 64 seeded random scans from
 //! random poses, integrated in turn. Throughput is reported in cell updates.
 //!
+//! A scan read against the map (`sonar_24_read_against_map`): what reading
+//! the scans of a drive along the built-in corridor against the cells its
+//! map is certain of costs (no-echo sight and echo sources,
+//! `CoverageMap::read_scan`), beside integrating the same scans so read and
+//! as the paper has them (unread).
+//!
 //! Run: `cargo bench --bench integrate`
 
-use covmap::ScanMap;
-use covmap::{CoverageMap, Grid, LaserModel, OccupancyGrid, Pose, SensorModel, SonarModel};
+use covmap::exploration::AnySensorModel;
+use covmap::sim::experiments::Drive;
+use covmap::{
+    CoverageMap, Grid, LaserModel, OccupancyGrid, Pose, ScanBeams, ScanMap, ScanReading,
+    SensorModel, SonarModel,
+};
 use criterion::{Criterion, Throughput, criterion_group, criterion_main};
 use rand::{RngExt, SeedableRng};
 use rand_chacha::ChaCha8Rng;
@@ -127,9 +137,61 @@ fn integrate(c: &mut Criterion) {
     bench_model(c, "laser_360", &laser, &laser_scans, &[16]);
 }
 
+/// The 300 scans of a corridor drive, read against the map of the whole
+/// drive (the cells it is certain are covered occlude and explain echoes)
+/// and integrated so read.
+fn read_against_map(c: &mut Criterion) {
+    let model = AnySensorModel::default();
+    let drive = Drive::simulate("corridor", &model, (300, 0.15, 0.05), 0, false)
+        .expect("the corridor drive");
+    let log = &drive.log;
+    let scans: Vec<Scan> = (0..log.len())
+        .map(|i| Scan {
+            pose: log.sensor_pose(i),
+            ranges: log.scan_ranges(i).to_vec(),
+            bearings: log.scan_bearings(i).to_vec(),
+        })
+        .collect();
+    let mut map = CoverageMap::new(drive.grid);
+    map.occluding()
+        .integrate_log(log, &model)
+        .expect("valid log");
+    let epsilon = covmap::planner::DEFAULT_EPSILON;
+    let read = |map: &CoverageMap| -> Vec<ScanReading> {
+        scans
+            .iter()
+            .map(|s| map.read_scan(&s.pose, &s.ranges, &s.bearings, &model, epsilon))
+            .collect()
+    };
+    let readings = read(&map);
+    let mut group = c.benchmark_group("sonar_24_read_against_map");
+    group.throughput(Throughput::Elements(scans.len() as u64));
+    group.bench_function("reading_300_scans", |bench| bench.iter(|| read(&map)));
+    let mut into = map.clone();
+    group.bench_function("integrating_300_scans_unread", |bench| {
+        bench.iter(|| {
+            for s in &scans {
+                into.integrate(&s.pose, &s.ranges, &s.bearings, &model)
+                    .expect("valid scan");
+            }
+        })
+    });
+    let mut into = map.clone();
+    group.bench_function("integrating_300_scans_so_read", |bench| {
+        bench.iter(|| {
+            for (s, reading) in scans.iter().zip(&readings) {
+                let scan = ScanBeams::new(&s.pose, &s.ranges, &s.bearings);
+                into.integrate_scan(reading.beams(scan), &model)
+                    .expect("valid scan");
+            }
+        })
+    });
+    group.finish();
+}
+
 criterion_group! {
     name = benches;
     config = Criterion::default().sample_size(20).measurement_time(std::time::Duration::from_secs(4));
-    targets = integrate, integrate_small
+    targets = integrate, integrate_small, read_against_map
 }
 criterion_main!(benches);

@@ -3,7 +3,7 @@
 
 use std::f64::consts::FRAC_1_SQRT_2;
 
-use crate::footprint::{CellVisitor, visit};
+use crate::footprint::{CellVisitor, ROW_BLOCK, cells_of_block, visit};
 use crate::grid::Grid;
 use crate::scan_map::ScanBeams;
 use crate::sensor::SensorModel;
@@ -44,6 +44,48 @@ struct Tail {
     certain: bool,
 }
 
+/// A visitor that gathers the cells of an echo's footprint at or past
+/// `from` metres, and passes over the blocks of a cone's row that lie
+/// wholly before it at once.
+struct TailOf<'a, F> {
+    grid: &'a Grid,
+    origin: [f64; 2],
+    from: f64,
+    is_certain: &'a F,
+    tail: &'a mut Vec<Tail>,
+}
+
+impl<F: Fn(usize) -> bool> CellVisitor for TailOf<'_, F> {
+    #[inline(always)]
+    fn cell(&mut self, index: usize, d_l: f64, _enter_m: f64) {
+        if d_l >= self.from {
+            let [cx, cy] = self.grid.cell_center(self.grid.cell(index));
+            let (dx, dy) = (cx - self.origin[0], cy - self.origin[1]);
+            let norm = dx.hypot(dy).max(f64::MIN_POSITIVE);
+            self.tail.push(Tail {
+                index,
+                direction: [dx / norm, dy / norm],
+                d_l,
+                certain: (self.is_certain)(index),
+            });
+        }
+    }
+
+    #[inline(always)]
+    fn row_block(
+        &mut self,
+        first: usize,
+        d: &[f64; ROW_BLOCK],
+        n: usize,
+        [_, far]: [f64; 2],
+        reach_m: f64,
+    ) {
+        if far >= self.from {
+            cells_of_block(self, first, d, n, reach_m);
+        }
+    }
+}
+
 impl EchoSources {
     /// The sources of every echo reading of `scan`, with `is_certain`
     /// naming the cells the map is certain are covered (see
@@ -78,25 +120,20 @@ impl EchoSources {
             sources.from_m.push(from);
             if echo && r >= 0.0 && bearing.is_finite() && reach.is_finite() {
                 tail.clear();
+                let mut tail_of = TailOf {
+                    grid,
+                    origin,
+                    from,
+                    is_certain: &is_certain,
+                    tail: &mut tail,
+                };
                 visit(
                     grid,
                     origin,
                     pose.theta_rad + bearing,
                     reach,
                     footprint,
-                    &mut |i: usize, d_l: f64| {
-                        if d_l >= from {
-                            let [cx, cy] = grid.cell_center(grid.cell(i));
-                            let (dx, dy) = (cx - origin[0], cy - origin[1]);
-                            let norm = dx.hypot(dy).max(f64::MIN_POSITIVE);
-                            tail.push(Tail {
-                                index: i,
-                                direction: [dx / norm, dy / norm],
-                                d_l,
-                                certain: is_certain(i),
-                            });
-                        }
-                    },
+                    &mut tail_of,
                 );
                 // The certain cells of the end band, each with the cosine
                 // of the angle its circumscribed circle subtends.
@@ -214,7 +251,9 @@ mod tests {
         let sonar = SonarModel::default();
         let mut map = CoverageMap::new(grid());
         map.pin_covered(&[Cell { row: 42, col: 59 }]).unwrap();
-        let sources = map.echo_sources(&POSE, &[1.2], &[0.0], &sonar, DEFAULT_EPSILON);
+        let sources = map
+            .read_scan(&POSE, &[1.2], &[0.0], &sonar, DEFAULT_EPSILON)
+            .sources;
         assert_eq!(sources.len(), 1);
         let withheld = sources.withheld(0);
         assert!(
@@ -274,7 +313,9 @@ mod tests {
         let mut map = CoverageMap::new(grid());
         let wall: Vec<Cell> = (30..51).map(|row| Cell { row, col: 59 }).collect();
         map.pin_covered(&wall).unwrap();
-        let sources = map.echo_sources(&POSE, &[1.2], &[0.0], &sonar, DEFAULT_EPSILON);
+        let sources = map
+            .read_scan(&POSE, &[1.2], &[0.0], &sonar, DEFAULT_EPSILON)
+            .sources;
         assert!(sources.withheld(0).is_empty());
     }
 
@@ -283,15 +324,21 @@ mod tests {
     fn without_a_certain_cell_or_an_echo_nothing_is_withheld() {
         let sonar = SonarModel::default();
         let map = CoverageMap::new(grid());
-        let sources = map.echo_sources(&POSE, &[1.2, 9.0], &[0.0, 1.0], &sonar, DEFAULT_EPSILON);
+        let sources = map
+            .read_scan(&POSE, &[1.2, 9.0], &[0.0, 1.0], &sonar, DEFAULT_EPSILON)
+            .sources;
         assert!(sources.withheld(0).is_empty() && sources.withheld(1).is_empty());
         let mut pinned = map.clone();
         pinned.pin_covered(&[Cell { row: 50, col: 40 }]).unwrap();
         let max = sonar.range_model().max_range_m;
-        let sources = pinned.echo_sources(&POSE, &[max], &[0.0], &sonar, DEFAULT_EPSILON);
+        let sources = pinned
+            .read_scan(&POSE, &[max], &[0.0], &sonar, DEFAULT_EPSILON)
+            .sources;
         assert!(sources.withheld(0).is_empty());
         // A scan that is not valid gives sources; nothing panics.
-        let sources = pinned.echo_sources(&POSE, &[f64::NAN, -1.0], &[0.0], &sonar, 0.65);
+        let sources = pinned
+            .read_scan(&POSE, &[f64::NAN, -1.0], &[0.0], &sonar, 0.65)
+            .sources;
         assert_eq!(sources.len(), 2);
     }
 
@@ -301,7 +348,9 @@ mod tests {
     fn sources_of_another_scan_are_refused() {
         let sonar = SonarModel::default();
         let mut map = CoverageMap::new(grid());
-        let sources = map.echo_sources(&POSE, &[1.2, 1.0], &[0.0, 1.0], &sonar, 0.65);
+        let sources = map
+            .read_scan(&POSE, &[1.2, 1.0], &[0.0, 1.0], &sonar, 0.65)
+            .sources;
         let before = map.histograms().to_vec();
         let beams = ScanBeams {
             echo_sources: Some(&sources),

@@ -57,7 +57,8 @@ mod test_rng;
 pub use counting::ScanCounts;
 pub use coverage_map::{
     CONTACT_COVERAGE, ChangeCursor, Changes, CoverageMap, HistoryState, Occluding,
-    STAGNATION_MEASUREMENTS, STAGNATION_NATS, integrate_log_occluded, integrate_log_occluded_by,
+    STAGNATION_MEASUREMENTS, STAGNATION_NATS, ScanReading, integrate_log_occluded,
+    integrate_log_occluded_by,
 };
 pub use echo_sources::EchoSources;
 pub use error::{CovmapError, QUOTED_CHARS, Result, quoted};

@@ -36,6 +36,9 @@ pub struct NoEchoSight {
     reach_m: Vec<f64>,
     /// Reading `k`'s greatest reach over its sectors, metres.
     max_reach_m: Vec<f64>,
+    /// Reading `k`'s least reach over its sectors, metres: every cell
+    /// nearer is cleared whatever its sector.
+    min_reach_m: Vec<f64>,
 }
 
 /// `angle` brought into `(-pi, pi]`.
@@ -80,6 +83,7 @@ impl NoEchoSight {
             half_angle_rad,
             reach_m: Vec::with_capacity(n * sectors),
             max_reach_m: Vec::with_capacity(n),
+            min_reach_m: Vec::with_capacity(n),
         };
         let pose = scan.pose;
         let origin = [pose.x_m, pose.y_m];
@@ -98,19 +102,21 @@ impl NoEchoSight {
                     cap,
                     footprint,
                     &mut |i: usize, d_l: f64| {
+                        // Most cells of a cone do not occlude: that is asked
+                        // first, the sectors a cell shadows (two inverse
+                        // trigonometric functions) only of those that do.
+                        if !is_covered(i) {
+                            return;
+                        }
                         let reach = (d_l - half).max(0.0);
                         if sectors == 1 {
-                            if reach < row[0] && is_covered(i) {
-                                row[0] = reach;
-                            }
+                            row[0] = row[0].min(reach);
                             return;
                         }
                         let [lo, hi] =
                             sight_sectors(grid, origin, axis, half_angle_rad, sectors, i, d_l);
-                        if row[lo..=hi].iter().any(|&s| reach < s) && is_covered(i) {
-                            for s in &mut row[lo..=hi] {
-                                *s = s.min(reach);
-                            }
+                        for s in &mut row[lo..=hi] {
+                            *s = s.min(reach);
                         }
                     },
                 );
@@ -119,6 +125,9 @@ impl NoEchoSight {
             sight
                 .max_reach_m
                 .push(row.iter().copied().fold(0.0, f64::max));
+            sight
+                .min_reach_m
+                .push(row.iter().copied().fold(f64::INFINITY, f64::min));
         }
         sight
     }
@@ -151,7 +160,7 @@ impl NoEchoSight {
         index: usize,
         d_l: f64,
     ) -> bool {
-        if self.sectors == 1 {
+        if self.sectors == 1 || d_l <= self.min_reach_m[k] {
             return true;
         }
         let [cx, cy] = grid.cell_center(grid.cell(index));

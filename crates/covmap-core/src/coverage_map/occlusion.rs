@@ -43,17 +43,10 @@ impl ScanMap for Occluding<'_> {
         model: &M,
     ) -> Result<usize> {
         let map = &*self.0;
-        let certain = |i| map.occludes(i, DEFAULT_EPSILON);
-        let sight = NoEchoSight::of_scan(map.grid(), &scan, model, certain);
-        let sources = EchoSources::of_scan(map.grid(), &scan, model, certain);
-        self.0.integrate_checked(
-            ScanBeams {
-                no_echo_sight: Some(&sight),
-                echo_sources: Some(&sources),
-                ..scan
-            },
-            model,
-        )
+        let reading = ScanReading::of_scan(map.grid(), &scan, model, |i| {
+            map.occludes(i, DEFAULT_EPSILON)
+        });
+        self.0.integrate_checked(reading.beams(scan), model)
     }
 
     /// Every scan of `log`, read against the map of all of the log's
@@ -102,18 +95,13 @@ pub fn integrate_log_occluded<M: SensorModel + ?Sized>(
     let mut echoes = map.clone();
     map.history = history;
     crate::log::integrate_scans(&grid, log, model, &mut |_| {}, |scan| {
-        echoes.integrate_checked(kept.keep(scan, |r| r < max_range_m), model)
+        echoes.integrate_checked(kept.echoes(scan, max_range_m), model)
     })?;
     let covered = echoes.occluding_cells(epsilon);
     drop(echoes);
     crate::log::integrate_scans(&grid, log, model, progress, |scan| {
-        let sight = NoEchoSight::of_scan(&grid, &scan, model, |i| covered[i]);
-        let sources = EchoSources::of_scan(&grid, &scan, model, |i| covered[i]);
-        let beams = ScanBeams {
-            no_echo_sight: Some(&sight),
-            echo_sources: Some(&sources),
-            ..scan
-        };
+        let reading = ScanReading::of_scan(&grid, &scan, model, |i| covered[i]);
+        let beams = reading.beams(scan);
         Ok(map.integrate_checked(beams, model)? + also(beams)?)
     })
 }
@@ -156,13 +144,14 @@ struct KeptBeams {
 }
 
 impl KeptBeams {
-    /// The beams of `scan` whose range `keep` accepts, with their reaches.
-    fn keep<'a>(&'a mut self, scan: ScanBeams<'a>, keep: impl Fn(f64) -> bool) -> ScanBeams<'a> {
+    /// The echo readings of `scan` (those short of `max_range_m`), with
+    /// their reaches.
+    fn echoes<'a>(&'a mut self, scan: ScanBeams<'a>, max_range_m: f64) -> ScanBeams<'a> {
         self.ranges.clear();
         self.bearings.clear();
         self.reaches.clear();
         for (k, (&r, &b)) in scan.ranges.iter().zip(scan.bearings).enumerate() {
-            if keep(r) {
+            if r < max_range_m {
                 self.ranges.push(r);
                 self.bearings.push(b);
                 if let Some(reaches) = scan.no_echo_reach_m {
@@ -181,17 +170,56 @@ impl KeptBeams {
     }
 }
 
+/// A scan read against the cells a map is certain are covered: how far
+/// each no-echo reading sees past them ([`NoEchoSight`]) and which cells
+/// of each echo's arc may have returned it ([`EchoSources`]). The
+/// exploration loop, [`Occluding`] and [`integrate_log_occluded`] read
+/// every scan so ([`CoverageMap::read_scan`] against a map as it stands).
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct ScanReading {
+    /// The no-echo readings' sight.
+    pub sight: NoEchoSight,
+    /// The echoes' sources.
+    pub sources: EchoSources,
+}
+
+impl ScanReading {
+    /// `scan` read against the cells `is_certain` names. No-echo readings
+    /// and echoes are disjoint, so each cell's certainty is asked of at
+    /// most once a reading.
+    pub fn of_scan<M: SensorModel + ?Sized>(
+        grid: &Grid,
+        scan: &ScanBeams<'_>,
+        model: &M,
+        is_certain: impl Fn(usize) -> bool,
+    ) -> Self {
+        Self {
+            sight: NoEchoSight::of_scan(grid, scan, model, &is_certain),
+            sources: EchoSources::of_scan(grid, scan, model, &is_certain),
+        }
+    }
+
+    /// `scan` with this reading: the beams a map takes.
+    pub fn beams<'a>(&'a self, scan: ScanBeams<'a>) -> ScanBeams<'a> {
+        ScanBeams {
+            no_echo_sight: Some(&self.sight),
+            echo_sources: Some(&self.sources),
+            ..scan
+        }
+    }
+}
+
 impl CoverageMap {
     /// This map, integrating each scan ([`ScanMap::integrate`],
     /// [`ScanMap::integrate_scan`]) with its no-echo readings occluded by
     /// the map as it stands when the scan comes: a no-echo reading clears
     /// only the cells of its footprint that no cell the map holds as
-    /// covered, and is certain of, shadows ([`CoverageMap::no_echo_sight`];
+    /// covered, and is certain of, shadows ([`CoverageMap::read_scan`];
     /// certain: an entropy of at most [`DEFAULT_EPSILON`] nats), as the
     /// exploration loop integrates its scans (at its own epsilon). A no-echo reading through a wall that earlier
     /// echoes found is then taken for a specular miss, which says nothing
     /// of the wall or of what lies behind it. Each echo is explained by
-    /// the same cells ([`CoverageMap::echo_sources`]). A whole log
+    /// the same cells ([`EchoSources`]). A whole log
     /// ([`ScanMap::integrate_log`]) is read against the map of all of its
     /// echoes ([`integrate_log_occluded`]): that map does not depend on
     /// the order of the scans.
@@ -199,42 +227,21 @@ impl CoverageMap {
         Occluding(self)
     }
 
-    /// What each no-echo reading of a scan from `pose` should clear: in
-    /// each sector of its footprint, the cells nearer than the nearest cell
-    /// that occludes at `epsilon` ([`CoverageMap::occludes`]) and shadows
-    /// the sector, at most the maximum range
-    /// ([`NoEchoSight`]); echo readings are not limited. The result is the
-    /// `no_echo_sight` of a [`ScanBeams`](crate::ScanBeams). The scan is
-    /// not validated: an invalid one gives a sight the update then refuses.
-    pub fn no_echo_sight<M: SensorModel + ?Sized>(
+    /// A scan from `pose` read against the cells that occlude at
+    /// `epsilon` ([`CoverageMap::occludes`]): each no-echo reading's sight
+    /// and each echo's sources ([`ScanReading`]), to go with the scan
+    /// ([`ScanReading::beams`]). The scan is not validated: an invalid one
+    /// gives a reading the update then refuses.
+    pub fn read_scan<M: SensorModel + ?Sized>(
         &self,
         pose: &Pose,
         ranges: &[f64],
         bearings: &[f64],
         model: &M,
         epsilon: f64,
-    ) -> NoEchoSight {
+    ) -> ScanReading {
         let scan = ScanBeams::new(pose, ranges, bearings);
-        NoEchoSight::of_scan(self.grid(), &scan, model, |i| self.occludes(i, epsilon))
-    }
-
-    /// Which cells at and past its end point each echo reading of a scan
-    /// from `pose` is not attributed to: where the end band holds a cell
-    /// that occludes at `epsilon` ([`CoverageMap::occludes`]), the cells
-    /// off every such cell's bearing that do not occlude themselves
-    /// ([`EchoSources`]). The result is the `echo_sources` of a
-    /// [`ScanBeams`](crate::ScanBeams). The scan is not validated: an
-    /// invalid one gives sources the update then refuses.
-    pub fn echo_sources<M: SensorModel + ?Sized>(
-        &self,
-        pose: &Pose,
-        ranges: &[f64],
-        bearings: &[f64],
-        model: &M,
-        epsilon: f64,
-    ) -> EchoSources {
-        let scan = ScanBeams::new(pose, ranges, bearings);
-        EchoSources::of_scan(self.grid(), &scan, model, |i| self.occludes(i, epsilon))
+        ScanReading::of_scan(self.grid(), &scan, model, |i| self.occludes(i, epsilon))
     }
 
     /// Whether cell `i` (row-major) stops the line of sight of no-echo
@@ -394,7 +401,9 @@ mod tests {
             let pose = Pose::new(1.0 + 6.0 * next(), 1.0 + 4.0 * next(), next());
             let mut ranges = vec![limit; 24];
             ranges[trial % 24] = 1.0;
-            let sight = map.no_echo_sight(&pose, &ranges, &ring, &sonar, DEFAULT_EPSILON);
+            let sight = map
+                .read_scan(&pose, &ranges, &ring, &sonar, DEFAULT_EPSILON)
+                .sight;
             let origin = [pose.x_m, pose.y_m];
             for (k, &r) in ranges.iter().enumerate() {
                 let axis = pose.theta_rad + ring[k];

@@ -144,22 +144,12 @@ impl<S: ScanSource, M: Motion> Exploration<S, M> {
         // echoes attributed to it (see the module documentation of
         // `crate::exploration`).
         let epsilon = self.config.epsilon;
-        let seen = self.config.occlude_no_echo.then(|| {
-            (
-                self.map
-                    .no_echo_sight(pose, &ranges, bearings, model, epsilon),
-                self.map
-                    .echo_sources(pose, &ranges, bearings, model, epsilon),
-            )
-        });
-        let scan = ScanBeams {
-            pose,
-            ranges: &ranges,
-            bearings,
-            no_echo_reach_m: None,
-            no_echo_sight: seen.as_ref().map(|s| &s.0),
-            echo_sources: seen.as_ref().map(|s| &s.1),
-        };
+        let reading = self
+            .config
+            .occlude_no_echo
+            .then(|| self.map.read_scan(pose, &ranges, bearings, model, epsilon));
+        let scan = ScanBeams::new(pose, &ranges, bearings);
+        let scan = reading.as_ref().map_or(scan, |r| r.beams(scan));
         // The coverage map checks the scan first: an invalid one changes no map.
         self.map.integrate_scan(scan, model)?;
         self.occupancy.integrate_scan(scan, model)?;
